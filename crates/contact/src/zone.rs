@@ -1,0 +1,192 @@
+//! The contact zone: the data of `formulation.md` §2, as a finite-element program hands it over.
+
+use faer::Mat;
+
+use crate::ContactError;
+
+/// Contact load vector (CLV) of one load group: link forces of the bonded structure,
+/// compression positive, one entry per contact pair.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ContactLoad {
+    /// Forces in the normal links (`R_n`), compression positive.
+    pub normal: Vec<f64>,
+    /// Forces in the tangential links (`R_t`), the paper's sign convention (clockwise couple positive).
+    pub tangential: Vec<f64>,
+}
+
+impl ContactLoad {
+    /// A zero load on `m` pairs.
+    pub fn zeros(m: usize) -> Self {
+        Self {
+            normal: vec![0.0; m],
+            tangential: vec![0.0; m],
+        }
+    }
+}
+
+/// The contact zone of a structure with `m` contact pairs.
+///
+/// Matrix blocks follow `formulation.md` §2: the first index is the link whose force is read,
+/// the second the link that is dislocated. `rnn` and `rtt` are symmetric positive semidefinite.
+#[derive(Debug, Clone)]
+pub struct ContactZone {
+    /// Normal–normal contact stiffness (`m × m`).
+    pub rnn: Mat<f64>,
+    /// Normal force from tangential dislocation (`m × m`).
+    pub rnt: Mat<f64>,
+    /// Tangential force from normal dislocation (`m × m`).
+    pub rtn: Mat<f64>,
+    /// Tangential–tangential contact stiffness (`m × m`).
+    pub rtt: Mat<f64>,
+    /// Coulomb friction coefficient per pair, `f ≥ 0`.
+    pub friction: Vec<f64>,
+    /// Initial gap per pair, `η ≥ 0`.
+    pub gap: Vec<f64>,
+    /// Constant (dead) load part `R_c`.
+    pub constant: ContactLoad,
+    /// Variable load part `R_v`, multiplied by the load parameter `p`.
+    pub variable: ContactLoad,
+    /// Display names of the pairs (default `"1"`, `"2"`, …).
+    pub pair_names: Vec<String>,
+}
+
+impl ContactZone {
+    /// A frictionless, load-free zone with the given normal stiffness and zero coupling blocks.
+    pub fn new(rnn: Mat<f64>, rtt: Mat<f64>) -> Self {
+        let m = rnn.nrows();
+        Self {
+            rnt: Mat::zeros(m, m),
+            rtn: Mat::zeros(m, m),
+            rnn,
+            rtt,
+            friction: vec![0.0; m],
+            gap: vec![0.0; m],
+            constant: ContactLoad::zeros(m),
+            variable: ContactLoad::zeros(m),
+            pair_names: (1..=m).map(|i| i.to_string()).collect(),
+        }
+    }
+
+    /// Number of contact pairs `m`.
+    pub fn pairs(&self) -> usize {
+        self.rnn.nrows()
+    }
+
+    /// Checks sizes, finiteness, signs and the symmetry of `Rnn` and `Rtt`.
+    ///
+    /// Symmetry is checked relative to the largest entry of the matrix (`1e-8`), since matrices
+    /// computed by other programs carry round-off.
+    pub fn validate(&self) -> Result<(), ContactError> {
+        let m = self.rnn.nrows();
+        if m == 0 {
+            return Err(ContactError::Empty);
+        }
+        for (name, mat) in [
+            ("Rnn", &self.rnn),
+            ("Rnt", &self.rnt),
+            ("Rtn", &self.rtn),
+            ("Rtt", &self.rtt),
+        ] {
+            if mat.nrows() != m || mat.ncols() != m {
+                return Err(ContactError::MatrixSize {
+                    name,
+                    rows: mat.nrows(),
+                    cols: mat.ncols(),
+                    pairs: m,
+                });
+            }
+            for j in 0..m {
+                for i in 0..m {
+                    let v = mat[(i, j)];
+                    if !v.is_finite() {
+                        return Err(ContactError::NotFinite {
+                            name: name.to_string(),
+                            index: format!("({}, {})", i + 1, j + 1),
+                        });
+                    }
+                }
+            }
+        }
+        for (name, mat) in [("Rnn", &self.rnn), ("Rtt", &self.rtt)] {
+            let scale = max_abs(mat);
+            for j in 0..m {
+                for i in 0..j {
+                    let (a, b) = (mat[(i, j)], mat[(j, i)]);
+                    if (a - b).abs() > 1e-8 * scale {
+                        return Err(ContactError::NotSymmetric {
+                            name,
+                            row: i + 1,
+                            col: j + 1,
+                            upper: a,
+                            lower: b,
+                        });
+                    }
+                }
+            }
+            for i in 0..m {
+                if mat[(i, i)] < -1e-12 * scale {
+                    return Err(ContactError::NegativeDiagonal {
+                        name,
+                        pair: i + 1,
+                        value: mat[(i, i)],
+                    });
+                }
+            }
+        }
+        let vectors: [(&str, &Vec<f64>); 6] = [
+            ("friction", &self.friction),
+            ("gap", &self.gap),
+            ("load.constant.normal", &self.constant.normal),
+            ("load.constant.tangential", &self.constant.tangential),
+            ("load.variable.normal", &self.variable.normal),
+            ("load.variable.tangential", &self.variable.tangential),
+        ];
+        for (name, v) in vectors {
+            if v.len() != m {
+                return Err(ContactError::VectorSize {
+                    name: name.to_string(),
+                    len: v.len(),
+                    pairs: m,
+                });
+            }
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Err(ContactError::NotFinite {
+                    name: name.to_string(),
+                    index: format!("[{}]", i + 1),
+                });
+            }
+        }
+        if let Some(i) = self.friction.iter().position(|&f| f < 0.0) {
+            return Err(ContactError::Negative {
+                name: "friction",
+                pair: i + 1,
+                value: self.friction[i],
+            });
+        }
+        if let Some(i) = self.gap.iter().position(|&g| g < 0.0) {
+            return Err(ContactError::Negative {
+                name: "gap",
+                pair: i + 1,
+                value: self.gap[i],
+            });
+        }
+        if self.pair_names.len() != m {
+            return Err(ContactError::VectorSize {
+                name: "pair_names".to_string(),
+                len: self.pair_names.len(),
+                pairs: m,
+            });
+        }
+        Ok(())
+    }
+}
+
+pub(crate) fn max_abs(mat: &Mat<f64>) -> f64 {
+    let mut s = 0.0f64;
+    for j in 0..mat.ncols() {
+        for i in 0..mat.nrows() {
+            s = s.max(mat[(i, j)].abs());
+        }
+    }
+    s
+}

@@ -1,0 +1,1 @@
+//! 2D structural finite elements (work in progress).

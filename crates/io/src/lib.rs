@@ -1,0 +1,1 @@
+//! Problem and result I/O (work in progress).

@@ -1,0 +1,1 @@
+//! Complementarity engine (work in progress).
