@@ -1,1 +1,3 @@
 //! Complementarity engine (work in progress).
+mod problem;
+pub use problem::{Lcp, ParametricLcp};
