@@ -1,7 +1,8 @@
 //! Exhaustive enumeration of the complementary index sets of a small LCP.
 
-use crate::linalg::{feasible_vertex, solve};
+use crate::linalg::{feasible_vertex, solve_int};
 use crate::{check_square, mz_plus_q, parametric_q, rat, rat_matrix, rat_vec, to_f64_vec, Rat};
+use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
 /// The largest `n` that [`enumerate`] accepts (`2ⁿ` index sets).
@@ -45,8 +46,8 @@ impl Solution {
 ///
 /// For every subset `S` of `0..n` (`z` may be non-zero only on `S`, `w` is zero on `S`):
 ///
-/// * if `M_SS` is non-singular, `z_S = −M_SS⁻¹ q_S` (exact Gaussian elimination); it is kept if
-///   `z ≥ 0` and `w = M z + q ≥ 0`;
+/// * if `M_SS` is non-singular, `z_S = −M_SS⁻¹ q_S` (exact fraction-free Gaussian elimination
+///   on the row-scaled integer data); it is kept if `z ≥ 0` and `w = M z + q ≥ 0`;
 /// * if `M_SS` is singular, the set of solutions with this pattern,
 ///   `{ z_S ≥ 0, z_{S^c} = 0, (M z + q)_S = 0, (M z + q)_{S^c} ≥ 0 }`, is a polyhedron that may
 ///   be empty, one point or a continuum. An exact phase-1 simplex decides whether it is empty
@@ -76,10 +77,25 @@ pub fn enumerate_exact(m: &[Vec<Rat>], q: &[Rat]) -> Vec<Solution> {
         n <= MAX_ENUMERATION_SIZE,
         "enumeration is limited to n ≤ {MAX_ENUMERATION_SIZE} (n = {n})"
     );
+    // Scale each row of [M | q] by the lcm of its denominators: an integer problem with the
+    // same z-solutions (w_i is scaled by a positive factor), so that the 2ⁿ solves run in
+    // fraction-free integer arithmetic.
+    let (mi, qi): (Vec<Vec<BigInt>>, Vec<BigInt>) = m
+        .iter()
+        .zip(q)
+        .map(|(row, qv)| {
+            let l = row
+                .iter()
+                .chain(std::iter::once(qv))
+                .fold(BigInt::one(), |acc, v| lcm(acc, v.denom()));
+            let scale = |v: &Rat| v.numer() * (&l / v.denom());
+            (row.iter().map(scale).collect(), scale(qv))
+        })
+        .unzip();
     let mut out: Vec<Solution> = Vec::new();
     for mask in 0u32..(1u32 << n) {
         let set: Vec<usize> = (0..n).filter(|&i| mask & (1 << i) != 0).collect();
-        let (z, singular) = match candidate(m, q, &set) {
+        let (z, singular) = match candidate(&mi, &qi, m, q, &set) {
             Some(found) => found,
             None => continue,
         };
@@ -105,19 +121,50 @@ pub fn enumerate_exact(m: &[Vec<Rat>], q: &[Rat]) -> Vec<Solution> {
     out
 }
 
-/// The candidate `z` of index set `set` (with a flag: was `M_SS` singular), or `None`.
-fn candidate(m: &[Vec<Rat>], q: &[Rat], set: &[usize]) -> Option<(Vec<Rat>, bool)> {
+/// The least common multiple of two positive integers.
+fn lcm(a: BigInt, b: &BigInt) -> BigInt {
+    let (mut x, mut y) = (a.clone(), b.clone());
+    while !y.is_zero() {
+        let r = &x % &y;
+        x = std::mem::replace(&mut y, r);
+    }
+    a / x * b
+}
+
+/// The candidate `z` of index set `set` (with a flag: was `M_SS` singular), or `None` if it
+/// is certainly not a solution. `mi`, `qi` are the row-scaled integer data.
+fn candidate(
+    mi: &[Vec<BigInt>],
+    qi: &[BigInt],
+    m: &[Vec<Rat>],
+    q: &[Rat],
+    set: &[usize],
+) -> Option<(Vec<Rat>, bool)> {
     let n = q.len();
-    let a: Vec<Vec<Rat>> = set
+    let a: Vec<Vec<BigInt>> = set
         .iter()
-        .map(|&i| set.iter().map(|&j| m[i][j].clone()).collect())
+        .map(|&i| set.iter().map(|&j| mi[i][j].clone()).collect())
         .collect();
-    let b: Vec<Rat> = set.iter().map(|&i| -&q[i]).collect();
-    if let Some(zs) = solve(&a, &b) {
-        let mut z = vec![Rat::zero(); n];
-        for (&i, v) in set.iter().zip(zs) {
-            z[i] = v;
+    let b: Vec<BigInt> = set.iter().map(|&i| -&qi[i]).collect();
+    if let Some((x, den)) = solve_int(a, &b) {
+        // z_S = x / den with den > 0: reject cheaply on signs, in integers.
+        if x.iter().any(Signed::is_negative) {
+            return None;
         }
+        let mut zx = vec![BigInt::zero(); n];
+        for (&i, v) in set.iter().zip(&x) {
+            zx[i] = v.clone();
+        }
+        for i in (0..n).filter(|i| !set.contains(i)) {
+            // den · (scaled w_i) = Σ_j mi_ij x_j + den · qi_i must be ≥ 0.
+            let s = set
+                .iter()
+                .fold(&den * &qi[i], |acc, &j| acc + &mi[i][j] * &zx[j]);
+            if s.is_negative() {
+                return None;
+            }
+        }
+        let z = zx.into_iter().map(|v| Rat::new(v, den.clone())).collect();
         return Some((z, false));
     }
     // Singular M_SS: M z − w = −q with variables z_S ≥ 0 and w_{S^c} ≥ 0.

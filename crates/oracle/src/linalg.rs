@@ -1,6 +1,7 @@
 //! Exact linear algebra: Gaussian elimination and a phase-1 simplex (feasibility only).
 
 use crate::Rat;
+use num_bigint::BigInt;
 use num_traits::{One, Signed, Zero};
 
 /// Solves the square system `A y = b` exactly by Gaussian elimination.
@@ -49,6 +50,48 @@ pub fn solve(a: &[Vec<Rat>], b: &[Rat]) -> Option<Vec<Rat>> {
         y[k] = v;
     }
     Some(y)
+}
+
+/// Solves the square integer system `A y = b` by fraction-free Gauss–Jordan elimination
+/// (Bareiss): returns `(x, den)` with `den > 0` and `y = x / den`, or `None` if `A` is
+/// singular. Only exact integer divisions occur (every intermediate entry is a minor of
+/// `[A | b]`), so no gcd is ever computed: much faster than rational elimination.
+pub(crate) fn solve_int(mut t: Vec<Vec<BigInt>>, b: &[BigInt]) -> Option<(Vec<BigInt>, BigInt)> {
+    let n = b.len();
+    for (row, bi) in t.iter_mut().zip(b) {
+        row.push(bi.clone());
+    }
+    let mut prev = BigInt::one();
+    for c in 0..n {
+        let piv = (c..n).find(|&i| !t[i][c].is_zero())?;
+        t.swap(c, piv);
+        let (before, rest) = t.split_at_mut(c);
+        let (pivot_row, after) = rest.split_first_mut().expect("c < n");
+        for row in before.iter_mut().chain(after.iter_mut()) {
+            let f = std::mem::take(&mut row[c]);
+            for (j, x) in row.iter_mut().enumerate() {
+                if j == c {
+                    continue;
+                }
+                let v = &pivot_row[c] * &*x - &f * &pivot_row[j];
+                debug_assert!((&v % &prev).is_zero());
+                *x = v / &prev;
+            }
+        }
+        prev = pivot_row[c].clone();
+    }
+    // Every diagonal entry now equals the determinant (up to the row order) `prev`.
+    let mut x: Vec<BigInt> = t
+        .into_iter()
+        .map(|mut row| row.pop().expect("rhs"))
+        .collect();
+    if prev.is_negative() {
+        prev = -prev;
+        for v in x.iter_mut() {
+            *v = -std::mem::take(v);
+        }
+    }
+    Some((x, prev))
 }
 
 /// `row -= row[col] · pivot_row` (only from `col` on).
@@ -172,6 +215,42 @@ mod tests {
         assert_eq!(y, vec![frac(1, 1), frac(2, 1)]);
         assert!(solve(&m(&[&[1, 2], &[2, 4]]), &[frac(1, 1), frac(2, 1)]).is_none());
         assert_eq!(solve(&[], &[]), Some(vec![]));
+    }
+
+    #[test]
+    fn solve_int_matches_rational_solve() {
+        let a: Vec<Vec<BigInt>> = [[2, -1, 0], [-1, 2, -1], [0, -3, 5]]
+            .iter()
+            .map(|r| r.iter().map(|&v| BigInt::from(v)).collect())
+            .collect();
+        let b: Vec<BigInt> = [1, 0, 4].iter().map(|&v| BigInt::from(v)).collect();
+        let (x, den) = solve_int(a.clone(), &b).unwrap();
+        assert!(den > BigInt::zero());
+        let ar: Vec<Vec<Rat>> = a
+            .iter()
+            .map(|r| r.iter().map(|v| Rat::from_integer(v.clone())).collect())
+            .collect();
+        let br: Vec<Rat> = b.iter().map(|v| Rat::from_integer(v.clone())).collect();
+        let y = solve(&ar, &br).unwrap();
+        for (xi, yi) in x.iter().zip(&y) {
+            assert_eq!(Rat::new(xi.clone(), den.clone()), *yi);
+        }
+        // Needs a row swap; and a singular one.
+        let a2 = vec![
+            vec![BigInt::from(0), BigInt::from(1)],
+            vec![BigInt::from(-2), BigInt::from(0)],
+        ];
+        let (x, den) = solve_int(a2, &[BigInt::from(3), BigInt::from(4)]).unwrap();
+        assert_eq!(
+            Rat::new(x[0].clone(), den.clone()),
+            Rat::from_integer((-2).into())
+        );
+        assert_eq!(Rat::new(x[1].clone(), den), Rat::from_integer(3.into()));
+        let a3 = vec![
+            vec![BigInt::from(1), BigInt::from(2)],
+            vec![BigInt::from(2), BigInt::from(4)],
+        ];
+        assert!(solve_int(a3, &[BigInt::from(3), BigInt::from(4)]).is_none());
     }
 
     #[test]
