@@ -43,6 +43,8 @@
 //! assert_eq!(r.z, all[0].z);
 //! ```
 
+#![warn(missing_docs)]
+
 mod enumerate;
 mod lemke;
 mod linalg;

@@ -3,8 +3,8 @@
 #![allow(clippy::needless_range_loop)] // index notation mirrors the formulas
 
 use unilateral_oracle::{
-    frac, is_lcp_solution, mz_plus_q, parametric_path, parametric_path_exact, PathStatus, Rat,
-    Step, Var, DEFAULT_MAX_STEPS,
+    enumerate_parametric_exact, frac, is_lcp_solution, mz_plus_q, parametric_path,
+    parametric_path_exact, PathStatus, Rat, Step, Var, DEFAULT_MAX_STEPS,
 };
 
 const N: usize = 3;
@@ -242,4 +242,58 @@ fn the_same_from_f64_data() {
     let s = path.solution_at_f64(1.0).unwrap();
     assert_eq!(s.x_f64()[0], 1.0 - 0.09375);
     assert!(s.z_f64().iter().all(|&v| v == 0.0));
+}
+
+#[test]
+fn without_tightening_enumeration_gives_the_papers_answer() {
+    // c = 0: the real problem x = p·d + M z at p = 1. The enumeration (M is singular, so the
+    // singular patterns go through the phase-1 LP) finds exactly one solution, the paper's.
+    let (m, _, d) = exact();
+    let zero = vec![frac(0, 1); 3 * N];
+    let start = std::time::Instant::now();
+    let sols = enumerate_parametric_exact(&m, &zero, &d, &frac(1, 1));
+    eprintln!(
+        "enumeration of 2^9 sets of Example 1: {:?}",
+        start.elapsed()
+    );
+    assert_eq!(sols.len(), 1);
+    let (h, t, o) = (frac(1, 2), frac(3, 10), frac(0, 1));
+    let mut z = vec![o.clone(); 3 * N];
+    z[0] = h.clone();
+    assert_eq!(sols[0].z, z);
+    assert_eq!(
+        sols[0].w,
+        vec![
+            o.clone(),
+            h.clone(),
+            h,
+            o.clone(),
+            t.clone(),
+            t.clone(),
+            o,
+            t.clone(),
+            t
+        ]
+    );
+}
+
+#[test]
+fn without_tightening_the_path_ends_in_a_false_mechanism() {
+    // formulation.md §3: the tightening c is what keeps the start away from this. With
+    // q0 = 0 every ratio is 0; p enters and x_t1- leaves (lexicographic), z_t1- enters and
+    // x_t1+ leaves, then z_t1+ has a zero column: "mechanism" at p = 0 (pair 1 slipping
+    // both ways at once, no force).
+    let (m, _, d) = exact();
+    let zero = vec![frac(0, 1); 3 * N];
+    let path = parametric_path_exact(&m, &zero, &d, None, None, DEFAULT_MAX_STEPS);
+    let seq: Vec<(Var, Var)> = path.steps.iter().map(|s| (s.entering, s.leaving)).collect();
+    assert_eq!(seq, vec![(Var::P, xtm(0)), (Var::Z(2 * N), xtp(0))]);
+    assert!(path.steps.iter().all(|s| s.p == frac(0, 1)));
+    assert_eq!(path.status, PathStatus::Mechanism);
+    let ray = path.ray.as_ref().unwrap();
+    assert_eq!(ray.entering, Var::Z(N));
+    let mut dz = vec![frac(0, 1); 3 * N];
+    dz[N] = frac(1, 1);
+    dz[2 * N] = frac(1, 1);
+    assert_eq!(ray.dz, dz);
 }
