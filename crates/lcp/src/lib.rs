@@ -1,3 +1,43 @@
-//! Complementarity engine (work in progress).
+//! # unilateral-lcp — the complementarity engine
+//!
+//! Knows nothing of mechanics. It solves
+//!
+//! * the **standard LCP** `w = M z + q, w ≥ 0, z ≥ 0, wᵀz = 0` by Lemke's method with a covering
+//!   vector ([`solve_lcp`]), and
+//! * the **parametric LCP** `x = q0 + p·d + M z` followed from `p = 0` with the load parameter
+//!   `p` as the driving variable ([`follow_path`]): every pivot is one change of the basis,
+//!   and the result is the whole [`LoadPath`].
+//!
+//! Ties in every ratio test are broken lexicographically, so degenerate problems do not cycle.
+//! The basis is kept in revised form: only the `k × k` kernel of non-slack basic columns is
+//! inverted, so a pivot costs `O(n·k + k²)`, and the kernel is refactorised from the data
+//! (`faer` LU) periodically and whenever its accuracy degrades. Every reported solution carries
+//! its [`Residual`] computed from the original data. The data are equilibrated by powers of two,
+//! so tolerances are relative and no user tuning is needed.
+
+mod basis;
+mod columns;
+mod enumerate;
+mod error;
+mod lemke;
+mod parametric;
+mod pivot;
+mod prepare;
 mod problem;
+mod residual;
+mod scaling;
+mod settings;
+mod tableau;
+mod var;
+
+pub use error::LcpError;
+pub use lemke::{solve_lcp, LcpPoint, LcpSolution, LcpStatus, Strategy};
+pub use parametric::{
+    follow_path, solution_at, Breakpoint, Follow, LoadPath, MechanismMode, PathOptions, PathPoint,
+    PathStatus, Step, Tightening,
+};
 pub use problem::{Lcp, ParametricLcp};
+pub use residual::Residual;
+pub use settings::{Settings, ACCEPT_RESIDUAL};
+pub use tableau::{tableaux, Tableau};
+pub use var::Var;

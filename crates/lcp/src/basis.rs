@@ -1,0 +1,379 @@
+//! A basis of the tableau `[E | −M | −g]` kept in revised form.
+//!
+//! Basic slack columns are unit vectors, so the basis matrix `B` is block triangular: with `S`
+//! the basic non-slack columns (`z`'s and the driver) and `R` the rows whose slack is *not*
+//! basic (`|S| = |R| = k`), only the kernel `K = A[R, S]` (`k × k`) needs an inverse. Solving
+//! with `B` costs `O(k²)` for the kernel plus `O(n·k)` for the slack rows, and each pivot
+//! updates `K⁻¹` by a rank-one formula in `O(k²)`. `K⁻¹` is recomputed from the data by a
+//! fresh LU factorisation (`faer`) every few pivots and whenever its accuracy degrades.
+
+use faer::linalg::solvers::DenseSolveCore;
+use faer::Mat;
+
+use crate::columns::Columns;
+
+/// Revised representation of a complementary basis.
+#[derive(Debug, Clone)]
+pub(crate) struct Basis {
+    n: usize,
+    /// Column held by each slot (tableau row).
+    pub slot_var: Vec<usize>,
+    /// Slot of each column (`usize::MAX` when non-basic); length `2n + 1`.
+    pub var_slot: Vec<usize>,
+    /// Basic non-slack columns.
+    s_cols: Vec<usize>,
+    /// Rows whose slack is non-basic.
+    r_rows: Vec<usize>,
+    /// Position of a row in `r_rows` (`usize::MAX` when its slack is basic).
+    r_pos: Vec<usize>,
+    /// Position of a column in `s_cols` (`usize::MAX` otherwise).
+    s_pos: Vec<usize>,
+    /// `K⁻¹`, row-major: rows follow `s_cols`, columns follow `r_rows`.
+    kinv: Vec<Vec<f64>>,
+}
+
+/// The kernel matrix was numerically singular.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SingularBasis;
+
+const NONE: usize = usize::MAX;
+
+impl Basis {
+    /// The slack basis `B = E`.
+    pub fn slack(n: usize) -> Self {
+        let mut var_slot = vec![NONE; 2 * n + 1];
+        for (i, v) in var_slot.iter_mut().take(n).enumerate() {
+            *v = i;
+        }
+        Self {
+            n,
+            slot_var: (0..n).collect(),
+            var_slot,
+            s_cols: Vec::new(),
+            r_rows: Vec::new(),
+            r_pos: vec![NONE; n],
+            s_pos: vec![NONE; 2 * n + 1],
+            kinv: Vec::new(),
+        }
+    }
+
+    /// A basis holding the given column in every slot; the kernel is factorised from `cols`.
+    pub fn from_slots(cols: &Columns, slot_var: Vec<usize>) -> Result<Self, SingularBasis> {
+        let n = cols.n;
+        let mut b = Self::slack(n);
+        b.slot_var = slot_var;
+        b.var_slot = vec![NONE; 2 * n + 1];
+        for (s, &v) in b.slot_var.iter().enumerate() {
+            b.var_slot[v] = s;
+        }
+        for (i, &slot) in b.var_slot.iter().take(n).enumerate() {
+            if slot == NONE {
+                b.r_pos[i] = b.r_rows.len();
+                b.r_rows.push(i);
+            }
+        }
+        for &v in &b.slot_var {
+            if v >= n {
+                b.s_pos[v] = b.s_cols.len();
+                b.s_cols.push(v);
+            }
+        }
+        b.refactor(cols)?;
+        Ok(b)
+    }
+
+    pub fn is_basic(&self, col: usize) -> bool {
+        self.var_slot[col] != NONE
+    }
+
+    /// Recomputes `K⁻¹` from the data by an LU factorisation of `K = A[R, S]`.
+    pub fn refactor(&mut self, cols: &Columns) -> Result<(), SingularBasis> {
+        let k = self.s_cols.len();
+        if k == 0 {
+            self.kinv.clear();
+            return Ok(());
+        }
+        let kmat = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
+        let lu = kmat.partial_piv_lu();
+        let u = lu.U();
+        let umax = (0..k).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
+        let umin = (0..k)
+            .map(|i| u[(i, i)].abs())
+            .fold(f64::INFINITY, f64::min);
+        if umin.is_nan() || umin <= umax * 1e-14 || !umin.is_finite() {
+            return Err(SingularBasis);
+        }
+        let inv = lu.inverse();
+        // K⁻¹ has rows indexed like the columns of K (S) and columns like its rows (R).
+        self.kinv = (0..k)
+            .map(|a| (0..k).map(|b| inv[(a, b)]).collect())
+            .collect();
+        Ok(())
+    }
+
+    /// `y = B⁻¹ v`, indexed by slot.
+    pub fn solve(&self, cols: &Columns, v: &[f64]) -> Vec<f64> {
+        let n = self.n;
+        let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r]).collect();
+        let ys = self.kernel_solve(&vr);
+        let mut tmp = v.to_vec();
+        self.subtract_kernel_columns(cols, &ys, &mut tmp);
+        self.scatter(&ys, &tmp, n)
+    }
+
+    /// `α = B⁻¹ A[:, col]`, indexed by slot.
+    pub fn ftran(&self, cols: &Columns, col: usize) -> Vec<f64> {
+        let n = self.n;
+        let mut tmp = vec![0.0; n];
+        let ys = if col < n {
+            let b = self.r_pos[col];
+            debug_assert!(b != NONE, "entering slack must be non-basic");
+            tmp[col] = 1.0;
+            self.kinv.iter().map(|row| row[b]).collect::<Vec<_>>()
+        } else {
+            cols.axpy_col(&mut tmp, 1.0, col);
+            let ur: Vec<f64> = self.r_rows.iter().map(|&r| tmp[r]).collect();
+            self.kernel_solve(&ur)
+        };
+        self.subtract_kernel_columns(cols, &ys, &mut tmp);
+        self.scatter(&ys, &tmp, n)
+    }
+
+    fn kernel_solve(&self, vr: &[f64]) -> Vec<f64> {
+        self.kinv.iter().map(|row| dot(row, vr)).collect()
+    }
+
+    /// `tmp −= A[:, S] y_S`, four columns per pass over `tmp`.
+    fn subtract_kernel_columns(&self, cols: &Columns, ys: &[f64], tmp: &mut [f64]) {
+        let n = self.n;
+        let mut zcols: Vec<(usize, f64)> = Vec::with_capacity(ys.len());
+        for (&c, &y) in self.s_cols.iter().zip(ys) {
+            if y == 0.0 {
+                continue;
+            }
+            if c >= n && c < 2 * n {
+                zcols.push((c - n, y));
+            } else {
+                cols.axpy_col(tmp, -y, c);
+            }
+        }
+        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y.
+        let mut chunks = zcols.chunks_exact(4);
+        for ch in &mut chunks {
+            let (c0, c1, c2, c3) = (
+                cols.m_col(ch[0].0),
+                cols.m_col(ch[1].0),
+                cols.m_col(ch[2].0),
+                cols.m_col(ch[3].0),
+            );
+            let (y0, y1, y2, y3) = (ch[0].1, ch[1].1, ch[2].1, ch[3].1);
+            for i in 0..n {
+                tmp[i] += y0 * c0[i] + y1 * c1[i] + y2 * c2[i] + y3 * c3[i];
+            }
+        }
+        for &(j, y) in chunks.remainder() {
+            for (t, v) in tmp.iter_mut().zip(cols.m_col(j)) {
+                *t += y * v;
+            }
+        }
+    }
+
+    fn scatter(&self, ys: &[f64], tmp: &[f64], n: usize) -> Vec<f64> {
+        let mut out = vec![0.0; n];
+        for (i, &t) in tmp.iter().enumerate() {
+            let slot = self.var_slot[i];
+            if slot != NONE {
+                out[slot] = t;
+            }
+        }
+        for (&c, &y) in self.s_cols.iter().zip(ys) {
+            out[self.var_slot[c]] = y;
+        }
+        out
+    }
+
+    /// Row of `B⁻¹` belonging to `slot` (a dense vector over the rows of the problem).
+    pub fn inverse_row(&self, cols: &Columns, slot: usize) -> Vec<f64> {
+        let n = self.n;
+        let var = self.slot_var[slot];
+        let mut rho = vec![0.0; n];
+        if var < n {
+            // Slack row: ρ = e_i − (A[i, S] K⁻¹) on R.
+            rho[var] = 1.0;
+            let ai: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(var, c)).collect();
+            for (b, &r) in self.r_rows.iter().enumerate() {
+                let t: f64 = ai.iter().zip(&self.kinv).map(|(a, row)| a * row[b]).sum();
+                rho[r] -= t;
+            }
+        } else {
+            let a = self.s_pos[var];
+            for (b, &r) in self.r_rows.iter().enumerate() {
+                rho[r] = self.kinv[a][b];
+            }
+        }
+        rho
+    }
+
+    /// Replaces the column at `slot` by `entering`, given `alpha = B⁻¹ A[:, entering]`.
+    pub fn pivot(&mut self, cols: &Columns, entering: usize, slot: usize, alpha: &[f64]) {
+        let n = self.n;
+        let leaving = self.slot_var[slot];
+        let enter_slack = entering < n;
+        let leave_slack = leaving < n;
+        match (enter_slack, leave_slack) {
+            (false, true) => {
+                // Border K with the new column `entering` and the new row `leaving`.
+                let r = leaving;
+                let ut: Vec<f64> = self
+                    .s_cols
+                    .iter()
+                    .map(|&c| alpha[self.var_slot[c]])
+                    .collect();
+                let sigma = alpha[slot];
+                let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
+                let vt = vec_times_kinv(&v, &self.kinv, self.r_rows.len());
+                for (row, &ua) in self.kinv.iter_mut().zip(&ut) {
+                    let f = ua / sigma;
+                    for (x, &w) in row.iter_mut().zip(&vt) {
+                        *x += f * w;
+                    }
+                    row.push(-f);
+                }
+                let mut last: Vec<f64> = vt.iter().map(|w| -w / sigma).collect();
+                last.push(1.0 / sigma);
+                self.kinv.push(last);
+                self.s_pos[entering] = self.s_cols.len();
+                self.s_cols.push(entering);
+                self.r_pos[r] = self.r_rows.len();
+                self.r_rows.push(r);
+            }
+            (true, false) => {
+                // Remove column `leaving` (position a) and row `entering` (position b).
+                let a = self.s_pos[leaving];
+                let b = self.r_pos[entering];
+                let piv = self.kinv[a][b];
+                let row_a = self.kinv[a].clone();
+                for (i, row) in self.kinv.iter_mut().enumerate() {
+                    if i == a {
+                        continue;
+                    }
+                    let f = row[b] / piv;
+                    if f != 0.0 {
+                        for (x, &w) in row.iter_mut().zip(&row_a) {
+                            *x -= f * w;
+                        }
+                    }
+                }
+                self.kinv.swap_remove(a);
+                for row in &mut self.kinv {
+                    row.swap_remove(b);
+                }
+                self.s_cols.swap_remove(a);
+                if a < self.s_cols.len() {
+                    self.s_pos[self.s_cols[a]] = a;
+                }
+                self.s_pos[leaving] = NONE;
+                self.r_rows.swap_remove(b);
+                if b < self.r_rows.len() {
+                    self.r_pos[self.r_rows[b]] = b;
+                }
+                self.r_pos[entering] = NONE;
+            }
+            (false, false) => {
+                // Replace column at position a by `entering`.
+                let a = self.s_pos[leaving];
+                let ut: Vec<f64> = self
+                    .s_cols
+                    .iter()
+                    .map(|&c| alpha[self.var_slot[c]])
+                    .collect();
+                let piv = ut[a];
+                let row_a: Vec<f64> = self.kinv[a].iter().map(|x| x / piv).collect();
+                for (i, row) in self.kinv.iter_mut().enumerate() {
+                    if i == a || ut[i] == 0.0 {
+                        continue;
+                    }
+                    let f = ut[i];
+                    for (x, &w) in row.iter_mut().zip(&row_a) {
+                        *x -= f * w;
+                    }
+                }
+                self.kinv[a] = row_a;
+                self.s_cols[a] = entering;
+                self.s_pos[leaving] = NONE;
+                self.s_pos[entering] = a;
+            }
+            (true, true) => {
+                // Row `entering` (position b) of K is replaced by row `leaving`.
+                let b = self.r_pos[entering];
+                let r = leaving;
+                let w: Vec<f64> = self.kinv.iter().map(|row| row[b]).collect();
+                let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
+                let vt = vec_times_kinv(&v, &self.kinv, self.r_rows.len());
+                let denom = dot(&v, &w);
+                let mut corr = vt;
+                corr[b] -= 1.0;
+                for (row, &wa) in self.kinv.iter_mut().zip(&w) {
+                    let f = wa / denom;
+                    if f != 0.0 {
+                        for (x, &c) in row.iter_mut().zip(&corr) {
+                            *x -= f * c;
+                        }
+                    }
+                }
+                self.r_rows[b] = r;
+                self.r_pos[r] = b;
+                self.r_pos[entering] = NONE;
+            }
+        }
+        self.slot_var[slot] = entering;
+        self.var_slot[entering] = slot;
+        self.var_slot[leaving] = NONE;
+    }
+
+    /// Relative accuracy of the kernel inverse on the column `col`: `‖K y − u‖ / ‖u‖`
+    /// with `y = K⁻¹ u`, `u = A[R, col]` (a non-slack column).
+    pub fn kernel_error(&self, cols: &Columns, col: usize) -> f64 {
+        let k = self.s_cols.len();
+        if k == 0 {
+            return 0.0;
+        }
+        let u: Vec<f64> = self.r_rows.iter().map(|&r| cols.entry(r, col)).collect();
+        let y = self.kernel_solve(&u);
+        let mut err = 0.0f64;
+        let mut scale = 0.0f64;
+        for (a, &r) in self.r_rows.iter().enumerate() {
+            let mut s = -u[a];
+            let mut mag = u[a].abs();
+            for (b, &c) in self.s_cols.iter().enumerate() {
+                let t = cols.entry(r, c) * y[b];
+                s += t;
+                mag += t.abs();
+            }
+            err = err.max(s.abs());
+            scale = scale.max(mag);
+        }
+        if scale == 0.0 {
+            0.0
+        } else {
+            err / scale
+        }
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `vᵀ K⁻¹` for row-major `K⁻¹` (rows follow `v`'s index).
+fn vec_times_kinv(v: &[f64], kinv: &[Vec<f64>], k: usize) -> Vec<f64> {
+    let mut out = vec![0.0; k];
+    for (row, &va) in kinv.iter().zip(v) {
+        if va != 0.0 {
+            for (o, &x) in out.iter_mut().zip(row) {
+                *o += va * x;
+            }
+        }
+    }
+    out
+}

@@ -1,0 +1,56 @@
+//! Exhaustive enumeration of complementary bases, the last resort for small problems.
+
+use faer::linalg::solvers::Solve;
+use faer::Mat;
+
+use crate::lemke::lcp_w;
+use crate::{Residual, ACCEPT_RESIDUAL};
+
+/// All `2^n` complementary bases in order of growing support; the first whose solution verifies
+/// is returned as `(z, w)`. Bases with a numerically singular `M[S, S]` are skipped.
+pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+    let n = q.len();
+    assert!(n <= 24, "enumeration is for small problems");
+    let mut subsets: Vec<u32> = (0..(1u32 << n)).collect();
+    subsets.sort_by_key(|s| s.count_ones());
+    for s in subsets {
+        let idx: Vec<usize> = (0..n).filter(|&i| s >> i & 1 == 1).collect();
+        let k = idx.len();
+        let mut z = vec![0.0; n];
+        if k > 0 {
+            let a = Mat::<f64>::from_fn(k, k, |r, c| m[(idx[r], idx[c])]);
+            let lu = a.partial_piv_lu();
+            let u = lu.U();
+            let umax = (0..k).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
+            let umin = (0..k)
+                .map(|i| u[(i, i)].abs())
+                .fold(f64::INFINITY, f64::min);
+            if umin.is_nan() || umin <= 1e-12 * umax {
+                continue;
+            }
+            let rhs = Mat::<f64>::from_fn(k, 1, |r, _| -q[idx[r]]);
+            let sol = lu.solve(&rhs);
+            for (r, &i) in idx.iter().enumerate() {
+                z[i] = sol[(r, 0)];
+            }
+        }
+        let zmax = z
+            .iter()
+            .fold(0.0f64, |a, b| a.max(b.abs()))
+            .max(f64::MIN_POSITIVE);
+        if z.iter().any(|&v| v < -1e-12 * zmax) {
+            continue;
+        }
+        for v in z.iter_mut() {
+            *v = v.max(0.0);
+        }
+        let mut w = lcp_w(m, q, &z);
+        for &i in &idx {
+            w[i] = 0.0;
+        }
+        if Residual::of(m, q, &w, &z).max() <= ACCEPT_RESIDUAL {
+            return Some((z, w));
+        }
+    }
+    None
+}

@@ -1,0 +1,284 @@
+//! The standard LCP `w = M z + q` by Lemke's method with a covering vector, with fallbacks.
+
+use faer::Mat;
+
+use crate::basis::Basis;
+use crate::columns::Columns;
+use crate::enumerate::enumerate_first;
+use crate::pivot::{Ending, Pivoter, Tolerances};
+use crate::prepare::{check_matrix, check_vector, Prepared};
+use crate::{Lcp, LcpError, Residual, Settings, ACCEPT_RESIDUAL};
+
+/// How a standard LCP solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LcpStatus {
+    /// A solution, verified from the original data.
+    Solved,
+    /// Lemke's method ended on a secondary ray with every covering vector tried, and exhaustive
+    /// enumeration (for `n ≤ 16`) found no solution either.
+    Ray,
+    /// The pivot cap was reached.
+    IterationLimit,
+}
+
+impl LcpStatus {
+    /// The status as written in result files (`"solved"`, `"ray"`, `"iteration_limit"`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            LcpStatus::Solved => "solved",
+            LcpStatus::Ray => "ray",
+            LcpStatus::IterationLimit => "iteration_limit",
+        }
+    }
+}
+
+/// Which strategy produced the answer.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Strategy {
+    /// `q ≥ 0`: `z = 0` solves the problem.
+    Trivial,
+    /// Lemke's method with the named covering vector.
+    Lemke {
+        /// `"ones"`, `"user"`, `"graded"` or `"|q|"`.
+        covering: &'static str,
+    },
+    /// Exhaustive enumeration of complementary bases.
+    Enumeration,
+}
+
+/// A verified solution `(z, w)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LcpPoint {
+    /// The unknown `z ≥ 0`.
+    pub z: Vec<f64>,
+    /// `w = M z + q ≥ 0`.
+    pub w: Vec<f64>,
+    /// Residuals computed from the original data.
+    pub residual: Residual,
+}
+
+/// The answer of [`solve_lcp`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct LcpSolution {
+    /// How the solve ended.
+    pub status: LcpStatus,
+    /// The solution when `status` is [`LcpStatus::Solved`].
+    pub point: Option<LcpPoint>,
+    /// Pivots over all attempts.
+    pub pivots: usize,
+    /// The strategy that produced the solution (or the last one tried).
+    pub strategy: Strategy,
+    /// What was tried, in order, and how each attempt ended.
+    pub attempts: Vec<String>,
+}
+
+/// Solves `w = M z + q, w ≥ 0, z ≥ 0, wᵀz = 0`.
+///
+/// Lemke's method with the covering vector of `settings` (default all ones) and the
+/// lexicographic ratio test. A secondary ray of Lemke's method does not prove that no solution
+/// exists, so before answering [`LcpStatus::Ray`] other covering vectors are tried and, for
+/// `n ≤ 16`, all complementary bases are enumerated. A solution is reported only with residuals
+/// verified from the original data (at most [`ACCEPT_RESIDUAL`]).
+///
+/// ```
+/// use faer::mat;
+/// use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings};
+///
+/// // w1 = 2 z1 + z2 − 5, w2 = z1 + 2 z2 − 6
+/// let lcp = Lcp { m: mat![[2.0, 1.0], [1.0, 2.0]], q: vec![-5.0, -6.0] };
+/// let sol = solve_lcp(&lcp, &Settings::default()).unwrap();
+/// assert_eq!(sol.status, LcpStatus::Solved);
+/// let p = sol.point.unwrap();
+/// assert!((p.z[0] - 4.0 / 3.0).abs() < 1e-12 && (p.z[1] - 7.0 / 3.0).abs() < 1e-12);
+/// assert!(p.residual.max() < 1e-12);
+/// ```
+pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError> {
+    let n = check_matrix(&lcp.m)?;
+    check_vector("q", &lcp.q, n)?;
+    settings.validate(n)?;
+    if lcp.q.iter().all(|&v| v >= 0.0) {
+        let z = vec![0.0; n];
+        let w = lcp.q.clone();
+        let residual = Residual::of(&lcp.m, &lcp.q, &w, &z);
+        return Ok(LcpSolution {
+            status: LcpStatus::Solved,
+            point: Some(LcpPoint { z, w, residual }),
+            pivots: 0,
+            strategy: Strategy::Trivial,
+            attempts: vec!["q ≥ 0: z = 0".into()],
+        });
+    }
+    let prep = Prepared::new(&lcp.m);
+    let mut coverings: Vec<(&'static str, Vec<f64>)> = Vec::new();
+    match &settings.covering {
+        Some(c) => coverings.push(("user", c.clone())),
+        None => coverings.push(("ones", vec![1.0; n])),
+    }
+    coverings.push((
+        "graded",
+        (0..n).map(|i| 1.0 + i as f64 / n as f64).collect(),
+    ));
+    let qmean = lcp.q.iter().map(|v| v.abs()).sum::<f64>() / n as f64;
+    coverings.push((
+        "|q|",
+        lcp.q.iter().map(|v| v.abs() + qmean.max(1e-300)).collect(),
+    ));
+    let mut attempts = Vec::new();
+    let mut pivots = 0;
+    let mut last_status = LcpStatus::Ray;
+    let mut last_strategy = Strategy::Lemke { covering: "ones" };
+    for (name, cov) in &coverings {
+        let run = lemke_run(&prep, &lcp.q, cov, settings);
+        pivots += run.pivots;
+        last_strategy = Strategy::Lemke { covering: name };
+        match run.outcome {
+            LemkeOutcome::Solved(slots, beta) => {
+                let (w, z) = prep.unscale(&slots, &beta);
+                let residual = Residual::of(&lcp.m, &lcp.q, &w, &z);
+                if residual.max() <= ACCEPT_RESIDUAL {
+                    attempts.push(format!(
+                        "Lemke, covering '{name}': solved in {} pivots",
+                        run.pivots
+                    ));
+                    return Ok(LcpSolution {
+                        status: LcpStatus::Solved,
+                        point: Some(LcpPoint { z, w, residual }),
+                        pivots,
+                        strategy: last_strategy,
+                        attempts,
+                    });
+                }
+                attempts.push(format!(
+                    "Lemke, covering '{name}': basis found but its residual {:.1e} is too large",
+                    residual.max()
+                ));
+            }
+            LemkeOutcome::Ray => {
+                attempts.push(format!(
+                    "Lemke, covering '{name}': secondary ray after {} pivots",
+                    run.pivots
+                ));
+                last_status = LcpStatus::Ray;
+            }
+            LemkeOutcome::IterationLimit => {
+                attempts.push(format!(
+                    "Lemke, covering '{name}': pivot cap reached ({} pivots)",
+                    run.pivots
+                ));
+                last_status = LcpStatus::IterationLimit;
+            }
+            LemkeOutcome::Singular => {
+                attempts.push(format!(
+                    "Lemke, covering '{name}': numerically singular basis after {} pivots",
+                    run.pivots
+                ));
+            }
+        }
+    }
+    if n <= 16 {
+        if let Some((z, w)) = enumerate_first(&lcp.m, &lcp.q) {
+            let residual = Residual::of(&lcp.m, &lcp.q, &w, &z);
+            attempts.push("enumeration of complementary bases: solved".into());
+            return Ok(LcpSolution {
+                status: LcpStatus::Solved,
+                point: Some(LcpPoint { z, w, residual }),
+                pivots,
+                strategy: Strategy::Enumeration,
+                attempts,
+            });
+        }
+        attempts.push("enumeration of complementary bases: no solution".into());
+        last_status = LcpStatus::Ray;
+        last_strategy = Strategy::Enumeration;
+    }
+    Ok(LcpSolution {
+        status: last_status,
+        point: None,
+        pivots,
+        strategy: last_strategy,
+        attempts,
+    })
+}
+
+pub(crate) enum LemkeOutcome {
+    /// Final complementary basis (slot → column) and its basic values (scaled).
+    Solved(Vec<usize>, Vec<f64>),
+    Ray,
+    IterationLimit,
+    Singular,
+}
+
+pub(crate) struct LemkeRun {
+    pub outcome: LemkeOutcome,
+    pub pivots: usize,
+}
+
+/// One run of Lemke's method on `w = q + cov·z0 + M z` (original units in `q`, `cov`).
+pub(crate) fn lemke_run(prep: &Prepared, q: &[f64], cov: &[f64], settings: &Settings) -> LemkeRun {
+    let n = prep.n;
+    let cols: Columns = prep.columns(q, cov);
+    let tol = Tolerances {
+        pivot: settings.pivot_tol(),
+        value: 1e-13,
+    };
+    let mut piv = Pivoter::new(
+        &cols,
+        Basis::slack(n),
+        tol,
+        settings.priority(n),
+        settings.refactor_interval,
+    );
+    let driver = cols.driver();
+    let alpha = piv.basis.ftran(&cols, driver);
+    let Some(slot) = piv.lemke_first_slot(&alpha) else {
+        let beta = piv.beta.clone();
+        return LemkeRun {
+            outcome: LemkeOutcome::Solved(piv.basis.slot_var.clone(), beta),
+            pivots: 0,
+        };
+    };
+    let theta = piv.beta[slot] / alpha[slot];
+    let leaving = match piv.pivot(driver, slot, theta, &alpha) {
+        Ok(l) => l,
+        Err(_) => {
+            return LemkeRun {
+                outcome: LemkeOutcome::Singular,
+                pivots: piv.pivots,
+            }
+        }
+    };
+    let entering = cols.complement(leaving).expect("a slack left");
+    let mut records = Vec::new();
+    let mut crossed = None;
+    let (ending, _) = piv.run(entering, None, settings.cap(n), &mut records, &mut crossed);
+    let outcome = match ending {
+        Ending::DriverLeft => {
+            // Fresh factorisation of the final basis from the data.
+            match piv.refactor() {
+                Ok(()) => LemkeOutcome::Solved(piv.basis.slot_var.clone(), piv.beta.clone()),
+                Err(_) => LemkeOutcome::Singular,
+            }
+        }
+        Ending::Ray { .. } => LemkeOutcome::Ray,
+        Ending::TargetReached => unreachable!("no target in Lemke's method"),
+        Ending::IterationLimit => LemkeOutcome::IterationLimit,
+        Ending::Singular => LemkeOutcome::Singular,
+    };
+    LemkeRun {
+        outcome,
+        pivots: piv.pivots,
+    }
+}
+
+/// `w = q + M z` for a dense `M` (used by fallbacks).
+pub(crate) fn lcp_w(m: &Mat<f64>, q: &[f64], z: &[f64]) -> Vec<f64> {
+    let mut w = q.to_vec();
+    for (j, &zj) in z.iter().enumerate() {
+        if zj != 0.0 {
+            for (i, wi) in w.iter_mut().enumerate() {
+                *wi += m[(i, j)] * zj;
+            }
+        }
+    }
+    w
+}

@@ -1,0 +1,689 @@
+//! The parametric Lemke method: the load parameter `p` is the driving variable
+//! (`formulation.md` §4), and the removal of the artificial tightening.
+
+use crate::basis::Basis;
+use crate::lemke::{lemke_run, solve_lcp, LemkeOutcome};
+use crate::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
+use crate::prepare::{check_matrix, check_vector, Prepared};
+use crate::{Lcp, LcpError, LcpStatus, ParametricLcp, Residual, Settings, Var, ACCEPT_RESIDUAL};
+
+/// How far the path is followed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Follow {
+    /// Stop when `p` reaches the target (Criterion 1).
+    #[default]
+    ToTarget,
+    /// Follow the path until a ray, a mechanism, a return to `p = 0` or the pivot cap.
+    ToEnd,
+}
+
+/// An artificial tightening `c·direction` added to `q0` so that the start is feasible; it is
+/// removed from every reported solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tightening {
+    /// The amount `c ≥ 0`.
+    pub amount: f64,
+    /// The direction (all entries `≥ 0`), e.g. all ones.
+    pub direction: Vec<f64>,
+}
+
+/// Options of a path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathOptions {
+    /// The target load `p* > 0` at which the solution is reported.
+    pub target: f64,
+    /// How far the path is followed.
+    pub follow: Follow,
+    /// Optional artificial tightening.
+    pub tightening: Option<Tightening>,
+}
+
+impl Default for PathOptions {
+    fn default() -> Self {
+        Self {
+            target: 1.0,
+            follow: Follow::ToTarget,
+            tightening: None,
+        }
+    }
+}
+
+/// How the traced path ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathStatus {
+    /// `p` reached the target (Criterion 1).
+    TargetReached,
+    /// The entering column has no positive entry and `p` grows without bound: the basis (the
+    /// working scheme) no longer changes for larger `p` (Criterion 2a).
+    Ray,
+    /// The entering variable grows without bound while `p` stays fixed: a mechanism forms at
+    /// `p_limit` (Criterion 2b).
+    Mechanism,
+    /// `p` left the basis: the path came back to `p = 0`.
+    ReturnedToZero,
+    /// The pivot cap was reached.
+    IterationLimit,
+    /// The problem at `p = 0` has no solution that Lemke's method (with fallbacks) finds.
+    NoSolutionAtStart,
+    /// A basis became numerically singular.
+    NumericalFailure,
+}
+
+impl PathStatus {
+    /// The status as written in result files.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PathStatus::TargetReached => "target_reached",
+            PathStatus::Ray => "ray",
+            PathStatus::Mechanism => "mechanism",
+            PathStatus::ReturnedToZero => "returned_to_zero",
+            PathStatus::IterationLimit => "iteration_limit",
+            PathStatus::NoSolutionAtStart => "no_solution_at_start",
+            PathStatus::NumericalFailure => "numerical_failure",
+        }
+    }
+}
+
+/// One pivot of the path: one change of the working scheme.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// 1-based step number.
+    pub index: usize,
+    /// The load parameter after the step (with the tightening, as traced).
+    pub p: f64,
+    /// The variable that entered the basis.
+    pub entering: Var,
+    /// The variable that left the basis.
+    pub leaving: Var,
+    /// `p` decreased at this step: a turning point of the load path.
+    pub turning: bool,
+}
+
+/// A solution on the path, free of any tightening, verified from the original data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathPoint {
+    /// The load parameter.
+    pub p: f64,
+    /// `x = q0 + p·d + M z`.
+    pub x: Vec<f64>,
+    /// `z`.
+    pub z: Vec<f64>,
+    /// Residuals from the original data.
+    pub residual: Residual,
+    /// How the tightening was removed: `0` when the path's basis was already feasible without it,
+    /// else the number of pivots with the tightening as driving variable.
+    pub tightening_pivots: usize,
+    /// The solution had to be found by a fresh standard solve at this `p` (the path's basis could
+    /// not be freed of the tightening); it may lie on another branch when solutions are not unique.
+    pub fallback: bool,
+}
+
+/// The direction in which a mechanism moves (Criterion 2b), normalised to `max |dz| = 1`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MechanismMode {
+    /// The variable that grows without bound.
+    pub entering: Var,
+    /// Rate of `z`.
+    pub dz: Vec<f64>,
+    /// Rate of `x`.
+    pub dx: Vec<f64>,
+}
+
+/// A breakpoint of the traced path: the load and the non-zero `z` there (with the tightening).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Breakpoint {
+    /// Load parameter.
+    pub p: f64,
+    /// Non-zero entries of `z`, `(index, value)`.
+    pub z: Vec<(usize, f64)>,
+}
+
+/// The whole load path of a parametric LCP.
+#[derive(Debug, Clone)]
+pub struct LoadPath {
+    /// How the traced path ended.
+    pub status: PathStatus,
+    /// Every pivot, in order.
+    pub steps: Vec<Step>,
+    /// The start (index 0) and the point after every step.
+    pub breakpoints: Vec<Breakpoint>,
+    /// The largest `p` reached on the traced path.
+    pub p_max: f64,
+    /// The limit load for [`PathStatus::Mechanism`].
+    pub p_limit: Option<f64>,
+    /// The mechanism's direction for [`PathStatus::Mechanism`].
+    pub mechanism: Option<MechanismMode>,
+    /// The variable entering on the last segment (for a ray: the one that grows without bound).
+    pub last_entering: Option<Var>,
+    /// The reported solution (at the target when it lies on the path, else at the end of the
+    /// path), without the tightening.
+    pub solution: Option<PathPoint>,
+    /// Pivots of the standard Lemke solve at `p = 0` when `q0` was not feasible.
+    pub start_pivots: usize,
+    /// Fresh factorisations of the basis during the path.
+    pub refactorizations: usize,
+    pub(crate) start_slots: Vec<usize>,
+    pub(crate) records: Vec<(usize, usize)>,
+    /// The number of steps made before the load first reached the target (the target lies on
+    /// the segment after that many pivots), if it did.
+    pub target_segment: Option<usize>,
+}
+
+impl LoadPath {
+    /// `z` on the traced path (with the tightening) at load `p`, by linear interpolation between
+    /// the first pair of consecutive breakpoints whose loads bracket `p`.
+    pub fn traced_z_at(&self, p: f64, n: usize) -> Option<Vec<f64>> {
+        for w in self.breakpoints.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            let (lo, hi) = if a.p <= b.p { (a.p, b.p) } else { (b.p, a.p) };
+            if p >= lo && p <= hi && hi > lo {
+                let s = (p - a.p) / (b.p - a.p);
+                let mut z = vec![0.0; n];
+                for &(i, v) in &a.z {
+                    z[i] += (1.0 - s) * v;
+                }
+                for &(i, v) in &b.z {
+                    z[i] += s * v;
+                }
+                return Some(z);
+            }
+        }
+        None
+    }
+
+    /// Total pivots of the path (without the start and the tightening removal).
+    pub fn pivots(&self) -> usize {
+        self.steps.len()
+    }
+
+    /// Slots (tableau rows → column) after `k` pivots.
+    pub(crate) fn slots_after(&self, k: usize) -> Vec<usize> {
+        let mut slots = self.start_slots.clone();
+        let mut pos = vec![usize::MAX; 2 * slots.len() + 1];
+        for (s, &v) in slots.iter().enumerate() {
+            pos[v] = s;
+        }
+        for &(e, l) in self.records.iter().take(k) {
+            let s = pos[l];
+            slots[s] = e;
+            pos[l] = usize::MAX;
+            pos[e] = s;
+        }
+        slots
+    }
+
+    /// Entering column of segment `k` (the segment after `k` pivots), if known.
+    pub(crate) fn segment_entering(&self, k: usize, n: usize) -> Option<usize> {
+        if k == 0 {
+            return Some(2 * n);
+        }
+        let (_, leaving) = *self.records.get(k - 1)?;
+        if leaving == 2 * n {
+            return None;
+        }
+        Some(if leaving < n {
+            leaving + n
+        } else {
+            leaving - n
+        })
+    }
+}
+
+fn validate(
+    problem: &ParametricLcp,
+    options: &PathOptions,
+    settings: &Settings,
+) -> Result<usize, LcpError> {
+    let n = check_matrix(&problem.m)?;
+    check_vector("q0", &problem.q0, n)?;
+    check_vector("d", &problem.d, n)?;
+    settings.validate(n)?;
+    if !(options.target.is_finite() && options.target > 0.0) {
+        return Err(LcpError::Settings(format!(
+            "target must be a finite number > 0, got {}",
+            options.target
+        )));
+    }
+    if let Some(t) = &options.tightening {
+        if !(t.amount.is_finite() && t.amount >= 0.0) {
+            return Err(LcpError::Settings(format!(
+                "tightening must be a finite number ≥ 0, got {}",
+                t.amount
+            )));
+        }
+        check_vector("tightening direction", &t.direction, n)?;
+        if let Some(i) = t.direction.iter().position(|&v| v < 0.0) {
+            return Err(LcpError::Settings(format!(
+                "tightening direction entry {} is negative",
+                i + 1
+            )));
+        }
+    }
+    Ok(n)
+}
+
+fn tightening_of(options: &PathOptions, n: usize) -> (f64, Vec<f64>) {
+    match &options.tightening {
+        Some(t) if t.amount > 0.0 => (t.amount, t.direction.clone()),
+        _ => (0.0, vec![0.0; n]),
+    }
+}
+
+/// Follows the load path of `x = q0 + p·d + M z` from `p = 0` (`formulation.md` §4).
+///
+/// The start is the scheme at `p = 0`: the slack basis when `q0 (+ tightening) ≥ 0`, otherwise
+/// the solution of the `p = 0` problem by Lemke's method. Then `p` enters and every pivot is one
+/// change of the working scheme. The reported solution never contains the tightening: the last
+/// basis is evaluated without it, verified, and if needed the tightening is driven to zero by
+/// further pivots at fixed `p`.
+///
+/// ```
+/// use faer::mat;
+/// use unilateral_lcp::{follow_path, Follow, ParametricLcp, PathOptions, PathStatus, Settings, Tightening};
+///
+/// // The paper's Example 1 reduced to its normal rows: three supports, c = 1.
+/// let problem = ParametricLcp {
+///     m: mat![[0.1875, -0.375, 0.1875], [-0.375, 0.75, -0.375], [0.1875, -0.375, 0.1875]],
+///     q0: vec![0.0; 3],
+///     d: vec![-0.09375, 0.6875, 0.40625],
+/// };
+/// let options = PathOptions {
+///     target: 1.0,
+///     follow: Follow::ToEnd,
+///     tightening: Some(Tightening { amount: 1.0, direction: vec![1.0; 3] }),
+/// };
+/// let path = follow_path(&problem, &options, &Settings::default()).unwrap();
+/// assert_eq!(path.status, PathStatus::Ray);
+/// assert!((path.steps[0].p - 1.0 / 0.09375).abs() < 1e-12);
+/// let sol = path.solution.unwrap();
+/// assert!((sol.z[0] - 0.5).abs() < 1e-12 && (sol.x[1] - 0.5).abs() < 1e-12);
+/// ```
+pub fn follow_path(
+    problem: &ParametricLcp,
+    options: &PathOptions,
+    settings: &Settings,
+) -> Result<LoadPath, LcpError> {
+    let n = validate(problem, options, settings)?;
+    let prep = Prepared::new(&problem.m);
+    let (c0, cov) = tightening_of(options, n);
+    let h: Vec<f64> = problem
+        .q0
+        .iter()
+        .zip(&cov)
+        .map(|(q, c)| q + c0 * c)
+        .collect();
+    let cols = prep.columns(&h, &problem.d);
+    let tol = Tolerances {
+        pivot: settings.pivot_tol(),
+        value: 1e-13,
+    };
+    let priority = settings.priority(n);
+    let driver = cols.driver();
+
+    // The scheme at p = 0.
+    let hmax = max_abs(&cols.h).max(f64::MIN_POSITIVE);
+    let mut start_pivots = 0;
+    let start_basis = if cols.h.iter().all(|&v| v >= -1e-13 * hmax) {
+        Basis::slack(n)
+    } else {
+        let run = lemke_run(&prep, &h, &vec![1.0; n], settings);
+        start_pivots = run.pivots;
+        let slots = match run.outcome {
+            LemkeOutcome::Solved(slots, _) => Some(slots),
+            _ => None,
+        };
+        match slots.map(|s| Basis::from_slots(&cols, s)) {
+            Some(Ok(b)) => b,
+            _ => {
+                return Ok(LoadPath {
+                    status: PathStatus::NoSolutionAtStart,
+                    steps: vec![],
+                    breakpoints: vec![],
+                    p_max: 0.0,
+                    p_limit: None,
+                    mechanism: None,
+                    last_entering: None,
+                    solution: None,
+                    start_pivots,
+                    refactorizations: 0,
+                    start_slots: (0..n).collect(),
+                    records: vec![],
+                    target_segment: None,
+                })
+            }
+        }
+    };
+    let start_slots = start_basis.slot_var.clone();
+    let mut piv = Pivoter::new(
+        &cols,
+        start_basis,
+        tol,
+        priority,
+        settings.refactor_interval,
+    );
+    let start_z = basic_z(&prep, &piv.basis.slot_var, &piv.beta);
+    let mut records: Vec<PivotRecord> = Vec::new();
+    let mut crossed = None;
+    let stop = options.follow == Follow::ToTarget;
+    let (ending, last_entering) = piv.run(
+        driver,
+        Some((options.target, stop)),
+        settings.cap(n),
+        &mut records,
+        &mut crossed,
+    );
+
+    let mut steps = Vec::with_capacity(records.len());
+    let mut breakpoints = Vec::with_capacity(records.len() + 1);
+    breakpoints.push(Breakpoint { p: 0.0, z: start_z });
+    let mut p_prev = 0.0f64;
+    let mut p_max = 0.0f64;
+    for (k, r) in records.iter().enumerate() {
+        let zero = 1e-12 * p_prev.abs().max(1.0);
+        steps.push(Step {
+            index: k + 1,
+            p: r.driver,
+            entering: Var::from_col(r.entering, n),
+            leaving: Var::from_col(r.leaving, n),
+            turning: r.driver < p_prev - zero,
+        });
+        breakpoints.push(Breakpoint {
+            p: r.driver,
+            z: r.z
+                .iter()
+                .map(|&(i, v)| (i, v * prep.scaling.col[i]))
+                .collect(),
+        });
+        p_prev = r.driver;
+        p_max = p_max.max(r.driver);
+    }
+    let mut path = LoadPath {
+        status: PathStatus::NumericalFailure,
+        steps,
+        breakpoints,
+        p_max,
+        p_limit: None,
+        mechanism: None,
+        last_entering: Some(Var::from_col(last_entering, n)),
+        solution: None,
+        start_pivots,
+        refactorizations: piv.refactorizations,
+        start_slots,
+        records: records.iter().map(|r| (r.entering, r.leaving)).collect(),
+        target_segment: crossed,
+    };
+    let kseg = records.len();
+    // (segment, p) at which to report the solution.
+    let report: Option<(usize, f64)> = match ending {
+        Ending::TargetReached => {
+            path.status = PathStatus::TargetReached;
+            path.p_max = path.p_max.max(options.target);
+            Some((kseg, options.target))
+        }
+        Ending::Ray { alpha } => {
+            let ds = piv.driver_slot();
+            let amax = max_abs(&alpha);
+            let rate = ds.map(|s| alpha[s]).unwrap_or(-1.0);
+            if last_entering == driver || rate < -tol.pivot * amax {
+                path.status = PathStatus::Ray;
+                match crossed {
+                    Some(j) => Some((j, options.target)),
+                    None => Some((kseg, options.target.max(piv.driver_value()))),
+                }
+            } else {
+                path.status = PathStatus::Mechanism;
+                let p_lim = piv.driver_value();
+                path.p_limit = Some(p_lim);
+                path.mechanism = Some(mechanism_mode(&prep, &piv, last_entering, &alpha));
+                match crossed {
+                    Some(j) => Some((j, options.target)),
+                    None => last_segment_containing(&path, p_lim).map(|j| (j, p_lim)),
+                }
+            }
+        }
+        Ending::DriverLeft => {
+            path.status = PathStatus::ReturnedToZero;
+            match crossed {
+                Some(j) => Some((j, options.target)),
+                None => last_segment_containing(&path, 0.0).map(|j| (j, 0.0)),
+            }
+        }
+        Ending::IterationLimit => {
+            path.status = PathStatus::IterationLimit;
+            match crossed {
+                Some(j) => Some((j, options.target)),
+                None => {
+                    let p_end = piv.driver_value();
+                    last_segment_containing(&path, p_end).map(|j| (j, p_end))
+                }
+            }
+        }
+        Ending::Singular => {
+            path.status = PathStatus::NumericalFailure;
+            None
+        }
+    };
+    if let Some((seg, p)) = report {
+        path.solution = solution_on_segment(problem, &prep, &path, seg, p, c0, &cov, settings);
+    }
+    Ok(path)
+}
+
+/// The last segment whose traced loads contain `p` and along which `p` moves.
+fn last_segment_containing(path: &LoadPath, p: f64) -> Option<usize> {
+    let bps = &path.breakpoints;
+    (0..bps.len().saturating_sub(1)).rev().find(|&j| {
+        let (a, b) = (bps[j].p, bps[j + 1].p);
+        let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+        hi > lo && p >= lo - 1e-12 * hi.abs().max(1.0) && p <= hi + 1e-12 * hi.abs().max(1.0)
+    })
+}
+
+fn basic_z(prep: &Prepared, slots: &[usize], beta: &[f64]) -> Vec<(usize, f64)> {
+    let n = prep.n;
+    slots
+        .iter()
+        .zip(beta)
+        .filter(|&(&v, _)| v >= n && v < 2 * n)
+        .map(|(&v, &b)| (v - n, b.max(0.0) * prep.scaling.col[v - n]))
+        .collect()
+}
+
+fn mechanism_mode(prep: &Prepared, piv: &Pivoter, entering: usize, alpha: &[f64]) -> MechanismMode {
+    let n = prep.n;
+    let mut dxs = vec![0.0; n];
+    let mut dzs = vec![0.0; n];
+    let mut set = |col: usize, v: f64| {
+        if col < n {
+            dxs[col] = v;
+        } else if col < 2 * n {
+            dzs[col - n] = v;
+        }
+    };
+    set(entering, 1.0);
+    for (s, &col) in piv.basis.slot_var.iter().enumerate() {
+        set(col, -alpha[s]);
+    }
+    let mut dx = prep.scaling.unscale_x(&dxs);
+    let mut dz = prep.scaling.unscale_z(&dzs);
+    let norm = max_abs(&dz).max(f64::MIN_POSITIVE);
+    dz.iter_mut().for_each(|v| *v /= norm);
+    dx.iter_mut().for_each(|v| *v /= norm);
+    MechanismMode {
+        entering: Var::from_col(entering, n),
+        dz,
+        dx,
+    }
+}
+
+/// The solution at `p` on segment `seg` without the tightening.
+#[allow(clippy::too_many_arguments)]
+fn solution_on_segment(
+    problem: &ParametricLcp,
+    prep: &Prepared,
+    path: &LoadPath,
+    seg: usize,
+    p: f64,
+    c0: f64,
+    cov: &[f64],
+    settings: &Settings,
+) -> Option<PathPoint> {
+    let n = prep.n;
+    let driver = 2 * n;
+    let mut slots = path.slots_after(seg);
+    if let Some(ds) = slots.iter().position(|&v| v == driver) {
+        let e = path.segment_entering(seg, n)?;
+        slots[ds] = e;
+    }
+    let q_real: Vec<f64> = problem
+        .q0
+        .iter()
+        .zip(&problem.d)
+        .map(|(q, d)| q + p * d)
+        .collect();
+    let found = remove_tightening(prep, &q_real, slots, c0, cov, settings);
+    let (x, z, pivots, fallback) = match found {
+        Some((x, z, k)) => (x, z, k, false),
+        None => {
+            let lcp = Lcp {
+                m: problem.m.clone(),
+                q: q_real.clone(),
+            };
+            let sol = solve_lcp(&lcp, settings).ok()?;
+            if sol.status != LcpStatus::Solved {
+                return None;
+            }
+            let pt = sol.point?;
+            (pt.w, pt.z, sol.pivots, true)
+        }
+    };
+    let residual = Residual::of(&problem.m, &q_real, &x, &z);
+    Some(PathPoint {
+        p,
+        x,
+        z,
+        residual,
+        tightening_pivots: pivots,
+        fallback,
+    })
+}
+
+/// Evaluates the complementary basis `slots` at `x = q + M z` (no tightening). If it is not
+/// feasible, drives the tightening `c` from `c0` down to zero by complementary pivots at fixed
+/// load. Returns unscaled `(x, z)` and the pivots spent.
+fn remove_tightening(
+    prep: &Prepared,
+    q: &[f64],
+    slots: Vec<usize>,
+    c0: f64,
+    cov: &[f64],
+    settings: &Settings,
+) -> Option<(Vec<f64>, Vec<f64>, usize)> {
+    let n = prep.n;
+    let zero_g = vec![0.0; n];
+    let cols = prep.columns(q, &zero_g);
+    let basis = Basis::from_slots(&cols, slots.clone()).ok()?;
+    let beta = basis.solve(&cols, &cols.h);
+    let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
+    if beta.iter().all(|&b| b >= -1e-12 * hmax) {
+        let (x, z) = prep.unscale(&slots, &clamp(&beta));
+        return verified(prep, q, x, z, 0);
+    }
+    if c0 <= 0.0 {
+        return None;
+    }
+    // x = (q + c0·cov) − cov·t + M z with t = c0 − c going from 0 to c0.
+    let h: Vec<f64> = q.iter().zip(cov).map(|(a, c)| a + c0 * c).collect();
+    let g: Vec<f64> = cov.iter().map(|c| -c).collect();
+    let cols_c = prep.columns(&h, &g);
+    let basis = Basis::from_slots(&cols_c, slots).ok()?;
+    let tol = Tolerances {
+        pivot: settings.pivot_tol(),
+        value: 1e-13,
+    };
+    let mut piv = Pivoter::new(
+        &cols_c,
+        basis,
+        tol,
+        settings.priority(n),
+        settings.refactor_interval,
+    );
+    let mut records = Vec::new();
+    let mut crossed = None;
+    let (ending, entering) = piv.run(
+        2 * n,
+        Some((c0, true)),
+        settings.cap(n),
+        &mut records,
+        &mut crossed,
+    );
+    let Ending::TargetReached = ending else {
+        return None;
+    };
+    // The final complementary basis: the driver replaced by the entering column.
+    let mut final_slots = piv.basis.slot_var.clone();
+    if let Some(ds) = final_slots.iter().position(|&v| v == 2 * n) {
+        final_slots[ds] = entering;
+    }
+    let basis = Basis::from_slots(&cols, final_slots.clone()).ok()?;
+    let beta = basis.solve(&cols, &cols.h);
+    let (x, z) = prep.unscale(&final_slots, &clamp(&beta));
+    verified(prep, q, x, z, piv.pivots)
+}
+
+fn clamp(beta: &[f64]) -> Vec<f64> {
+    let hmax = max_abs(beta).max(f64::MIN_POSITIVE);
+    beta.iter()
+        .map(|&b| {
+            if b < 0.0 && b >= -1e-12 * hmax {
+                0.0
+            } else {
+                b
+            }
+        })
+        .collect()
+}
+
+fn verified(
+    prep: &Prepared,
+    q: &[f64],
+    x: Vec<f64>,
+    z: Vec<f64>,
+    pivots: usize,
+) -> Option<(Vec<f64>, Vec<f64>, usize)> {
+    let _ = (prep, q);
+    if x.iter().chain(&z).any(|&v| v < 0.0) {
+        return None;
+    }
+    Some((x, z, pivots))
+}
+
+/// The solution without tightening at any `p` on a traced path (for example a load below the
+/// target, or a load on the ray's half-line beyond the last event).
+///
+/// Returns `None` when `p` is not on the traced path.
+pub fn solution_at(
+    problem: &ParametricLcp,
+    options: &PathOptions,
+    settings: &Settings,
+    path: &LoadPath,
+    p: f64,
+) -> Result<Option<PathPoint>, LcpError> {
+    let n = validate(problem, options, settings)?;
+    let prep = Prepared::new(&problem.m);
+    let (c0, cov) = tightening_of(options, n);
+    let seg = match last_segment_containing(path, p) {
+        Some(j) if path.records.get(j).is_some() || j + 1 < path.breakpoints.len() => Some(j),
+        _ => None,
+    };
+    let seg = seg.or_else(|| {
+        (path.status == PathStatus::Ray && p >= path.breakpoints.last().map_or(0.0, |b| b.p))
+            .then_some(path.records.len())
+    });
+    Ok(seg.and_then(|j| solution_on_segment(problem, &prep, path, j, p, c0, &cov, settings)))
+}
+
+#[allow(dead_code)]
+pub(crate) fn accept(r: &Residual) -> bool {
+    r.max() <= ACCEPT_RESIDUAL
+}

@@ -1,0 +1,353 @@
+//! Complementary pivoting with one driving variable, shared by the standard and the
+//! parametric Lemke methods.
+
+use crate::basis::{Basis, SingularBasis};
+use crate::columns::Columns;
+
+/// Numerical thresholds, all relative to the (equilibrated) data.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Tolerances {
+    /// An entry of the entering column is positive if it exceeds `pivot · ‖α‖∞`.
+    pub pivot: f64,
+    /// Basic values within `value · scale` of zero are zero.
+    pub value: f64,
+}
+
+/// One pivot as recorded on the path.
+#[derive(Debug, Clone)]
+pub(crate) struct PivotRecord {
+    pub entering: usize,
+    pub leaving: usize,
+    /// Value of the driver after the pivot (0 when it left).
+    pub driver: f64,
+    /// Basic `z` variables after the pivot, as `(index, value)` in the scaled space.
+    pub z: Vec<(usize, f64)>,
+}
+
+/// How a run of complementary pivots ended.
+#[derive(Debug, Clone)]
+pub(crate) enum Ending {
+    /// The driver left the basis (its value is zero).
+    DriverLeft,
+    /// The driver reaches the target on the segment of the current entering column; no pivot
+    /// was made.
+    TargetReached,
+    /// The entering column has no positive entry: the entering variable grows without bound.
+    Ray { alpha: Vec<f64> },
+    /// The pivot cap was hit.
+    IterationLimit,
+    /// The basis could not be factorised (numerically singular).
+    Singular,
+}
+
+/// The state of a complementary pivoting run.
+pub(crate) struct Pivoter<'a> {
+    pub cols: &'a Columns,
+    pub basis: Basis,
+    /// Basic values by slot.
+    pub beta: Vec<f64>,
+    pub tol: Tolerances,
+    /// Lexicographic priority of the start basis' slots.
+    pub priority: Vec<usize>,
+    /// The start basis (slot → column) against which lexicographic rows are measured.
+    start: Vec<usize>,
+    start_is_slack: bool,
+    pub refactor_interval: usize,
+    since_refactor: usize,
+    pub pivots: usize,
+    pub refactorizations: usize,
+    value_scale: f64,
+}
+
+impl<'a> Pivoter<'a> {
+    pub fn new(
+        cols: &'a Columns,
+        basis: Basis,
+        tol: Tolerances,
+        priority: Vec<usize>,
+        refactor_interval: usize,
+    ) -> Self {
+        let beta = basis.solve(cols, &cols.h);
+        let start = basis.slot_var.clone();
+        let start_is_slack = start.iter().enumerate().all(|(i, &v)| i == v);
+        let value_scale = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
+        Self {
+            cols,
+            basis,
+            beta,
+            tol,
+            priority,
+            start,
+            start_is_slack,
+            refactor_interval: refactor_interval.max(1),
+            since_refactor: 0,
+            pivots: 0,
+            refactorizations: 0,
+            value_scale,
+        }
+    }
+
+    fn zero_value(&self) -> f64 {
+        self.tol.value * self.value_scale
+    }
+
+    pub fn driver_slot(&self) -> Option<usize> {
+        let d = self.cols.driver();
+        self.basis.is_basic(d).then(|| self.basis.var_slot[d])
+    }
+
+    /// Value of the driver now (zero when non-basic).
+    pub fn driver_value(&self) -> f64 {
+        self.driver_slot().map_or(0.0, |s| self.beta[s])
+    }
+
+    /// Slots whose entry in `alpha` counts as positive.
+    fn positive_slots(&self, alpha: &[f64]) -> Vec<usize> {
+        let amax = max_abs(alpha);
+        let thr = self.tol.pivot * amax;
+        (0..alpha.len()).filter(|&i| alpha[i] > thr).collect()
+    }
+
+    /// Lexicographic vector of a slot: row of `B⁻¹ B_start` in priority order, over `alpha_i`.
+    fn lex_vector(&self, slot: usize, alpha_i: f64) -> Vec<f64> {
+        let rho = self.basis.inverse_row(self.cols, slot);
+        let n = self.cols.n;
+        let mut out = Vec::with_capacity(n);
+        let mut col = vec![0.0; n];
+        for &s in &self.priority {
+            let v = if self.start_is_slack {
+                rho[s]
+            } else {
+                let c = self.start[s];
+                if c < n {
+                    rho[c]
+                } else {
+                    self.cols.col_into(c, &mut col);
+                    rho.iter().zip(&col).map(|(a, b)| a * b).sum()
+                }
+            };
+            out.push(v / alpha_i);
+        }
+        out
+    }
+
+    /// Among tied candidate slots, the lexicographically smallest (or largest) row.
+    fn lex_pick(&self, ties: &[usize], alpha: &[f64], largest: bool) -> usize {
+        if ties.len() == 1 {
+            return ties[0];
+        }
+        let mut best = ties[0];
+        let mut best_vec = self.lex_vector(best, alpha[best]);
+        for &s in &ties[1..] {
+            let v = self.lex_vector(s, alpha[s]);
+            let ord = lex_compare(&v, &best_vec);
+            let better = if largest {
+                ord == std::cmp::Ordering::Greater
+            } else {
+                ord == std::cmp::Ordering::Less
+            };
+            if better {
+                best = s;
+                best_vec = v;
+            }
+        }
+        best
+    }
+
+    /// Minimum-ratio test over the positive entries of `alpha`, ties broken lexicographically
+    /// (the driver's row wins a tie). Returns the leaving slot and the step length.
+    pub fn ratio_test(&self, alpha: &[f64]) -> Option<(usize, f64)> {
+        let cand = self.positive_slots(alpha);
+        if cand.is_empty() {
+            return None;
+        }
+        let zero = self.zero_value();
+        let val = |i: usize| self.beta[i].max(0.0);
+        let (mut imin, mut rmin) = (cand[0], f64::INFINITY);
+        for &i in &cand {
+            let r = val(i) / alpha[i];
+            if r < rmin {
+                rmin = r;
+                imin = i;
+            }
+        }
+        let ties: Vec<usize> = cand
+            .iter()
+            .copied()
+            .filter(|&i| val(i) - rmin * alpha[i] <= zero)
+            .collect();
+        if ties.len() <= 1 {
+            return Some((imin, rmin));
+        }
+        if let Some(d) = self.driver_slot() {
+            if ties.contains(&d) {
+                return Some((d, rmin));
+            }
+        }
+        let pick = self.lex_pick(&ties, alpha, false);
+        Some((pick, val(pick) / alpha[pick]))
+    }
+
+    /// Lemke's first step: the driver enters at the row that makes the basis feasible, the
+    /// lexicographically largest `β_i/α_i` over `α_i < 0`. Returns the slot, or `None` when the
+    /// basis is already feasible.
+    pub fn lemke_first_slot(&self, alpha: &[f64]) -> Option<usize> {
+        let zero = self.zero_value();
+        let cand: Vec<usize> = (0..alpha.len())
+            .filter(|&i| alpha[i] < 0.0 && self.beta[i] < -zero)
+            .collect();
+        if cand.is_empty() {
+            return None;
+        }
+        let mut rmax = f64::NEG_INFINITY;
+        for &i in &cand {
+            rmax = rmax.max(self.beta[i] / alpha[i]);
+        }
+        let ties: Vec<usize> = cand
+            .iter()
+            .copied()
+            .filter(|&i| (self.beta[i] - rmax * alpha[i]).abs() <= zero)
+            .collect();
+        let ties = if ties.is_empty() {
+            vec![cand
+                .iter()
+                .copied()
+                .max_by(|&a, &b| (self.beta[a] / alpha[a]).total_cmp(&(self.beta[b] / alpha[b])))
+                .unwrap_or(cand[0])]
+        } else {
+            ties
+        };
+        Some(self.lex_pick(&ties, alpha, true))
+    }
+
+    /// Pivots `entering` into `slot` with step length `theta`.
+    pub fn pivot(
+        &mut self,
+        entering: usize,
+        slot: usize,
+        theta: f64,
+        alpha: &[f64],
+    ) -> Result<usize, SingularBasis> {
+        let leaving = self.basis.slot_var[slot];
+        for (b, a) in self.beta.iter_mut().zip(alpha) {
+            *b -= theta * a;
+        }
+        self.beta[slot] = theta;
+        self.basis.pivot(self.cols, entering, slot, alpha);
+        self.pivots += 1;
+        self.since_refactor += 1;
+        let drift = entering >= self.cols.n && self.basis.kernel_error(self.cols, entering) > 1e-9;
+        if self.since_refactor >= self.refactor_interval || drift {
+            self.refactor()?;
+        }
+        Ok(leaving)
+    }
+
+    /// Fresh factorisation of the kernel and recomputation of the basic values from the data.
+    pub fn refactor(&mut self) -> Result<(), SingularBasis> {
+        self.basis.refactor(self.cols)?;
+        self.beta = self.basis.solve(self.cols, &self.cols.h);
+        self.since_refactor = 0;
+        self.refactorizations += 1;
+        Ok(())
+    }
+
+    fn record(&self, entering: usize, leaving: usize) -> PivotRecord {
+        let n = self.cols.n;
+        let z = self
+            .basis
+            .slot_var
+            .iter()
+            .enumerate()
+            .filter(|&(_, &v)| v >= n && v < 2 * n)
+            .map(|(s, &v)| (v - n, self.beta[s].max(0.0)))
+            .collect();
+        PivotRecord {
+            entering,
+            leaving,
+            driver: self.driver_value(),
+            z,
+        }
+    }
+
+    /// Complementary pivoting from `entering` until the driver leaves, a ray, the target, or
+    /// the pivot cap. `target = Some((t, stop))`: when the driver would pass `t`, stop there if
+    /// `stop`, otherwise note the segment index in `crossed` and go on.
+    pub fn run(
+        &mut self,
+        mut entering: usize,
+        target: Option<(f64, bool)>,
+        max_pivots: usize,
+        records: &mut Vec<PivotRecord>,
+        crossed: &mut Option<usize>,
+    ) -> (Ending, usize) {
+        let driver = self.cols.driver();
+        loop {
+            let alpha = self.basis.ftran(self.cols, entering);
+            let amax = max_abs(&alpha);
+            let step = self.ratio_test(&alpha);
+            // How far the driver moves along this segment.
+            let (t_now, t_rate) = if entering == driver {
+                (0.0, 1.0)
+            } else if let Some(ds) = self.driver_slot() {
+                let a = alpha[ds];
+                let a = if a.abs() <= self.tol.pivot * amax {
+                    0.0
+                } else {
+                    a
+                };
+                (self.beta[ds], -a)
+            } else {
+                (0.0, 0.0)
+            };
+            if let Some((t_target, stop)) = target {
+                if crossed.is_none() && t_rate > 0.0 && t_now <= t_target {
+                    let theta_t = (t_target - t_now) / t_rate;
+                    let hit = match step {
+                        None => true,
+                        Some((_, th)) => theta_t <= th,
+                    };
+                    if hit {
+                        *crossed = Some(records.len());
+                        if stop {
+                            return (Ending::TargetReached, entering);
+                        }
+                    }
+                }
+            }
+            let Some((slot, theta)) = step else {
+                return (Ending::Ray { alpha }, entering);
+            };
+            if self.pivots >= max_pivots {
+                return (Ending::IterationLimit, entering);
+            }
+            let leaving = match self.pivot(entering, slot, theta, &alpha) {
+                Ok(l) => l,
+                Err(SingularBasis) => return (Ending::Singular, entering),
+            };
+            records.push(self.record(entering, leaving));
+            if leaving == driver {
+                return (Ending::DriverLeft, entering);
+            }
+            entering = self
+                .cols
+                .complement(leaving)
+                .expect("only the driver has no complement");
+        }
+    }
+}
+
+pub(crate) fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+/// Lexicographic comparison with a relative tolerance per entry.
+fn lex_compare(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
+    let scale = max_abs(a).max(max_abs(b)).max(f64::MIN_POSITIVE);
+    for (x, y) in a.iter().zip(b) {
+        if (x - y).abs() > 1e-9 * scale {
+            return x.total_cmp(y);
+        }
+    }
+    std::cmp::Ordering::Equal
+}

@@ -1,0 +1,104 @@
+//! Solver settings. None needs tuning: defaults scale with the data.
+
+use crate::LcpError;
+
+/// Settings of the pivoting methods.
+///
+/// Every tolerance is relative to the data after equilibration, so the defaults serve problems
+/// in any units. They exist for experts who study round-off (the paper's single "accuracy"
+/// parameter); a wrong answer is never the cure for a wrong tolerance, because every reported
+/// solution is verified from the original data.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// An entry of the entering column counts as positive only above `pivot_tolerance · ‖α‖∞`.
+    /// Default `1e-10`.
+    pub pivot_tolerance: Option<f64>,
+    /// Maximum number of pivots; default `20·n + 100`.
+    pub max_pivots: Option<usize>,
+    /// Pivots between fresh factorisations of the basis (default 50). A refactorisation also
+    /// happens at once when the updated inverse loses accuracy.
+    pub refactor_interval: usize,
+    /// Lexicographic priority of the rows (a permutation of `0..n`): ties in the ratio test are
+    /// broken as if the right-hand side of row `order[0]` were perturbed by `ε`, row `order[1]`
+    /// by `ε²`, … Default: `0, 1, …, n−1`.
+    pub lexicographic_order: Option<Vec<usize>>,
+    /// Covering vector of the standard Lemke method (all entries `> 0`); default all ones.
+    pub covering: Option<Vec<f64>>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            pivot_tolerance: None,
+            max_pivots: None,
+            refactor_interval: 50,
+            lexicographic_order: None,
+            covering: None,
+        }
+    }
+}
+
+/// Residual above which a solution is not reported as solved.
+pub const ACCEPT_RESIDUAL: f64 = 1e-9;
+
+impl Settings {
+    /// Checks the settings against a problem of order `n`.
+    pub fn validate(&self, n: usize) -> Result<(), LcpError> {
+        if let Some(t) = self.pivot_tolerance {
+            if !(t.is_finite() && t > 0.0 && t < 1e-2) {
+                return Err(LcpError::Settings(format!(
+                    "pivot_tolerance must lie in (0, 0.01), got {t}"
+                )));
+            }
+        }
+        if self.max_pivots == Some(0) {
+            return Err(LcpError::Settings("max_pivots must be at least 1".into()));
+        }
+        if self.refactor_interval == 0 {
+            return Err(LcpError::Settings(
+                "refactor_interval must be at least 1".into(),
+            ));
+        }
+        if let Some(order) = &self.lexicographic_order {
+            let mut seen = vec![false; n];
+            if order.len() != n
+                || order
+                    .iter()
+                    .any(|&i| i >= n || std::mem::replace(&mut seen[i], true))
+            {
+                return Err(LcpError::Settings(format!(
+                    "lexicographic_order must be a permutation of 0..{n}"
+                )));
+            }
+        }
+        if let Some(c) = &self.covering {
+            if c.len() != n {
+                return Err(LcpError::Dimension(format!(
+                    "covering vector has {} entries, expected {n}",
+                    c.len()
+                )));
+            }
+            if let Some(i) = c.iter().position(|&v| !(v.is_finite() && v > 0.0)) {
+                return Err(LcpError::Settings(format!(
+                    "covering vector entry {i} must be a finite number > 0, got {}",
+                    c[i]
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    pub(crate) fn pivot_tol(&self) -> f64 {
+        self.pivot_tolerance.unwrap_or(1e-10)
+    }
+
+    pub(crate) fn cap(&self, n: usize) -> usize {
+        self.max_pivots.unwrap_or(20 * n + 100)
+    }
+
+    pub(crate) fn priority(&self, n: usize) -> Vec<usize> {
+        self.lexicographic_order
+            .clone()
+            .unwrap_or_else(|| (0..n).collect())
+    }
+}
