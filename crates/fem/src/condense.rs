@@ -1,0 +1,827 @@
+//! DOF numbering with link DOFs, sparse assembly, factorization of the bonded structure and
+//! condensation to the contact zone (formulation.md §2).
+//!
+//! Method (exact, no penalty): for every contact pair one node (B, or A if B is supported or
+//! already carries links) gets its translations re-expressed as
+//! `u_B = u_A + n·z_n + t·z_t` (or `u_A = u_B − n·z_n − t·z_t`), so the mutual displacements
+//! `z` become generalized DOFs. Supported translations are rotated to the support frame and
+//! prescribed. With `u = T·[v_I; z; s]`, the bonded structure (`z = 0`) has stiffness
+//! `K_II = T_Iᵀ K T_I` (symmetric positive definite when stable, sparse Cholesky), and
+//! `R = K_zz − K_zI K_II⁻¹ K_Iz` (the Schur complement), `R_F = K_zI K_II⁻¹ b_I − b_z`.
+
+use crate::elements::{element_dofs, element_load, element_stiffness, ElemMat};
+use crate::error::{DofLabel, FemError, FreeDof};
+use crate::model::{
+    same_dof, Element, Endpoint, Load, LoadGroup, Model, NodeId, SpringKind, SupportDof,
+};
+use faer::linalg::solvers::SolveCore;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Conj, Mat, Side};
+use std::time::Instant;
+
+type Row = Vec<(usize, f64)>;
+
+/// Generalized DOF numbering: `[I (free) | z (2m: normal then tangential) | P (prescribed)]`.
+#[derive(Debug, Clone)]
+pub(crate) struct DofMap {
+    pub n_i: usize,
+    pub m: usize,
+    pub n_p: usize,
+    /// Per physical DOF (3 per node): its expression in generalized DOFs.
+    pub rows: Vec<Row>,
+    /// Per prescribed DOF: node, support DOF, physical direction (dx, dy, rot).
+    pub prescribed: Vec<(NodeId, SupportDof, [f64; 3])>,
+    /// Per free DOF: the node and a label (for diagnosis).
+    pub free_label: Vec<(NodeId, DofLabel)>,
+    /// Unit normal and tangent per pair.
+    pub nt: Vec<([f64; 2], [f64; 2])>,
+}
+
+impl DofMap {
+    pub fn z0(&self) -> usize {
+        self.n_i
+    }
+    pub fn p0(&self) -> usize {
+        self.n_i + 2 * self.m
+    }
+}
+
+fn unit(v: [f64; 2]) -> [f64; 2] {
+    let l = v[0].hypot(v[1]);
+    [v[0] / l, v[1] / l]
+}
+
+fn support_dir(d: SupportDof) -> Option<[f64; 2]> {
+    match d {
+        SupportDof::Ux => Some([1.0, 0.0]),
+        SupportDof::Uy => Some([0.0, 1.0]),
+        SupportDof::Along(v) => Some(unit(v)),
+        SupportDof::Rz => None,
+    }
+}
+
+pub(crate) fn build_dof_map(model: &Model) -> Result<DofMap, FemError> {
+    let nn = model.nodes.len();
+    let m = model.pairs.len();
+    // supports per node
+    let mut trans: Vec<Vec<(SupportDof, [f64; 2])>> = vec![Vec::new(); nn];
+    let mut rot_fixed: Vec<Option<SupportDof>> = vec![None; nn];
+    for &(n, d) in &model.supports {
+        match support_dir(d) {
+            Some(dir) => {
+                if !trans[n.0].iter().any(|(e, _)| same_dof(*e, d)) {
+                    trans[n.0].push((d, dir));
+                }
+            }
+            None => rot_fixed[n.0] = Some(d),
+        }
+    }
+    for (i, t) in trans.iter().enumerate() {
+        if t.len() > 2 {
+            return Err(FemError::BadSupport {
+                node: NodeId(i),
+                reason: format!("{} translational restraints (at most 2)", t.len()),
+            });
+        }
+        if t.len() == 2 {
+            let (a, b) = (t[0].1, t[1].1);
+            if (a[0] * b[1] - a[1] * b[0]).abs() < 1e-9 {
+                return Err(FemError::BadSupport {
+                    node: NodeId(i),
+                    reason: "two parallel translational restraints".into(),
+                });
+            }
+        }
+    }
+    // rotation DOFs
+    let mut has_rot = vec![false; nn];
+    for e in &model.elements {
+        if let Element::Frame {
+            nodes, releases, ..
+        } = e
+        {
+            if !releases.start {
+                has_rot[nodes[0].0] = true;
+            }
+            if !releases.end {
+                has_rot[nodes[1].0] = true;
+            }
+        }
+    }
+    for s in &model.springs {
+        if let SpringKind::Rotational { .. } = s.kind {
+            has_rot[s.b.0] = true;
+            if let Endpoint::Node(a) = s.a {
+                has_rot[a.0] = true;
+            }
+        }
+    }
+    for (_, l) in &model.loads {
+        if let Load::Nodal { node, m, .. } = l {
+            if *m != 0.0 {
+                has_rot[node.0] = true;
+            }
+        }
+    }
+    for (i, r) in rot_fixed.iter().enumerate() {
+        if r.is_some() {
+            has_rot[i] = true;
+        }
+    }
+    // link placement
+    let mut pivot_pair: Vec<Option<usize>> = vec![None; nn];
+    let mut nt = Vec::with_capacity(m);
+    let mut pivot_is_b = vec![true; m];
+    for (k, p) in model.pairs.iter().enumerate() {
+        let n = unit(p.normal);
+        nt.push((n, [n[1], -n[0]]));
+        let free = |node: NodeId| trans[node.0].is_empty() && pivot_pair[node.0].is_none();
+        if free(p.b) {
+            pivot_pair[p.b.0] = Some(k);
+        } else if let Endpoint::Node(a) = p.a {
+            if free(a) {
+                pivot_pair[a.0] = Some(k);
+                pivot_is_b[k] = false;
+            } else {
+                return Err(FemError::LinkPlacement {
+                    pair: k,
+                    name: model.pair_name(k),
+                    reason: format!(
+                        "both {} and {} are supported or already carry the links of another pair",
+                        a, p.b
+                    ),
+                });
+            }
+        } else {
+            return Err(FemError::LinkPlacement {
+                pair: k,
+                name: model.pair_name(k),
+                reason: format!(
+                    "{} is supported in translation or already carries the links of another pair \
+                     (a node-to-ground pair on a supported DOF is redundant)",
+                    p.b
+                ),
+            });
+        }
+    }
+    // numbering of free and prescribed DOFs
+    let mut n_i = 0usize;
+    let mut free_label = Vec::new();
+    let mut p_list: Vec<(NodeId, SupportDof, [f64; 3])> = Vec::new();
+    // temporary codes: free = Free(i), prescribed = Pres(k)
+    #[derive(Clone, Copy)]
+    enum G {
+        Free(usize),
+        Pres(usize),
+    }
+    let mut trans_gen: Vec<Vec<(G, [f64; 2])>> = vec![Vec::new(); nn]; // u = Σ g·vec
+    let mut rot_gen: Vec<Option<G>> = vec![None; nn];
+    for i in 0..nn {
+        let node = NodeId(i);
+        if has_rot[i] {
+            rot_gen[i] = Some(match rot_fixed[i] {
+                Some(d) => {
+                    p_list.push((node, d, [0.0, 0.0, 1.0]));
+                    G::Pres(p_list.len() - 1)
+                }
+                None => {
+                    free_label.push((node, DofLabel::Rz));
+                    n_i += 1;
+                    G::Free(n_i - 1)
+                }
+            });
+        }
+        if pivot_pair[i].is_some() {
+            continue;
+        }
+        match trans[i].len() {
+            0 => {
+                free_label.push((node, DofLabel::Ux));
+                free_label.push((node, DofLabel::Uy));
+                trans_gen[i].push((G::Free(n_i), [1.0, 0.0]));
+                trans_gen[i].push((G::Free(n_i + 1), [0.0, 1.0]));
+                n_i += 2;
+            }
+            1 => {
+                let (d, dir) = trans[i][0];
+                p_list.push((node, d, [dir[0], dir[1], 0.0]));
+                trans_gen[i].push((G::Pres(p_list.len() - 1), dir));
+                let perp = [-dir[1], dir[0]];
+                free_label.push((
+                    node,
+                    if perp[0].abs() >= perp[1].abs() {
+                        DofLabel::Ux
+                    } else {
+                        DofLabel::Uy
+                    },
+                ));
+                trans_gen[i].push((G::Free(n_i), perp));
+                n_i += 1;
+            }
+            _ => {
+                // u = D⁻¹ s with D = [d1ᵀ; d2ᵀ]: columns of D⁻¹
+                let (a, b) = (trans[i][0].1, trans[i][1].1);
+                let det = a[0] * b[1] - a[1] * b[0];
+                let c1 = [b[1] / det, -b[0] / det];
+                let c2 = [-a[1] / det, a[0] / det];
+                p_list.push((node, trans[i][0].0, [a[0], a[1], 0.0]));
+                trans_gen[i].push((G::Pres(p_list.len() - 1), c1));
+                p_list.push((node, trans[i][1].0, [b[0], b[1], 0.0]));
+                trans_gen[i].push((G::Pres(p_list.len() - 1), c2));
+            }
+        }
+    }
+    let z0 = n_i;
+    let p0 = n_i + 2 * m;
+    let gidx = |g: G| match g {
+        G::Free(i) => i,
+        G::Pres(k) => p0 + k,
+    };
+    // translation rows of every node, resolving link chains
+    let mut tr_rows: Vec<Option<[Row; 2]>> = vec![None; nn];
+    for i in 0..nn {
+        if pivot_pair[i].is_none() {
+            let mut rx = Row::new();
+            let mut ry = Row::new();
+            for &(g, v) in &trans_gen[i] {
+                if v[0] != 0.0 {
+                    rx.push((gidx(g), v[0]));
+                }
+                if v[1] != 0.0 {
+                    ry.push((gidx(g), v[1]));
+                }
+            }
+            tr_rows[i] = Some([rx, ry]);
+        }
+    }
+    let mut state = vec![0u8; nn];
+    fn resolve(
+        i: usize,
+        model: &Model,
+        pivot_pair: &[Option<usize>],
+        pivot_is_b: &[bool],
+        nt: &[([f64; 2], [f64; 2])],
+        z0: usize,
+        tr_rows: &mut Vec<Option<[Row; 2]>>,
+        state: &mut Vec<u8>,
+    ) -> Result<(), FemError> {
+        if tr_rows[i].is_some() {
+            return Ok(());
+        }
+        let k = pivot_pair[i].expect("pivot");
+        if state[i] == 1 {
+            return Err(FemError::LinkPlacement {
+                pair: k,
+                name: model.pair_name(k),
+                reason: "the contact pairs form a closed loop of links".into(),
+            });
+        }
+        state[i] = 1;
+        let p = &model.pairs[k];
+        let other = if pivot_is_b[k] {
+            match p.a {
+                Endpoint::Ground => None,
+                Endpoint::Node(a) => Some(a.0),
+            }
+        } else {
+            Some(p.b.0)
+        };
+        let mut rows: [Row; 2] = [Row::new(), Row::new()];
+        if let Some(o) = other {
+            resolve(o, model, pivot_pair, pivot_is_b, nt, z0, tr_rows, state)?;
+            rows = tr_rows[o].clone().unwrap();
+        }
+        let sign = if pivot_is_b[k] { 1.0 } else { -1.0 };
+        let (n, t) = nt[k];
+        let m = nt.len();
+        for c in 0..2 {
+            if n[c] != 0.0 {
+                rows[c].push((z0 + k, sign * n[c]));
+            }
+            if t[c] != 0.0 {
+                rows[c].push((z0 + m + k, sign * t[c]));
+            }
+        }
+        tr_rows[i] = Some(rows);
+        state[i] = 2;
+        Ok(())
+    }
+    for i in 0..nn {
+        resolve(
+            i,
+            model,
+            &pivot_pair,
+            &pivot_is_b,
+            &nt,
+            z0,
+            &mut tr_rows,
+            &mut state,
+        )?;
+    }
+    let mut rows = vec![Row::new(); 3 * nn];
+    for i in 0..nn {
+        let [rx, ry] = tr_rows[i].take().unwrap();
+        rows[3 * i] = merge(rx);
+        rows[3 * i + 1] = merge(ry);
+        if let Some(g) = rot_gen[i] {
+            rows[3 * i + 2] = vec![(gidx(g), 1.0)];
+        }
+    }
+    Ok(DofMap {
+        n_i,
+        m,
+        n_p: p_list.len(),
+        rows,
+        prescribed: p_list,
+        free_label,
+        nt,
+    })
+}
+
+fn merge(mut r: Row) -> Row {
+    r.sort_by_key(|e| e.0);
+    let mut out: Row = Vec::with_capacity(r.len());
+    for (g, c) in r {
+        match out.last_mut() {
+            Some(last) if last.0 == g => last.1 += c,
+            _ => out.push((g, c)),
+        }
+    }
+    out.retain(|e| e.1 != 0.0);
+    out
+}
+
+/// Stiffness of a spring as an element matrix.
+pub(crate) fn spring_matrix(s: &crate::model::Spring) -> ElemMat {
+    let b = s.b.0;
+    match s.kind {
+        SpringKind::Translational {
+            direction,
+            stiffness,
+        } => {
+            let d = unit(direction);
+            let kd = [
+                stiffness * d[0] * d[0],
+                stiffness * d[0] * d[1],
+                stiffness * d[1] * d[1],
+            ];
+            match s.a {
+                Endpoint::Ground => ElemMat {
+                    dofs: vec![3 * b, 3 * b + 1],
+                    k: vec![kd[0], kd[1], kd[1], kd[2]],
+                },
+                Endpoint::Node(a) => {
+                    let a = a.0;
+                    let blk = [[kd[0], kd[1]], [kd[1], kd[2]]];
+                    let mut k = vec![0.0; 16];
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            k[i * 4 + j] = blk[i][j];
+                            k[(i + 2) * 4 + j + 2] = blk[i][j];
+                            k[i * 4 + j + 2] = -blk[i][j];
+                            k[(i + 2) * 4 + j] = -blk[i][j];
+                        }
+                    }
+                    ElemMat {
+                        dofs: vec![3 * a, 3 * a + 1, 3 * b, 3 * b + 1],
+                        k,
+                    }
+                }
+            }
+        }
+        SpringKind::Rotational { stiffness } => match s.a {
+            Endpoint::Ground => ElemMat {
+                dofs: vec![3 * b + 2],
+                k: vec![stiffness],
+            },
+            Endpoint::Node(a) => ElemMat {
+                dofs: vec![3 * a.0 + 2, 3 * b + 2],
+                k: vec![stiffness, -stiffness, -stiffness, stiffness],
+            },
+        },
+    }
+}
+
+/// Timings and sizes of a condensation.
+#[derive(Debug, Clone, Default)]
+pub struct CondensationStats {
+    /// Number of free DOFs of the bonded structure (size of the factorized matrix).
+    pub free_dofs: usize,
+    /// Number of contact pairs `m`.
+    pub pairs: usize,
+    /// Number of prescribed (supported) DOFs.
+    pub prescribed_dofs: usize,
+    /// Stored entries of the lower triangle of the bonded stiffness.
+    pub nnz_lower: usize,
+    /// Seconds spent assembling (element matrices, triplets, CSC).
+    pub assembly_s: f64,
+    /// Seconds in the symbolic + numeric sparse Cholesky factorization and the stability check.
+    pub factorization_s: f64,
+    /// Seconds computing the Schur complement and the load vectors (2m + 2 solves).
+    pub condensation_s: f64,
+    /// Largest `|R − Rᵀ|` before symmetrization, relative to the largest `|R|`.
+    pub asymmetry: f64,
+}
+
+/// Everything assembled from a model.
+pub(crate) struct Assembled {
+    pub map: DofMap,
+    pub kii: Option<SparseColMat<usize, f64>>,
+    pub kii_triplets: Vec<Triplet<usize, usize, f64>>,
+    pub diag: Vec<f64>,
+    /// Columns of K_Iz: for link DOF r, the (free index, value) pairs.
+    pub kiz: Vec<Row>,
+    pub kzz: Mat<f64>,
+    /// Physical equivalent loads per group (constant, variable), without settlement terms.
+    pub f_phys: [Vec<f64>; 2],
+    /// Prescribed values per group.
+    pub s: [Vec<f64>; 2],
+    /// Generalized loads per group: I part and z part (settlements included).
+    pub b_i: [Vec<f64>; 2],
+    pub b_z: [Vec<f64>; 2],
+}
+
+fn group_index(g: LoadGroup) -> usize {
+    match g {
+        LoadGroup::Constant => 0,
+        LoadGroup::Variable => 1,
+    }
+}
+
+pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
+    let map = build_dof_map(model)?;
+    let (n_i, m) = (map.n_i, map.m);
+    let nz = 2 * m;
+    let z0 = map.z0();
+    let p0 = map.p0();
+    let nphys = 3 * model.nodes.len();
+    // loads
+    let mut f_phys = [vec![0.0; nphys], vec![0.0; nphys]];
+    let mut s = [vec![0.0; map.n_p], vec![0.0; map.n_p]];
+    for (g, l) in &model.loads {
+        let gi = group_index(*g);
+        match *l {
+            Load::Nodal { node, fx, fy, m } => {
+                f_phys[gi][3 * node.0] += fx;
+                f_phys[gi][3 * node.0 + 1] += fy;
+                f_phys[gi][3 * node.0 + 2] += m;
+            }
+            Load::Settlement { node, dof, value } => {
+                let k = map
+                    .prescribed
+                    .iter()
+                    .position(|(n, d, _)| *n == node && same_dof(*d, dof))
+                    .expect("validated");
+                s[gi][k] += value;
+            }
+            Load::Distributed { element, .. }
+            | Load::BodyForce { element, .. }
+            | Load::Temperature { element, .. } => {
+                let el = &model.elements[element.0];
+                if let Some(fe) = element_load(model, el, l) {
+                    for (a, d) in element_dofs(el).into_iter().enumerate() {
+                        f_phys[gi][d] += fe[a];
+                    }
+                }
+            }
+        }
+    }
+    let has_settlement = [
+        s[0].iter().any(|v| *v != 0.0),
+        s[1].iter().any(|v| *v != 0.0),
+    ];
+    let mut f_set = [vec![0.0; nphys], vec![0.0; nphys]];
+    let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::new();
+    let mut kiz: Vec<Row> = vec![Row::new(); nz];
+    let mut kzz = Mat::<f64>::zeros(nz, nz);
+    let mut diag = vec![0.0; n_i];
+    let mut handle = |em: &ElemMat| {
+        let n = em.dofs.len();
+        let rows: Vec<&Row> = em.dofs.iter().map(|&d| &map.rows[d]).collect();
+        for a in 0..n {
+            for b in 0..n {
+                let k = em.k[a * n + b];
+                if k == 0.0 {
+                    continue;
+                }
+                for &(gi, ci) in rows[a] {
+                    if gi >= z0 && gi < p0 {
+                        // z row: only zz (the Iz block is taken from its transpose)
+                        for &(gj, cj) in rows[b] {
+                            if gj >= z0 && gj < p0 {
+                                kzz[(gi - z0, gj - z0)] += ci * cj * k;
+                            }
+                        }
+                    } else if gi < z0 {
+                        for &(gj, cj) in rows[b] {
+                            if gj < z0 {
+                                if gi >= gj {
+                                    trip.push(Triplet::new(gi, gj, ci * cj * k));
+                                    if gi == gj {
+                                        diag[gi] += ci * cj * k;
+                                    }
+                                }
+                            } else if gj < p0 {
+                                kiz[gj - z0].push((gi, ci * cj * k));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // settlement: f -= k u0
+        for g in 0..2 {
+            if !has_settlement[g] {
+                continue;
+            }
+            let u0: Vec<f64> = rows
+                .iter()
+                .map(|r| {
+                    r.iter()
+                        .filter(|(gi, _)| *gi >= p0)
+                        .map(|(gi, c)| c * s[g][gi - p0])
+                        .sum()
+                })
+                .collect();
+            if u0.iter().any(|v| *v != 0.0) {
+                for a in 0..n {
+                    let ku: f64 = (0..n).map(|b| em.k[a * n + b] * u0[b]).sum();
+                    f_set[g][em.dofs[a]] -= ku;
+                }
+            }
+        }
+    };
+    for el in &model.elements {
+        handle(&element_stiffness(model, el));
+    }
+    for sp in &model.springs {
+        handle(&spring_matrix(sp));
+    }
+    for r in kiz.iter_mut() {
+        *r = merge(std::mem::take(r));
+    }
+    // generalized loads
+    let mut b_i = [vec![0.0; n_i], vec![0.0; n_i]];
+    let mut b_z = [vec![0.0; nz], vec![0.0; nz]];
+    for g in 0..2 {
+        for d in 0..nphys {
+            let f = f_phys[g][d] + f_set[g][d];
+            if f == 0.0 {
+                continue;
+            }
+            for &(gi, c) in &map.rows[d] {
+                if gi < z0 {
+                    b_i[g][gi] += c * f;
+                } else if gi < p0 {
+                    b_z[g][gi - z0] += c * f;
+                }
+            }
+        }
+    }
+    // explicit diagonal so that every free DOF is in the pattern
+    for i in 0..n_i {
+        trip.push(Triplet::new(i, i, 0.0));
+    }
+    let kii = if n_i > 0 {
+        Some(
+            SparseColMat::<usize, f64>::try_new_from_triplets(n_i, n_i, &trip)
+                .map_err(|e| FemError::LinearAlgebra(format!("{e:?}")))?,
+        )
+    } else {
+        None
+    };
+    Ok(Assembled {
+        map,
+        kii,
+        kii_triplets: trip,
+        diag,
+        kiz,
+        kzz,
+        f_phys,
+        s,
+        b_i,
+        b_z,
+    })
+}
+
+/// A deterministic pseudo-random vector in (−1, 1).
+fn pseudo_random(n: usize) -> Vec<f64> {
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        })
+        .collect()
+}
+
+/// Inverse iteration on the Jacobi-scaled matrix. Returns (eigenvalue estimate, mode in
+/// unscaled coordinates).
+fn inverse_iteration(llt: &Llt<usize, f64>, diag: &[f64], iters: usize) -> (f64, Vec<f64>) {
+    let n = diag.len();
+    let sq: Vec<f64> = diag
+        .iter()
+        .map(|d| d.abs().max(f64::MIN_POSITIVE).sqrt())
+        .collect();
+    let mut v = pseudo_random(n);
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let nv = norm(&v);
+    v.iter_mut().for_each(|x| *x /= nv);
+    let mut lambda = f64::INFINITY;
+    for _ in 0..iters {
+        // A = D^{-1/2} K D^{-1/2}, so A⁻¹ v = D^{1/2} K⁻¹ D^{1/2} v.
+        let mut w = Mat::<f64>::from_fn(n, 1, |i, _| v[i] * sq[i]);
+        llt.solve_in_place_with_conj(Conj::No, w.as_mut());
+        let wv: Vec<f64> = (0..n).map(|i| w[(i, 0)] * sq[i]).collect();
+        let nw = norm(&wv);
+        if !nw.is_finite() || nw == 0.0 {
+            return (0.0, v.iter().zip(&sq).map(|(a, s)| a / s).collect());
+        }
+        lambda = 1.0 / nw;
+        v = wv.iter().map(|x| x / nw).collect();
+    }
+    (lambda, v.iter().zip(&sq).map(|(a, s)| a / s).collect())
+}
+
+/// Threshold on the smallest eigenvalue of the Jacobi-scaled bonded stiffness.
+const SINGULAR_EIG: f64 = 1e-13;
+
+fn free_dofs_from_mode(map: &DofMap, mode: &[f64]) -> Vec<FreeDof> {
+    // physical displacement of the mode (z = 0, s = 0)
+    let nn = map.rows.len() / 3;
+    let mut phys = vec![0.0; 3 * nn];
+    for (d, r) in map.rows.iter().enumerate() {
+        phys[d] = r
+            .iter()
+            .filter(|(g, _)| *g < map.n_i)
+            .map(|(g, c)| c * mode[*g])
+            .sum();
+    }
+    let max = phys.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let mut out = Vec::new();
+    if max == 0.0 {
+        return out;
+    }
+    for (d, v) in phys.iter().enumerate() {
+        if v.abs() > 1e-3 * max {
+            out.push(FreeDof {
+                node: NodeId(d / 3),
+                dof: [DofLabel::Ux, DofLabel::Uy, DofLabel::Rz][d % 3],
+                amplitude: v / max,
+            });
+        }
+    }
+    out
+}
+
+/// Factorizes the bonded stiffness; a mechanism is a typed error naming the free DOFs.
+pub(crate) fn factorize(asm: &Assembled) -> Result<Option<Llt<usize, f64>>, FemError> {
+    let Some(kii) = asm.kii.as_ref() else {
+        return Ok(None);
+    };
+    // DOFs without any stiffness
+    let zero: Vec<FreeDof> = asm
+        .diag
+        .iter()
+        .enumerate()
+        .filter(|(_, d)| **d <= 0.0)
+        .map(|(i, _)| {
+            let (node, dof) = asm.map.free_label[i];
+            FreeDof {
+                node,
+                dof,
+                amplitude: 1.0,
+            }
+        })
+        .collect();
+    if !zero.is_empty() {
+        return Err(FemError::Unstable {
+            free: zero,
+            eigenvalue: 0.0,
+            hint: " (no element, spring, support or contact link acts on them)".into(),
+        });
+    }
+    let symbolic = SymbolicLlt::try_new(kii.symbolic(), Side::Lower)
+        .map_err(|e| FemError::LinearAlgebra(format!("{e:?}")))?;
+    match Llt::try_new_with_symbolic(symbolic.clone(), kii.as_ref(), Side::Lower) {
+        Ok(llt) => {
+            let (lambda, mode) = inverse_iteration(&llt, &asm.diag, 3);
+            if lambda < SINGULAR_EIG {
+                return Err(FemError::Unstable {
+                    free: free_dofs_from_mode(&asm.map, &mode),
+                    eigenvalue: lambda,
+                    hint: String::new(),
+                });
+            }
+            Ok(Some(llt))
+        }
+        Err(_) => {
+            // shifted matrix, same pattern: K + σ·diag(K)
+            let sigma = 1e-8;
+            let mut trip = asm.kii_triplets.clone();
+            for (i, d) in asm.diag.iter().enumerate() {
+                trip.push(Triplet::new(i, i, sigma * d));
+            }
+            let n = asm.diag.len();
+            let shifted = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip)
+                .map_err(|e| FemError::LinearAlgebra(format!("{e:?}")))?;
+            let llt = Llt::try_new_with_symbolic(symbolic, shifted.as_ref(), Side::Lower).map_err(
+                |e| {
+                    FemError::LinearAlgebra(format!(
+                        "the bonded stiffness is not positive semidefinite ({e:?})"
+                    ))
+                },
+            )?;
+            let (lambda, mode) = inverse_iteration(&llt, &asm.diag, 4);
+            Err(FemError::Unstable {
+                free: free_dofs_from_mode(&asm.map, &mode),
+                eigenvalue: (lambda - sigma).max(0.0),
+                hint: String::new(),
+            })
+        }
+    }
+}
+
+/// The condensed contact-zone data.
+pub(crate) struct Condensation {
+    pub r: Mat<f64>,
+    pub rf: [Vec<f64>; 2],
+    pub asymmetry: f64,
+}
+
+/// Number of right-hand sides solved together.
+const CHUNK: usize = 64;
+
+pub(crate) fn condense(asm: &Assembled, llt: Option<&Llt<usize, f64>>) -> Condensation {
+    let n_i = asm.map.n_i;
+    let nz = 2 * asm.map.m;
+    let mut r = asm.kzz.clone();
+    let mut rf = [vec![0.0; nz], vec![0.0; nz]];
+    for g in 0..2 {
+        for k in 0..nz {
+            rf[g][k] = -asm.b_z[g][k];
+        }
+    }
+    if let Some(llt) = llt {
+        let mut c0 = 0;
+        while c0 < nz {
+            let w = CHUNK.min(nz - c0);
+            let mut x = Mat::<f64>::zeros(n_i, w);
+            for j in 0..w {
+                for &(i, v) in &asm.kiz[c0 + j] {
+                    x[(i, j)] = v;
+                }
+            }
+            llt.solve_in_place_with_conj(Conj::No, x.as_mut());
+            for row in 0..nz {
+                let col = &asm.kiz[row];
+                if col.is_empty() {
+                    continue;
+                }
+                for j in 0..w {
+                    let xj = x.col_as_slice(j);
+                    let s: f64 = col.iter().map(|&(i, v)| v * xj[i]).sum();
+                    r[(row, c0 + j)] -= s;
+                }
+            }
+            c0 += w;
+        }
+        let mut x = Mat::<f64>::from_fn(n_i, 2, |i, g| asm.b_i[g][i]);
+        llt.solve_in_place_with_conj(Conj::No, x.as_mut());
+        for g in 0..2 {
+            let xg = x.col_as_slice(g);
+            for row in 0..nz {
+                rf[g][row] += asm.kiz[row].iter().map(|&(i, v)| v * xg[i]).sum::<f64>();
+            }
+        }
+    }
+    // symmetrize, recording the round-off asymmetry
+    let mut maxr = 0.0f64;
+    let mut maxd = 0.0f64;
+    for i in 0..nz {
+        for j in 0..nz {
+            maxr = maxr.max(r[(i, j)].abs());
+            if j > i {
+                maxd = maxd.max((r[(i, j)] - r[(j, i)]).abs());
+                let a = 0.5 * (r[(i, j)] + r[(j, i)]);
+                r[(i, j)] = a;
+                r[(j, i)] = a;
+            }
+        }
+    }
+    Condensation {
+        r,
+        rf,
+        asymmetry: if maxr > 0.0 { maxd / maxr } else { 0.0 },
+    }
+}
+
+/// Times a closure.
+pub(crate) fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let t = Instant::now();
+    let v = f();
+    (v, t.elapsed().as_secs_f64())
+}

@@ -1,0 +1,192 @@
+//! Typed errors of the finite-element crate.
+
+use crate::model::{ElementId, NodeId};
+use std::fmt;
+
+/// A degree of freedom of a node, as named in error messages and reports.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DofLabel {
+    /// Global x translation.
+    Ux,
+    /// Global y translation.
+    Uy,
+    /// Rotation (counter-clockwise positive).
+    Rz,
+}
+
+impl fmt::Display for DofLabel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            DofLabel::Ux => write!(f, "ux"),
+            DofLabel::Uy => write!(f, "uy"),
+            DofLabel::Rz => write!(f, "rz"),
+        }
+    }
+}
+
+/// One free degree of freedom of a mechanism: node, DOF and the (normalised) amplitude of the
+/// mechanism's displacement there.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeDof {
+    /// The node that moves.
+    pub node: NodeId,
+    /// Which of its DOFs.
+    pub dof: DofLabel,
+    /// Amplitude in the mechanism mode (largest = ±1).
+    pub amplitude: f64,
+}
+
+/// Formats a list of free DOFs, at most 12 of them.
+fn list_free(dofs: &[FreeDof]) -> String {
+    let mut s: Vec<String> = dofs
+        .iter()
+        .take(12)
+        .map(|d| format!("{} {}", d.node, d.dof))
+        .collect();
+    if dofs.len() > 12 {
+        s.push(format!("… ({} in all)", dofs.len()));
+    }
+    s.join(", ")
+}
+
+/// Everything that can go wrong while building, condensing or recovering a model.
+///
+/// Ids are the 0-based indices returned by the [`Model`](crate::Model) builder.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum FemError {
+    /// An element, support, spring, load or contact pair refers to a node that does not exist.
+    #[error("{what} refers to node {node}, which does not exist ({count} nodes in the model)")]
+    MissingNode {
+        /// Description of the referring item, e.g. `"contact pair 2"`.
+        what: String,
+        /// The missing node index.
+        node: usize,
+        /// Number of nodes in the model.
+        count: usize,
+    },
+    /// A load refers to an element that does not exist or has the wrong type.
+    #[error("load {load} refers to {element}: {reason}")]
+    BadLoadTarget {
+        /// Index of the load within its group.
+        load: usize,
+        /// The element.
+        element: ElementId,
+        /// What is wrong.
+        reason: String,
+    },
+    /// An element uses the same node twice.
+    #[error("{element} uses {node} more than once")]
+    RepeatedNode {
+        /// The element.
+        element: ElementId,
+        /// The repeated node.
+        node: NodeId,
+    },
+    /// A frame or bar whose two nodes coincide.
+    #[error("{element} has zero length (nodes {a} and {b} coincide)")]
+    ZeroLength {
+        /// The element.
+        element: ElementId,
+        /// First node.
+        a: NodeId,
+        /// Second node.
+        b: NodeId,
+    },
+    /// A non-positive (or non-finite) property such as E, A, I or thickness.
+    #[error("{element}: {property} must be positive and finite, got {value}")]
+    NonPositiveProperty {
+        /// The element.
+        element: ElementId,
+        /// Name of the property.
+        property: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// Poisson's ratio outside (−1, 0.5).
+    #[error("{element}: Poisson's ratio must lie in (-1, 0.5), got {nu}")]
+    PoissonOutOfRange {
+        /// The element.
+        element: ElementId,
+        /// The offending value.
+        nu: f64,
+    },
+    /// A plane element with non-positive Jacobian (wrong node order, concave or degenerate).
+    #[error("{element}: non-positive Jacobian {det_j} (nodes must be counter-clockwise and the quadrilateral convex)")]
+    DistortedElement {
+        /// The element.
+        element: ElementId,
+        /// The smallest Jacobian determinant found.
+        det_j: f64,
+    },
+    /// A spring with non-positive stiffness or a zero direction.
+    #[error("spring {spring}: {reason}")]
+    BadSpring {
+        /// Spring index.
+        spring: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A contact pair with a bad normal, gap or friction coefficient.
+    #[error("contact pair {pair} ({name}): {reason}")]
+    BadContactPair {
+        /// Pair index.
+        pair: usize,
+        /// Pair name.
+        name: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// No node of a pair can carry the pair's link DOFs (both are supported, or already carry the
+    /// links of other pairs).
+    #[error("contact pair {pair} ({name}): cannot place its links: {reason}")]
+    LinkPlacement {
+        /// Pair index.
+        pair: usize,
+        /// Pair name.
+        name: String,
+        /// Why.
+        reason: String,
+    },
+    /// Supports on a node that are redundant or parallel.
+    #[error("{node}: bad supports: {reason}")]
+    BadSupport {
+        /// The node.
+        node: NodeId,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A prescribed displacement on a DOF that has no support.
+    #[error(
+        "load {load}: prescribed displacement on {node} {dof:?}, which is not supported there"
+    )]
+    SettlementWithoutSupport {
+        /// Index of the load within its group.
+        load: usize,
+        /// The node.
+        node: NodeId,
+        /// The DOF as given.
+        dof: crate::model::SupportDof,
+    },
+    /// A non-finite number in the input.
+    #[error("{what}: value is not finite")]
+    NotFinite {
+        /// Where.
+        what: String,
+    },
+    /// The bonded structure (contact pairs made rigid links) is a mechanism.
+    #[error("the bonded structure (every contact pair a rigid link) is unstable: free DOFs {}{}", list_free(.free), .hint)]
+    Unstable {
+        /// DOFs that move in a mechanism mode found by inverse iteration.
+        free: Vec<FreeDof>,
+        /// Smallest scaled eigenvalue estimate of the bonded stiffness (≈ 0 for a mechanism).
+        eigenvalue: f64,
+        /// Extra hint (may be empty).
+        hint: String,
+    },
+    /// A contact solution whose vectors have the wrong length or non-finite entries.
+    #[error("contact solution: {0}")]
+    BadSolution(String),
+    /// Failure inside the sparse linear algebra that is not a mechanism.
+    #[error("sparse linear algebra failed: {0}")]
+    LinearAlgebra(String),
+}

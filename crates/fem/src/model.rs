@@ -1,0 +1,764 @@
+//! The structural model: nodes, elements, springs, supports, loads and contact pairs.
+
+use crate::error::FemError;
+use std::fmt;
+
+/// Index of a node (0-based, in the order of [`Model::add_node`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct NodeId(pub usize);
+
+/// Index of an element (0-based, frames, bars and plane elements share one numbering).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ElementId(pub usize);
+
+impl fmt::Display for NodeId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "node {}", self.0)
+    }
+}
+
+impl fmt::Display for ElementId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "element {}", self.0)
+    }
+}
+
+/// One end of a spring or contact pair: a node, or the rigid ground.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Endpoint {
+    /// The rigid, fixed ground.
+    Ground,
+    /// A node of the model.
+    Node(NodeId),
+}
+
+/// Cross-section and material of a frame (Euler–Bernoulli beam-column) or of a bar.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameSection {
+    /// Young's modulus `E`.
+    pub e: f64,
+    /// Area `A`.
+    pub area: f64,
+    /// Second moment of area `I` (ignored by bars).
+    pub inertia: f64,
+    /// Section depth `h`, needed only by a temperature gradient.
+    pub depth: f64,
+    /// Coefficient of thermal expansion `α`.
+    pub alpha: f64,
+}
+
+impl FrameSection {
+    /// A section with `E`, `A`, `I`; no depth, no thermal expansion.
+    pub fn new(e: f64, area: f64, inertia: f64) -> Self {
+        Self {
+            e,
+            area,
+            inertia,
+            depth: 0.0,
+            alpha: 0.0,
+        }
+    }
+    /// Sets the depth `h` (for temperature gradients).
+    pub fn with_depth(mut self, depth: f64) -> Self {
+        self.depth = depth;
+        self
+    }
+    /// Sets the coefficient of thermal expansion `α`.
+    pub fn with_alpha(mut self, alpha: f64) -> Self {
+        self.alpha = alpha;
+        self
+    }
+}
+
+/// Moment releases (hinges) at the ends of a frame element.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Releases {
+    /// Hinge at the start node (zero end moment).
+    pub start: bool,
+    /// Hinge at the end node (zero end moment).
+    pub end: bool,
+}
+
+/// Plane stress or plane strain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PlaneAnalysis {
+    /// `σ_zz = 0` (thin plate loaded in its plane).
+    PlaneStress,
+    /// `ε_zz = 0` (long body, e.g. soil per metre run).
+    PlaneStrain,
+}
+
+/// Formulation of a 4-node plane element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PlaneFormulation {
+    /// Bilinear isoparametric, 2×2 Gauss (locks in bending on coarse meshes).
+    Q4,
+    /// Bilinear plus the incompatible modes `1 − ξ²`, `1 − η²` (Taylor's QM6: condensed per
+    /// element, passes the patch test on distorted meshes, does not lock in bending).
+    QM6,
+}
+
+/// Material and thickness of a plane element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlaneMaterial {
+    /// Young's modulus `E`.
+    pub e: f64,
+    /// Poisson's ratio `ν` in (−1, 0.5).
+    pub nu: f64,
+    /// Thickness `t` (1 for plane strain per unit run).
+    pub thickness: f64,
+    /// Coefficient of thermal expansion `α`.
+    pub alpha: f64,
+}
+
+impl PlaneMaterial {
+    /// Material with `E`, `ν`, thickness 1 and no thermal expansion.
+    pub fn new(e: f64, nu: f64) -> Self {
+        Self {
+            e,
+            nu,
+            thickness: 1.0,
+            alpha: 0.0,
+        }
+    }
+    /// Sets the thickness.
+    pub fn with_thickness(mut self, t: f64) -> Self {
+        self.thickness = t;
+        self
+    }
+    /// Sets the coefficient of thermal expansion `α`.
+    pub fn with_alpha(mut self, alpha: f64) -> Self {
+        self.alpha = alpha;
+        self
+    }
+}
+
+/// An element of the model.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Element {
+    /// Euler–Bernoulli frame element (3 DOF per node), optional end hinges.
+    Frame {
+        /// Start and end node.
+        nodes: [NodeId; 2],
+        /// Section.
+        section: FrameSection,
+        /// End releases.
+        releases: Releases,
+    },
+    /// Pin-jointed bar (axial force only).
+    Bar {
+        /// Start and end node.
+        nodes: [NodeId; 2],
+        /// Section (`inertia` ignored).
+        section: FrameSection,
+    },
+    /// 4-node plane element, nodes counter-clockwise.
+    Plane {
+        /// Corner nodes, counter-clockwise.
+        nodes: [NodeId; 4],
+        /// Material.
+        material: PlaneMaterial,
+        /// Plane stress or strain.
+        analysis: PlaneAnalysis,
+        /// Q4 or QM6.
+        formulation: PlaneFormulation,
+    },
+}
+
+/// A linear spring.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpringKind {
+    /// Axial spring acting along `direction` (any non-zero vector) on the relative
+    /// displacement `u_b − u_a`.
+    Translational {
+        /// Direction of action.
+        direction: [f64; 2],
+        /// Stiffness (force per length).
+        stiffness: f64,
+    },
+    /// Rotational spring on `θ_b − θ_a`.
+    Rotational {
+        /// Stiffness (moment per radian).
+        stiffness: f64,
+    },
+}
+
+/// A linear spring between a node `b` and the ground or another node `a`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spring {
+    /// Ground or first node.
+    pub a: Endpoint,
+    /// Second node.
+    pub b: NodeId,
+    /// Kind and stiffness.
+    pub kind: SpringKind,
+}
+
+/// A restrained degree of freedom of a node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SupportDof {
+    /// Global x translation.
+    Ux,
+    /// Global y translation.
+    Uy,
+    /// Rotation.
+    Rz,
+    /// Translation along the given direction (inclined roller: the direction is the roller's
+    /// normal). The vector need not be unit.
+    Along([f64; 2]),
+}
+
+/// The load group a load belongs to (formulation.md §2: `R_F = R_c + p·R_v`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LoadGroup {
+    /// Dead load, always present.
+    Constant,
+    /// Multiplied by the load parameter `p`.
+    Variable,
+}
+
+/// Reference frame of a distributed load on a frame or bar.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LoadFrame {
+    /// Components along global x and y, per unit length of the element.
+    Global,
+    /// Components along the element axis (start → end) and its normal (axis rotated 90°
+    /// counter-clockwise), per unit length.
+    Local,
+}
+
+/// A load. Every load belongs to a [`LoadGroup`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Load {
+    /// Force and moment at a node (global components; moment counter-clockwise positive).
+    Nodal {
+        /// The node.
+        node: NodeId,
+        /// Force along x.
+        fx: f64,
+        /// Force along y.
+        fy: f64,
+        /// Moment.
+        m: f64,
+    },
+    /// Linearly varying distributed load on a frame or bar, intensity `start` at the start node
+    /// and `end` at the end node (two components each, in `frame`).
+    Distributed {
+        /// The frame or bar.
+        element: ElementId,
+        /// Intensity at the start node.
+        start: [f64; 2],
+        /// Intensity at the end node.
+        end: [f64; 2],
+        /// Global or local components.
+        frame: LoadFrame,
+    },
+    /// Body force (e.g. self-weight `[0, −γ]`): per unit volume on plane elements, per unit
+    /// length on frames and bars; global components.
+    BodyForce {
+        /// The element.
+        element: ElementId,
+        /// Force density.
+        force: [f64; 2],
+    },
+    /// Prescribed displacement (support settlement) of a supported DOF.
+    Settlement {
+        /// The node.
+        node: NodeId,
+        /// The supported DOF (must match a support exactly).
+        dof: SupportDof,
+        /// Displacement (along the support direction, or rotation).
+        value: f64,
+    },
+    /// Temperature change of an element: uniform part `uniform`; on frames also the difference
+    /// `gradient = T(+y_local face) − T(−y_local face)` across the depth `h`.
+    Temperature {
+        /// The element.
+        element: ElementId,
+        /// Uniform change (at the centroid).
+        uniform: f64,
+        /// Through-depth difference (frames only).
+        gradient: f64,
+    },
+}
+
+/// Specification of a contact pair.
+///
+/// `n` is the unit normal pointing **from `a` into `b`** (for a pair with the ground, from the
+/// ground into the body node `b`); the tangent is `t = (n_y, −n_x)` (see `docs/fem.md`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactPairSpec {
+    /// Ground or node A.
+    pub a: Endpoint,
+    /// Node B.
+    pub b: NodeId,
+    /// Normal direction from A into B (any non-zero vector; normalised).
+    pub normal: [f64; 2],
+    /// Initial gap `η ≥ 0`.
+    pub gap: f64,
+    /// Friction coefficient `f ≥ 0`.
+    pub friction: f64,
+    /// Display name (default: 1-based pair number).
+    pub name: Option<String>,
+}
+
+impl ContactPairSpec {
+    /// A pair between the rigid ground and node `b`, `normal` pointing from the ground into `b`.
+    pub fn to_ground(b: NodeId, normal: [f64; 2]) -> Self {
+        Self {
+            a: Endpoint::Ground,
+            b,
+            normal,
+            gap: 0.0,
+            friction: 0.0,
+            name: None,
+        }
+    }
+    /// A pair between nodes `a` and `b`, `normal` pointing from `a` into `b`.
+    pub fn between(a: NodeId, b: NodeId, normal: [f64; 2]) -> Self {
+        Self {
+            a: Endpoint::Node(a),
+            b,
+            normal,
+            gap: 0.0,
+            friction: 0.0,
+            name: None,
+        }
+    }
+    /// Sets the friction coefficient.
+    pub fn friction(mut self, f: f64) -> Self {
+        self.friction = f;
+        self
+    }
+    /// Sets the initial gap.
+    pub fn gap(mut self, g: f64) -> Self {
+        self.gap = g;
+        self
+    }
+    /// Sets the name.
+    pub fn name(mut self, name: impl Into<String>) -> Self {
+        self.name = Some(name.into());
+        self
+    }
+}
+
+/// A linear elastic 2D structure with contact pairs.
+///
+/// ```
+/// use unilateral_fem::{ContactPairSpec, FrameSection, Load, LoadGroup, Model};
+/// // Example 1 of the paper: a two-span beam held only by three contact pairs.
+/// let mut model = Model::new();
+/// let n: Vec<_> = [0.0, 2.0, 3.0, 4.0].iter().map(|&x| model.add_node(x, 0.0)).collect();
+/// let section = FrameSection::new(1.0, 2.0, 1.0);
+/// for w in n.windows(2) {
+///     model.add_frame(w[0], w[1], section);
+/// }
+/// for &i in &[n[0], n[1], n[3]] {
+///     model.add_contact_pair(ContactPairSpec::to_ground(i, [0.0, 1.0]).friction(0.6));
+/// }
+/// model.add_load(LoadGroup::Variable, Load::Nodal { node: n[2], fx: 0.0, fy: -1.0, m: 0.0 });
+/// let c = model.condense().unwrap();
+/// assert!((c.variable.normal[1] - 0.6875).abs() < 1e-12);
+/// assert!((c.rnn[(0, 0)] - 0.1875).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct Model {
+    pub(crate) nodes: Vec<[f64; 2]>,
+    pub(crate) elements: Vec<Element>,
+    pub(crate) springs: Vec<Spring>,
+    pub(crate) supports: Vec<(NodeId, SupportDof)>,
+    pub(crate) loads: Vec<(LoadGroup, Load)>,
+    pub(crate) pairs: Vec<ContactPairSpec>,
+}
+
+impl Model {
+    /// An empty model.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds a node at `(x, y)`.
+    pub fn add_node(&mut self, x: f64, y: f64) -> NodeId {
+        self.nodes.push([x, y]);
+        NodeId(self.nodes.len() - 1)
+    }
+
+    /// Adds a rigidly connected frame element from `a` to `b`.
+    pub fn add_frame(&mut self, a: NodeId, b: NodeId, section: FrameSection) -> ElementId {
+        self.add_frame_with_releases(a, b, section, Releases::default())
+    }
+
+    /// Adds a frame element with end hinges.
+    pub fn add_frame_with_releases(
+        &mut self,
+        a: NodeId,
+        b: NodeId,
+        section: FrameSection,
+        releases: Releases,
+    ) -> ElementId {
+        self.push(Element::Frame {
+            nodes: [a, b],
+            section,
+            releases,
+        })
+    }
+
+    /// Adds a pin-jointed bar (truss member).
+    pub fn add_bar(&mut self, a: NodeId, b: NodeId, section: FrameSection) -> ElementId {
+        self.push(Element::Bar {
+            nodes: [a, b],
+            section,
+        })
+    }
+
+    /// Adds a 4-node plane element (nodes counter-clockwise).
+    pub fn add_plane(
+        &mut self,
+        nodes: [NodeId; 4],
+        material: PlaneMaterial,
+        analysis: PlaneAnalysis,
+        formulation: PlaneFormulation,
+    ) -> ElementId {
+        self.push(Element::Plane {
+            nodes,
+            material,
+            analysis,
+            formulation,
+        })
+    }
+
+    /// Adds any element.
+    pub fn push(&mut self, e: Element) -> ElementId {
+        self.elements.push(e);
+        ElementId(self.elements.len() - 1)
+    }
+
+    /// Adds a spring; returns its index.
+    pub fn add_spring(&mut self, spring: Spring) -> usize {
+        self.springs.push(spring);
+        self.springs.len() - 1
+    }
+
+    /// Restrains one DOF of a node.
+    pub fn add_support(&mut self, node: NodeId, dof: SupportDof) {
+        self.supports.push((node, dof));
+    }
+
+    /// Clamps a node (ux, uy, rz).
+    pub fn fix(&mut self, node: NodeId) {
+        for d in [SupportDof::Ux, SupportDof::Uy, SupportDof::Rz] {
+            self.add_support(node, d);
+        }
+    }
+
+    /// Pins a node (ux, uy).
+    pub fn pin(&mut self, node: NodeId) {
+        self.add_support(node, SupportDof::Ux);
+        self.add_support(node, SupportDof::Uy);
+    }
+
+    /// Inclined roller: restrains the translation along `normal`, frees the one across it.
+    pub fn roller(&mut self, node: NodeId, normal: [f64; 2]) {
+        self.add_support(node, SupportDof::Along(normal));
+    }
+
+    /// Adds a load to a group; returns its index among all loads.
+    pub fn add_load(&mut self, group: LoadGroup, load: Load) -> usize {
+        self.loads.push((group, load));
+        self.loads.len() - 1
+    }
+
+    /// Adds a contact pair; returns its index.
+    pub fn add_contact_pair(&mut self, spec: ContactPairSpec) -> usize {
+        self.pairs.push(spec);
+        self.pairs.len() - 1
+    }
+
+    /// Node coordinates.
+    pub fn nodes(&self) -> &[[f64; 2]] {
+        &self.nodes
+    }
+    /// Elements.
+    pub fn elements(&self) -> &[Element] {
+        &self.elements
+    }
+    /// Contact pairs.
+    pub fn pairs(&self) -> &[ContactPairSpec] {
+        &self.pairs
+    }
+
+    fn check_node(&self, what: impl FnOnce() -> String, n: NodeId) -> Result<(), FemError> {
+        if n.0 >= self.nodes.len() {
+            return Err(FemError::MissingNode {
+                what: what(),
+                node: n.0,
+                count: self.nodes.len(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Checks the model: node references, geometry, positive properties, Poisson's ratio,
+    /// springs, contact pairs and load targets. Stability is checked by [`Model::condense`].
+    pub fn validate(&self) -> Result<(), FemError> {
+        for (i, p) in self.nodes.iter().enumerate() {
+            if !p[0].is_finite() || !p[1].is_finite() {
+                return Err(FemError::NotFinite {
+                    what: format!("coordinates of node {i}"),
+                });
+            }
+        }
+        for (ei, e) in self.elements.iter().enumerate() {
+            let id = ElementId(ei);
+            let nodes: &[NodeId] = match e {
+                Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => nodes,
+                Element::Plane { nodes, .. } => nodes,
+            };
+            for &n in nodes {
+                self.check_node(|| format!("element {ei}"), n)?;
+            }
+            for (k, &n) in nodes.iter().enumerate() {
+                if nodes[..k].contains(&n) {
+                    return Err(FemError::RepeatedNode {
+                        element: id,
+                        node: n,
+                    });
+                }
+            }
+            let positive = |property: &'static str, value: f64| {
+                if value > 0.0 && value.is_finite() {
+                    Ok(())
+                } else {
+                    Err(FemError::NonPositiveProperty {
+                        element: id,
+                        property,
+                        value,
+                    })
+                }
+            };
+            match e {
+                Element::Frame { nodes, section, .. } | Element::Bar { nodes, section } => {
+                    let [a, b] = [self.nodes[nodes[0].0], self.nodes[nodes[1].0]];
+                    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+                    let scale = a[0].abs().max(a[1].abs()).max(b[0].abs()).max(b[1].abs());
+                    if len <= 1e-12 * scale.max(1e-300) || len == 0.0 {
+                        return Err(FemError::ZeroLength {
+                            element: id,
+                            a: nodes[0],
+                            b: nodes[1],
+                        });
+                    }
+                    positive("E", section.e)?;
+                    positive("A", section.area)?;
+                    if matches!(e, Element::Frame { .. }) {
+                        positive("I", section.inertia)?;
+                    }
+                    if !section.alpha.is_finite() || !section.depth.is_finite() {
+                        return Err(FemError::NotFinite {
+                            what: format!("section of element {ei}"),
+                        });
+                    }
+                }
+                Element::Plane { material, .. } => {
+                    positive("E", material.e)?;
+                    positive("thickness", material.thickness)?;
+                    if !(material.nu > -1.0 && material.nu < 0.5) {
+                        return Err(FemError::PoissonOutOfRange {
+                            element: id,
+                            nu: material.nu,
+                        });
+                    }
+                    if !material.alpha.is_finite() {
+                        return Err(FemError::NotFinite {
+                            what: format!("alpha of element {ei}"),
+                        });
+                    }
+                    crate::elements::plane_min_det_j(self, e, id)?;
+                }
+            }
+        }
+        for (si, s) in self.springs.iter().enumerate() {
+            self.check_node(|| format!("spring {si}"), s.b)?;
+            if let Endpoint::Node(a) = s.a {
+                self.check_node(|| format!("spring {si}"), a)?;
+                if a == s.b {
+                    return Err(FemError::BadSpring {
+                        spring: si,
+                        reason: "both ends on the same node".into(),
+                    });
+                }
+            }
+            let (k, ok_dir) = match s.kind {
+                SpringKind::Translational {
+                    direction,
+                    stiffness,
+                } => (stiffness, direction[0].hypot(direction[1]) > 0.0),
+                SpringKind::Rotational { stiffness } => (stiffness, true),
+            };
+            if !(k > 0.0 && k.is_finite()) {
+                return Err(FemError::BadSpring {
+                    spring: si,
+                    reason: format!("stiffness must be positive, got {k}"),
+                });
+            }
+            if !ok_dir {
+                return Err(FemError::BadSpring {
+                    spring: si,
+                    reason: "zero direction vector".into(),
+                });
+            }
+        }
+        for (n, d) in &self.supports {
+            self.check_node(|| format!("support on node {}", n.0), *n)?;
+            if let SupportDof::Along(v) = d {
+                if !(v[0].hypot(v[1]) > 0.0) {
+                    return Err(FemError::BadSupport {
+                        node: *n,
+                        reason: "inclined support with a zero direction".into(),
+                    });
+                }
+            }
+        }
+        for (pi, p) in self.pairs.iter().enumerate() {
+            let name = self.pair_name(pi);
+            self.check_node(|| format!("contact pair {pi} ({name})"), p.b)?;
+            if let Endpoint::Node(a) = p.a {
+                self.check_node(|| format!("contact pair {pi} ({name})"), a)?;
+                if a == p.b {
+                    return Err(FemError::BadContactPair {
+                        pair: pi,
+                        name,
+                        reason: "both sides are the same node".into(),
+                    });
+                }
+            }
+            let bad = |reason: String| FemError::BadContactPair {
+                pair: pi,
+                name: name.clone(),
+                reason,
+            };
+            let len = p.normal[0].hypot(p.normal[1]);
+            if !(len > 0.0 && len.is_finite()) {
+                return Err(bad("the normal is zero or not finite".into()));
+            }
+            if !(p.gap >= 0.0 && p.gap.is_finite()) {
+                return Err(bad(format!("gap must be >= 0, got {}", p.gap)));
+            }
+            if !(p.friction >= 0.0 && p.friction.is_finite()) {
+                return Err(bad(format!("friction must be >= 0, got {}", p.friction)));
+            }
+        }
+        for (li, (_, l)) in self.loads.iter().enumerate() {
+            let elem = |e: ElementId, frames_only: bool| -> Result<&Element, FemError> {
+                match self.elements.get(e.0) {
+                    None => Err(FemError::BadLoadTarget {
+                        load: li,
+                        element: e,
+                        reason: "no such element".into(),
+                    }),
+                    Some(Element::Plane { .. }) if frames_only => Err(FemError::BadLoadTarget {
+                        load: li,
+                        element: e,
+                        reason: "this load applies to frames and bars only".into(),
+                    }),
+                    Some(el) => Ok(el),
+                }
+            };
+            let finite = |v: &[f64]| {
+                if v.iter().all(|x| x.is_finite()) {
+                    Ok(())
+                } else {
+                    Err(FemError::NotFinite {
+                        what: format!("load {li}"),
+                    })
+                }
+            };
+            match *l {
+                Load::Nodal { node, fx, fy, m } => {
+                    self.check_node(|| format!("load {li}"), node)?;
+                    finite(&[fx, fy, m])?;
+                }
+                Load::Distributed {
+                    element,
+                    start,
+                    end,
+                    ..
+                } => {
+                    elem(element, true)?;
+                    finite(&[start[0], start[1], end[0], end[1]])?;
+                }
+                Load::BodyForce { element, force } => {
+                    elem(element, false)?;
+                    finite(&force)?;
+                }
+                Load::Settlement { node, dof, value } => {
+                    self.check_node(|| format!("load {li}"), node)?;
+                    finite(&[value])?;
+                    if !self
+                        .supports
+                        .iter()
+                        .any(|(n, d)| *n == node && same_dof(*d, dof))
+                    {
+                        return Err(FemError::SettlementWithoutSupport {
+                            load: li,
+                            node,
+                            dof,
+                        });
+                    }
+                }
+                Load::Temperature {
+                    element,
+                    uniform,
+                    gradient,
+                } => {
+                    let el = elem(element, false)?;
+                    finite(&[uniform, gradient])?;
+                    if gradient != 0.0 {
+                        match el {
+                            Element::Frame { section, .. } if section.depth > 0.0 => {}
+                            Element::Frame { .. } => {
+                                return Err(FemError::BadLoadTarget {
+                                    load: li,
+                                    element,
+                                    reason: "a temperature gradient needs the section depth > 0"
+                                        .into(),
+                                })
+                            }
+                            _ => {
+                                return Err(FemError::BadLoadTarget {
+                                    load: li,
+                                    element,
+                                    reason: "a temperature gradient applies to frames only".into(),
+                                })
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Name of pair `i` (its own, or the 1-based number).
+    pub fn pair_name(&self, i: usize) -> String {
+        self.pairs[i]
+            .name
+            .clone()
+            .unwrap_or_else(|| (i + 1).to_string())
+    }
+}
+
+/// Whether two support DOFs are the same (directions compared after normalisation, sign
+/// included).
+pub(crate) fn same_dof(a: SupportDof, b: SupportDof) -> bool {
+    match (a, b) {
+        (SupportDof::Along(u), SupportDof::Along(v)) => {
+            let (lu, lv) = (u[0].hypot(u[1]), v[0].hypot(v[1]));
+            lu > 0.0
+                && lv > 0.0
+                && (u[0] / lu - v[0] / lv).abs() < 1e-12
+                && (u[1] / lu - v[1] / lv).abs() < 1e-12
+        }
+        _ => a == b,
+    }
+}

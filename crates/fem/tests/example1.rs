@@ -1,0 +1,96 @@
+//! Example 1 of Popov & Lovtsov (2023): two-span beam held only by three contact pairs.
+#![allow(clippy::needless_range_loop)]
+
+use unilateral_fem::{ContactPairSpec, ContactSolution, FrameSection, Load, LoadGroup, Model};
+
+fn example1() -> Model {
+    // spans of 2 m, EI = 1, EA = 2 (L³/EI = 8, EA/L = 1), pairs at x = 0, 2, 4, unit load at 3.
+    let mut model = Model::new();
+    let n: Vec<_> = [0.0, 2.0, 3.0, 4.0]
+        .iter()
+        .map(|&x| model.add_node(x, 0.0))
+        .collect();
+    let section = FrameSection::new(1.0, 2.0, 1.0);
+    for w in n.windows(2) {
+        model.add_frame(w[0], w[1], section);
+    }
+    for &i in &[n[0], n[1], n[3]] {
+        model.add_contact_pair(ContactPairSpec::to_ground(i, [0.0, 1.0]).friction(0.6));
+    }
+    model.add_load(
+        LoadGroup::Variable,
+        Load::Nodal {
+            node: n[2],
+            fx: 0.0,
+            fy: -1.0,
+            m: 0.0,
+        },
+    );
+    model
+}
+
+#[test]
+fn example1_csm_and_clv() {
+    let c = example1().condense().unwrap();
+    let rnn = [
+        [0.1875, -0.375, 0.1875],
+        [-0.375, 0.75, -0.375],
+        [0.1875, -0.375, 0.1875],
+    ];
+    let rtt = [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]];
+    for i in 0..3 {
+        for j in 0..3 {
+            assert!(
+                (c.rnn[(i, j)] - rnn[i][j]).abs() < 1e-12,
+                "Rnn[{i}][{j}] = {}",
+                c.rnn[(i, j)]
+            );
+            assert!(
+                (c.rtt[(i, j)] - rtt[i][j]).abs() < 1e-12,
+                "Rtt[{i}][{j}] = {}",
+                c.rtt[(i, j)]
+            );
+            assert!(c.rnt[(i, j)].abs() < 1e-12);
+            assert!(c.rtn[(i, j)].abs() < 1e-12);
+        }
+    }
+    let rv = [-0.09375, 0.6875, 0.40625];
+    for i in 0..3 {
+        assert!(
+            (c.variable.normal[i] - rv[i]).abs() < 1e-12,
+            "{:?}",
+            c.variable
+        );
+        assert!(c.variable.tangential[i].abs() < 1e-12);
+        assert_eq!(c.constant.normal[i], 0.0);
+    }
+    assert_eq!(c.friction, vec![0.6; 3]);
+    assert_eq!(c.pair_names, vec!["1", "2", "3"]);
+}
+
+#[test]
+fn example1_recovery_of_the_paper_solution() {
+    // The paper's answer at p = 1: support 1 lifts by 0.5, the others carry 0.5 each.
+    let c = example1().condense().unwrap();
+    let sol = ContactSolution {
+        p: 1.0,
+        x_n: vec![0.0, 0.5, 0.5],
+        x_t: vec![0.0; 3],
+        z_n: vec![0.5, 0.0, 0.0],
+        z_t: vec![0.0; 3],
+    };
+    let r = c.recover(&sol).unwrap();
+    // uplift of the left end = P L³ / (16 EI) = 0.5
+    assert!((r.displacements[0][1] - 0.5).abs() < 1e-12);
+    let e = &r.equilibrium;
+    assert!(e.relative() < 1e-12, "{e:?}");
+    assert!((r.link_forces.normal[1] - 0.5).abs() < 1e-12);
+    // moment under the load: beam simply supported on 2–4 with P = 1 at mid-span: PL/4 = 0.5
+    let m_mid = r.lines[1].diagram.last().unwrap().m;
+    assert!((m_mid - 0.5).abs() < 1e-12);
+    assert!(
+        (r.lines[2].diagram[0].m - 0.5).abs() < 1e-12,
+        "{:?}",
+        r.lines[2].diagram[0]
+    );
+}
