@@ -233,7 +233,7 @@ pub struct PlaneResult {
     pub stress: [[f64; 4]; 4],
 }
 
-/// Global equilibrium check: applied loads + reactions + contact forces + ground springs = 0.
+/// Global equilibrium check: applied loads + reactions + contact forces + springs = 0.
 /// Each entry is `[Fx, Fy, M about the origin]`.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Equilibrium {
@@ -241,10 +241,12 @@ pub struct Equilibrium {
     pub applied: [f64; 3],
     /// Resultant of the support reactions.
     pub reactions: [f64; 3],
-    /// Resultant of the contact forces of node-to-ground pairs acting on the structure.
+    /// Resultant of the contact forces acting on the structure (both sides of node-to-node
+    /// pairs: they cancel unless the pair's nodes are apart and `n` is not along them).
     pub contact: [f64; 3],
-    /// Resultant of the forces of springs to the ground acting on the structure.
-    pub ground_springs: [f64; 3],
+    /// Resultant of the spring forces acting on the structure (both ends of node-to-node
+    /// springs, as for pairs).
+    pub springs: [f64; 3],
     /// Sum of the four (≈ 0).
     pub resultant: [f64; 3],
     /// Largest nodal out-of-balance force at a free DOF.
@@ -465,11 +467,15 @@ impl Condensed {
                     let e = d[0] * (u[3 * b] - ua(0)) + d[1] * (u[3 * b + 1] - ua(1));
                     let force = stiffness * e;
                     spring_forces.push(force);
-                    if sp.a == Endpoint::Ground {
-                        let fb = [-force * d[0], -force * d[1]];
-                        ground[0] += fb[0];
-                        ground[1] += fb[1];
-                        ground[2] += pos[0] * fb[1] - pos[1] * fb[0];
+                    let fb = [-force * d[0], -force * d[1]];
+                    ground[0] += fb[0];
+                    ground[1] += fb[1];
+                    ground[2] += pos[0] * fb[1] - pos[1] * fb[0];
+                    if let Endpoint::Node(a) = sp.a {
+                        let pa = model.nodes[a.0];
+                        ground[0] -= fb[0];
+                        ground[1] -= fb[1];
+                        ground[2] -= pa[0] * fb[1] - pa[1] * fb[0];
                     }
                 }
                 SpringKind::Rotational { stiffness } => {
@@ -527,10 +533,17 @@ impl Condensed {
             let fx = nv[0] * sol.x_n[k] + tv[0] * sol.x_t[k];
             let fy = nv[1] * sol.x_n[k] + tv[1] * sol.x_t[k];
             scale = scale.max(sol.x_n[k].abs()).max(sol.x_t[k].abs());
-            if pair.a == Endpoint::Ground {
-                contact[0] += fx;
-                contact[1] += fy;
-                contact[2] += moment(model.nodes[pair.b.0], fx, fy);
+            let pb = model.nodes[pair.b.0];
+            contact[0] += fx;
+            contact[1] += fy;
+            contact[2] += moment(pb, fx, fy);
+            if let Endpoint::Node(a) = pair.a {
+                // the reaction on A; with A and B at different places and n not along AB the
+                // pair carries a couple, which is part of the balance
+                let pa = model.nodes[a.0];
+                contact[0] -= fx;
+                contact[1] -= fy;
+                contact[2] -= moment(pa, fx, fy);
             }
         }
         let mut resultant = [0.0; 3];
@@ -568,7 +581,7 @@ impl Condensed {
                 applied,
                 reactions: reac,
                 contact,
-                ground_springs: ground,
+                springs: ground,
                 resultant: [resultant[0], resultant[1], resultant[2] / size],
                 free_dof_residual: free_res,
                 link_force_mismatch: mismatch,
