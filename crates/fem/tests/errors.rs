@@ -61,8 +61,7 @@ fn non_positive_properties_and_poisson() {
         }
     }
     let quad = |m: &mut Model| {
-        let n = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| m.add_node(x, y));
-        n
+        [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(|(x, y)| m.add_node(x, y))
     };
     for (mat, ok) in [
         (PlaneMaterial::new(1.0, 0.5), false),
