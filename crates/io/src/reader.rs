@@ -88,6 +88,15 @@ impl<'a> Doc<'a> {
         }
     }
 
+    /// "a table" in TOML, "an object" in JSON.
+    pub fn a_table(&self) -> &'static str {
+        if self.json {
+            "an object"
+        } else {
+            "a table"
+        }
+    }
+
     pub fn table_word(&self) -> &'static str {
         if self.json {
             "object"
@@ -114,7 +123,7 @@ impl<'a> Doc<'a> {
                 key: key.to_string(),
                 pos: node.pos,
             }),
-            _ => Err(self.wrong_type(node, key, &format!("a {}", self.table_word()))),
+            _ => Err(self.wrong_type(node, key, self.a_table())),
         }
     }
 

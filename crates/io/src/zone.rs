@@ -193,8 +193,8 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
                 "load.variable",
                 InputErrorKind::MissingKey,
                 format!(
-                    "missing the variable load `load.variable` (a {} with `normal` and/or `tangential`): it is the load multiplied by the parameter p; without it the load path is trivial",
-                    doc.table_word()
+                    "missing the variable load `load.variable` ({} with `normal` and/or `tangential`): it is the load multiplied by the parameter p; without it the load path is trivial",
+                    doc.a_table()
                 ),
             ))
         }
