@@ -120,7 +120,7 @@ impl fmt::Display for InputError {
         }
         write!(f, "{}", self.message)?;
         if let Some(from) = &self.referenced_from {
-            write!(f, " (in the file named at {from})")?;
+            write!(f, " (this file is named at {from})")?;
         }
         Ok(())
     }

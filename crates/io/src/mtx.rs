@@ -177,6 +177,11 @@ pub(crate) fn parse_mtx(path: &Path, text: &str) -> Result<MtxMatrix, InputError
     };
 
     // The data lines: skip comments and blank lines.
+    let last_line = text.lines().count().max(1);
+    let end_pos = Some(Pos {
+        line: last_line,
+        col: 1,
+    });
     let mut data = lines.filter(|(_, l)| {
         let t = l.trim_start();
         !t.is_empty() && !t.starts_with('%')
@@ -184,7 +189,7 @@ pub(crate) fn parse_mtx(path: &Path, text: &str) -> Result<MtxMatrix, InputError
 
     let Some((size_line, size_text)) = data.next() else {
         return Err(err(
-            None,
+            end_pos,
             InputErrorKind::Syntax,
             format!(
                 "the file ends before the size line (`rows columns{}`)",
@@ -364,7 +369,7 @@ pub(crate) fn parse_mtx(path: &Path, text: &str) -> Result<MtxMatrix, InputError
             }
             if read < nnz {
                 return Err(err(
-                    None,
+                    end_pos,
                     InputErrorKind::Syntax,
                     format!(
                         "the file ends after {read} of the {nnz} entries declared on line {size_line}"
@@ -395,7 +400,7 @@ pub(crate) fn parse_mtx(path: &Path, text: &str) -> Result<MtxMatrix, InputError
             }
             if values.len() < needed {
                 return Err(err(
-                    None,
+                    end_pos,
                     InputErrorKind::Syntax,
                     format!(
                         "the file ends after {} of the {needed} values of the {rows}×{cols}{} array (declared on line {size_line})",
@@ -477,7 +482,7 @@ mod tests {
             (
                 "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n",
                 "ends after 1 of the 2",
-                None,
+                Some(3),
             ),
             (
                 "%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1 1\n2 2 2\n",
