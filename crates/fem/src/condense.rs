@@ -755,10 +755,14 @@ pub(crate) struct Condensation {
 /// Number of right-hand sides solved together.
 const CHUNK: usize = 64;
 
-pub(crate) fn condense(asm: &Assembled, llt: Option<&Llt<usize, f64>>) -> Condensation {
+pub(crate) fn condense(
+    asm: &Assembled,
+    kzz: Mat<f64>,
+    llt: Option<&Llt<usize, f64>>,
+) -> Condensation {
     let n_i = asm.map.n_i;
     let nz = 2 * asm.map.m;
-    let mut r = asm.kzz.clone();
+    let mut r = kzz;
     let mut rf = [vec![0.0; nz], vec![0.0; nz]];
     for g in 0..2 {
         for k in 0..nz {
