@@ -34,7 +34,9 @@ pub enum ContactError {
         lower: f64,
     },
     /// A stiffness matrix has a negative diagonal entry (it cannot be positive semidefinite).
-    #[error("{name} must be positive semidefinite, but its diagonal entry for pair {pair} is {value}")]
+    #[error(
+        "{name} must be positive semidefinite, but its diagonal entry for pair {pair} is {value}"
+    )]
     NegativeDiagonal {
         name: &'static str,
         pair: usize,

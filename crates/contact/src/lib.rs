@@ -1,13 +1,24 @@
-//! Frictional unilateral contact as a parametric linear complementarity problem.
+//! # unilateral-contact — frictional unilateral contact as a parametric LCP
 //!
-//! Data flow: [`ContactZone`] (the contact stiffness matrix and load vectors of a structure)
-//! → the `3m` LCP of `formulation.md` §3 → the load path of the parametric Lemke method
-//! → pair states and events.
+//! Data flow: a [`ContactZone`] (the contact stiffness matrix and load vectors of a structure,
+//! `formulation.md` §2) → the `3m` LCP of §3 ([`ContactLcp`]) → the load path of the parametric
+//! Lemke method (`unilateral-lcp`) → pair states and events ([`solve`] → [`ContactSolution`]).
+//!
+//! Signs (`formulation.md` §1): `x_n` compression positive, `z_n` opening positive; friction is
+//! split as `x_t± = f·x_n ± x_t`, `z_t = (z_t+ − z_t-)/2`.
 
 mod error;
+pub mod generate;
+mod lcp;
 mod settings;
+mod solve;
 mod zone;
 
 pub use error::ContactError;
+pub use lcp::ContactLcp;
 pub use settings::{SolveSettings, Trace};
+pub use solve::{
+    pair_results, solve, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult,
+    PairState,
+};
 pub use zone::{ContactLoad, ContactZone};

@@ -11,6 +11,7 @@ use faer::linalg::solvers::DenseSolveCore;
 use faer::Mat;
 
 use crate::columns::Columns;
+use crate::kernel::{dot, KernelInverse};
 
 /// Revised representation of a complementary basis.
 #[derive(Debug, Clone)]
@@ -28,8 +29,8 @@ pub(crate) struct Basis {
     r_pos: Vec<usize>,
     /// Position of a column in `s_cols` (`usize::MAX` otherwise).
     s_pos: Vec<usize>,
-    /// `K⁻¹`, row-major: rows follow `s_cols`, columns follow `r_rows`.
-    kinv: Vec<Vec<f64>>,
+    /// `K⁻¹`: rows follow `s_cols`, columns follow `r_rows`.
+    kinv: KernelInverse,
 }
 
 /// The kernel matrix was numerically singular.
@@ -53,7 +54,7 @@ impl Basis {
             r_rows: Vec::new(),
             r_pos: vec![NONE; n],
             s_pos: vec![NONE; 2 * n + 1],
-            kinv: Vec::new(),
+            kinv: KernelInverse::default(),
         }
     }
 
@@ -82,6 +83,10 @@ impl Basis {
         Ok(b)
     }
 
+    pub fn kernel_size(&self) -> usize {
+        self.s_cols.len()
+    }
+
     pub fn is_basic(&self, col: usize) -> bool {
         self.var_slot[col] != NONE
     }
@@ -105,9 +110,7 @@ impl Basis {
         }
         let inv = lu.inverse();
         // K⁻¹ has rows indexed like the columns of K (S) and columns like its rows (R).
-        self.kinv = (0..k)
-            .map(|a| (0..k).map(|b| inv[(a, b)]).collect())
-            .collect();
+        self.kinv.assign(k, |a, b| inv[(a, b)]);
         Ok(())
     }
 
@@ -123,24 +126,35 @@ impl Basis {
 
     /// `α = B⁻¹ A[:, col]`, indexed by slot.
     pub fn ftran(&self, cols: &Columns, col: usize) -> Vec<f64> {
+        self.ftran_checked(cols, col).0
+    }
+
+    /// `α = B⁻¹ A[:, col]` and the relative residual of the kernel solve, which the slack-row
+    /// pass yields for free: on the rows of `R`, `A[:, col] − A[:, S] y_S` is `u_R − K y_S`.
+    pub fn ftran_checked(&self, cols: &Columns, col: usize) -> (Vec<f64>, f64) {
         let n = self.n;
         let mut tmp = vec![0.0; n];
-        let ys = if col < n {
+        let (ys, uscale) = if col < n {
             let b = self.r_pos[col];
             debug_assert!(b != NONE, "entering slack must be non-basic");
             tmp[col] = 1.0;
-            self.kinv.iter().map(|row| row[b]).collect::<Vec<_>>()
+            (self.kinv.col(b).to_vec(), 1.0)
         } else {
             cols.axpy_col(&mut tmp, 1.0, col);
             let ur: Vec<f64> = self.r_rows.iter().map(|&r| tmp[r]).collect();
-            self.kernel_solve(&ur)
+            let s = ur.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            (self.kernel_solve(&ur), s)
         };
         self.subtract_kernel_columns(cols, &ys, &mut tmp);
-        self.scatter(&ys, &tmp, n)
+        let resid = self.r_rows.iter().fold(0.0f64, |a, &r| a.max(tmp[r].abs()));
+        let yscale = ys.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let scale = uscale + yscale;
+        let rel = if scale > 0.0 { resid / scale } else { 0.0 };
+        (self.scatter(&ys, &tmp, n), rel)
     }
 
     fn kernel_solve(&self, vr: &[f64]) -> Vec<f64> {
-        self.kinv.iter().map(|row| dot(row, vr)).collect()
+        self.kinv.solve(vr)
     }
 
     /// `tmp −= A[:, S] y_S`, four columns per pass over `tmp`.
@@ -157,24 +171,18 @@ impl Basis {
                 cols.axpy_col(tmp, -y, c);
             }
         }
-        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y.
-        let mut chunks = zcols.chunks_exact(4);
-        for ch in &mut chunks {
-            let (c0, c1, c2, c3) = (
-                cols.m_col(ch[0].0),
-                cols.m_col(ch[1].0),
-                cols.m_col(ch[2].0),
-                cols.m_col(ch[3].0),
-            );
-            let (y0, y1, y2, y3) = (ch[0].1, ch[1].1, ch[2].1, ch[3].1);
-            for i in 0..n {
-                tmp[i] += y0 * c0[i] + y1 * c1[i] + y2 * c2[i] + y3 * c3[i];
-            }
-        }
-        for &(j, y) in chunks.remainder() {
-            for (t, v) in tmp.iter_mut().zip(cols.m_col(j)) {
-                *t += y * v;
-            }
+        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y. This pass streams k
+        // columns of M and dominates a pivot: split the rows over two threads when it is large.
+        let tmp = &mut tmp[..n];
+        if n * zcols.len() >= 1 << 18 && n >= 64 {
+            let half = n / 2;
+            let (lo, hi) = tmp.split_at_mut(half);
+            std::thread::scope(|sc| {
+                sc.spawn(|| add_columns(cols, &zcols, lo, 0));
+                add_columns(cols, &zcols, hi, half);
+            });
+        } else {
+            add_columns(cols, &zcols, tmp, 0);
         }
     }
 
@@ -202,13 +210,12 @@ impl Basis {
             rho[var] = 1.0;
             let ai: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(var, c)).collect();
             for (b, &r) in self.r_rows.iter().enumerate() {
-                let t: f64 = ai.iter().zip(&self.kinv).map(|(a, row)| a * row[b]).sum();
-                rho[r] -= t;
+                rho[r] -= dot(&ai, self.kinv.col(b));
             }
         } else {
             let a = self.s_pos[var];
             for (b, &r) in self.r_rows.iter().enumerate() {
-                rho[r] = self.kinv[a][b];
+                rho[r] = self.kinv.get(a, b);
             }
         }
         rho
@@ -231,17 +238,8 @@ impl Basis {
                     .collect();
                 let sigma = alpha[slot];
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                let vt = vec_times_kinv(&v, &self.kinv, self.r_rows.len());
-                for (row, &ua) in self.kinv.iter_mut().zip(&ut) {
-                    let f = ua / sigma;
-                    for (x, &w) in row.iter_mut().zip(&vt) {
-                        *x += f * w;
-                    }
-                    row.push(-f);
-                }
-                let mut last: Vec<f64> = vt.iter().map(|w| -w / sigma).collect();
-                last.push(1.0 / sigma);
-                self.kinv.push(last);
+                let vt = self.kinv.row_times(&v);
+                self.kinv.border(&ut, &vt, sigma);
                 self.s_pos[entering] = self.s_cols.len();
                 self.s_cols.push(entering);
                 self.r_pos[r] = self.r_rows.len();
@@ -251,23 +249,7 @@ impl Basis {
                 // Remove column `leaving` (position a) and row `entering` (position b).
                 let a = self.s_pos[leaving];
                 let b = self.r_pos[entering];
-                let piv = self.kinv[a][b];
-                let row_a = self.kinv[a].clone();
-                for (i, row) in self.kinv.iter_mut().enumerate() {
-                    if i == a {
-                        continue;
-                    }
-                    let f = row[b] / piv;
-                    if f != 0.0 {
-                        for (x, &w) in row.iter_mut().zip(&row_a) {
-                            *x -= f * w;
-                        }
-                    }
-                }
-                self.kinv.swap_remove(a);
-                for row in &mut self.kinv {
-                    row.swap_remove(b);
-                }
+                self.kinv.remove(a, b);
                 self.s_cols.swap_remove(a);
                 if a < self.s_cols.len() {
                     self.s_pos[self.s_cols[a]] = a;
@@ -287,18 +269,7 @@ impl Basis {
                     .iter()
                     .map(|&c| alpha[self.var_slot[c]])
                     .collect();
-                let piv = ut[a];
-                let row_a: Vec<f64> = self.kinv[a].iter().map(|x| x / piv).collect();
-                for (i, row) in self.kinv.iter_mut().enumerate() {
-                    if i == a || ut[i] == 0.0 {
-                        continue;
-                    }
-                    let f = ut[i];
-                    for (x, &w) in row.iter_mut().zip(&row_a) {
-                        *x -= f * w;
-                    }
-                }
-                self.kinv[a] = row_a;
+                self.kinv.replace_column(a, &ut);
                 self.s_cols[a] = entering;
                 self.s_pos[leaving] = NONE;
                 self.s_pos[entering] = a;
@@ -307,20 +278,11 @@ impl Basis {
                 // Row `entering` (position b) of K is replaced by row `leaving`.
                 let b = self.r_pos[entering];
                 let r = leaving;
-                let w: Vec<f64> = self.kinv.iter().map(|row| row[b]).collect();
+                let w: Vec<f64> = self.kinv.col(b).to_vec();
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                let vt = vec_times_kinv(&v, &self.kinv, self.r_rows.len());
-                let denom = dot(&v, &w);
-                let mut corr = vt;
-                corr[b] -= 1.0;
-                for (row, &wa) in self.kinv.iter_mut().zip(&w) {
-                    let f = wa / denom;
-                    if f != 0.0 {
-                        for (x, &c) in row.iter_mut().zip(&corr) {
-                            *x -= f * c;
-                        }
-                    }
-                }
+                let vt = self.kinv.row_times(&v);
+                let vw = dot(&v, &w);
+                self.kinv.replace_row(b, &w, &vt, vw);
                 self.r_rows[b] = r;
                 self.r_pos[r] = b;
                 self.r_pos[entering] = NONE;
@@ -330,50 +292,21 @@ impl Basis {
         self.var_slot[entering] = slot;
         self.var_slot[leaving] = NONE;
     }
-
-    /// Relative accuracy of the kernel inverse on the column `col`: `‖K y − u‖ / ‖u‖`
-    /// with `y = K⁻¹ u`, `u = A[R, col]` (a non-slack column).
-    pub fn kernel_error(&self, cols: &Columns, col: usize) -> f64 {
-        let k = self.s_cols.len();
-        if k == 0 {
-            return 0.0;
-        }
-        let u: Vec<f64> = self.r_rows.iter().map(|&r| cols.entry(r, col)).collect();
-        let y = self.kernel_solve(&u);
-        let mut err = 0.0f64;
-        let mut scale = 0.0f64;
-        for (a, &r) in self.r_rows.iter().enumerate() {
-            let mut s = -u[a];
-            let mut mag = u[a].abs();
-            for (b, &c) in self.s_cols.iter().enumerate() {
-                let t = cols.entry(r, c) * y[b];
-                s += t;
-                mag += t.abs();
-            }
-            err = err.max(s.abs());
-            scale = scale.max(mag);
-        }
-        if scale == 0.0 {
-            0.0
-        } else {
-            err / scale
-        }
-    }
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-/// `vᵀ K⁻¹` for row-major `K⁻¹` (rows follow `v`'s index).
-fn vec_times_kinv(v: &[f64], kinv: &[Vec<f64>], k: usize) -> Vec<f64> {
-    let mut out = vec![0.0; k];
-    for (row, &va) in kinv.iter().zip(v) {
-        if va != 0.0 {
-            for (o, &x) in out.iter_mut().zip(row) {
-                *o += va * x;
-            }
+/// `out += Σ y_j M[offset.., j]` over `(j, y_j)`, four columns per pass over `out`.
+fn add_columns(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64], offset: usize) {
+    let len = out.len();
+    let part = |j: usize| &cols.m_col(j)[offset..offset + len];
+    let mut chunks = zcols.chunks_exact(4);
+    for ch in &mut chunks {
+        let (c0, c1, c2, c3) = (part(ch[0].0), part(ch[1].0), part(ch[2].0), part(ch[3].0));
+        let (y0, y1, y2, y3) = (ch[0].1, ch[1].1, ch[2].1, ch[3].1);
+        for ((((t, a0), a1), a2), a3) in out.iter_mut().zip(c0).zip(c1).zip(c2).zip(c3) {
+            *t += y0 * a0 + y1 * a1 + y2 * a2 + y3 * a3;
         }
     }
-    out
+    for &(j, y) in chunks.remainder() {
+        crate::kernel::axpy(out, y, part(j));
+    }
 }

@@ -19,6 +19,7 @@ mod basis;
 mod columns;
 mod enumerate;
 mod error;
+mod kernel;
 mod lemke;
 mod parametric;
 mod pivot;

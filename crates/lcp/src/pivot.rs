@@ -40,6 +40,12 @@ pub(crate) enum Ending {
     Singular,
 }
 
+/// Relative size of a tie in the ratio test.
+const TIE: f64 = 1e-9;
+
+/// Relative kernel residual above which the basis is refactorised at once.
+const DRIFT: f64 = 1e-9;
+
 /// The state of a complementary pivoting run.
 pub(crate) struct Pivoter<'a> {
     pub cols: &'a Columns,
@@ -57,6 +63,8 @@ pub(crate) struct Pivoter<'a> {
     pub pivots: usize,
     pub refactorizations: usize,
     value_scale: f64,
+    /// Kernel residual seen on the last entering column.
+    drift: f64,
 }
 
 impl<'a> Pivoter<'a> {
@@ -84,6 +92,7 @@ impl<'a> Pivoter<'a> {
             pivots: 0,
             refactorizations: 0,
             value_scale,
+            drift: 0.0,
         }
     }
 
@@ -171,10 +180,12 @@ impl<'a> Pivoter<'a> {
                 imin = i;
             }
         }
+        // A tie: stepping by the minimum ratio leaves the row at zero up to round-off, measured
+        // relative to the size of the quantities that cancel.
         let ties: Vec<usize> = cand
             .iter()
             .copied()
-            .filter(|&i| val(i) - rmin * alpha[i] <= zero)
+            .filter(|&i| val(i) - rmin * alpha[i] <= TIE * (val(i) + rmin * alpha[i]) + zero)
             .collect();
         if ties.len() <= 1 {
             return Some((imin, rmin));
@@ -236,8 +247,10 @@ impl<'a> Pivoter<'a> {
         self.basis.pivot(self.cols, entering, slot, alpha);
         self.pivots += 1;
         self.since_refactor += 1;
-        let drift = entering >= self.cols.n && self.basis.kernel_error(self.cols, entering) > 1e-9;
-        if self.since_refactor >= self.refactor_interval || drift {
+        // Refactorising costs O(k³); doing it every ~k pivots keeps its share per pivot at
+        // O(k²), the order of an update. Lost accuracy triggers it earlier (`drift`).
+        let interval = self.refactor_interval.max(self.basis.kernel_size());
+        if self.since_refactor >= interval || self.drift > DRIFT {
             self.refactor()?;
         }
         Ok(leaving)
@@ -248,6 +261,7 @@ impl<'a> Pivoter<'a> {
         self.basis.refactor(self.cols)?;
         self.beta = self.basis.solve(self.cols, &self.cols.h);
         self.since_refactor = 0;
+        self.drift = 0.0;
         self.refactorizations += 1;
         Ok(())
     }
@@ -283,9 +297,22 @@ impl<'a> Pivoter<'a> {
     ) -> (Ending, usize) {
         let driver = self.cols.driver();
         loop {
-            let alpha = self.basis.ftran(self.cols, entering);
+            let (mut alpha, drift) = self.basis.ftran_checked(self.cols, entering);
+            self.drift = drift;
+            let mut step = self.ratio_test(&alpha);
+            // A ray or a tiny pivot is judged on a fresh factorisation, never on updates.
+            let doubtful = match step {
+                None => true,
+                Some((slot, _)) => alpha[slot] < 1e-6 * max_abs(&alpha),
+            };
+            if (doubtful || drift > DRIFT) && self.since_refactor > 0 {
+                if self.refactor().is_err() {
+                    return (Ending::Singular, entering);
+                }
+                alpha = self.basis.ftran(self.cols, entering);
+                step = self.ratio_test(&alpha);
+            }
             let amax = max_abs(&alpha);
-            let step = self.ratio_test(&alpha);
             // How far the driver moves along this segment.
             let (t_now, t_rate) = if entering == driver {
                 (0.0, 1.0)

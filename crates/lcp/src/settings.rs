@@ -11,7 +11,7 @@ use crate::LcpError;
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
     /// An entry of the entering column counts as positive only above `pivot_tolerance · ‖α‖∞`.
-    /// Default `1e-10`.
+    /// Default `1e-9`.
     pub pivot_tolerance: Option<f64>,
     /// Maximum number of pivots; default `20·n + 100`.
     pub max_pivots: Option<usize>,
@@ -89,7 +89,7 @@ impl Settings {
     }
 
     pub(crate) fn pivot_tol(&self) -> f64 {
-        self.pivot_tolerance.unwrap_or(1e-10)
+        self.pivot_tolerance.unwrap_or(1e-9)
     }
 
     pub(crate) fn cap(&self, n: usize) -> usize {

@@ -1,0 +1,111 @@
+//! The `3m` LCP of `formulation.md` §3 built from a contact zone.
+
+use faer::Mat;
+use unilateral_lcp::{ParametricLcp, Tightening, Var};
+
+use crate::ContactZone;
+
+/// The parametric LCP of a contact zone with its tightening direction and the lexicographic
+/// order that keeps friction degeneracies from ending in a false mechanism.
+#[derive(Debug, Clone)]
+pub struct ContactLcp {
+    /// `x = q_c + p·d + M z` with `x = [x_n; x_t+; x_t-]`, `z = [z_n; z_t+; z_t-]`.
+    pub problem: ParametricLcp,
+    /// `[1; max(1, f); max(1, f)]`: the tightening per row (§3).
+    pub tightening_direction: Vec<f64>,
+    /// Tangential rows before normal rows (see [`ContactLcp::build`]).
+    pub lexicographic_order: Vec<usize>,
+    /// Number of pairs `m`.
+    pub pairs: usize,
+}
+
+impl ContactLcp {
+    /// Builds `M`, `d` and `q_c` exactly as `formulation.md` §3.
+    ///
+    /// Ties in the ratio test are broken as if the tangential rows were perturbed more than the
+    /// normal rows: then `x_t+ + x_t- − 2f·x_n` stays positive under the perturbation, so a
+    /// pressed pair can never have both friction parts vanish (the false mechanism that a plain
+    /// row order produces when a pair opens exactly while slipping).
+    pub fn build(zone: &ContactZone) -> Self {
+        let m = zone.pairs();
+        let f = &zone.friction;
+        let n = 3 * m;
+        let mut mm = Mat::<f64>::zeros(n, n);
+        for i in 0..m {
+            for j in 0..m {
+                let (nn, nt, tn, tt) = (
+                    zone.rnn[(i, j)],
+                    zone.rnt[(i, j)],
+                    zone.rtn[(i, j)],
+                    zone.rtt[(i, j)],
+                );
+                let fi = f[i];
+                mm[(i, j)] = nn;
+                mm[(i, m + j)] = nt / 2.0;
+                mm[(i, 2 * m + j)] = -nt / 2.0;
+                mm[(m + i, j)] = fi * nn + tn;
+                mm[(m + i, m + j)] = (fi * nt + tt) / 2.0;
+                mm[(m + i, 2 * m + j)] = -(fi * nt + tt) / 2.0;
+                mm[(2 * m + i, j)] = fi * nn - tn;
+                mm[(2 * m + i, m + j)] = (fi * nt - tt) / 2.0;
+                mm[(2 * m + i, 2 * m + j)] = -(fi * nt - tt) / 2.0;
+            }
+        }
+        let stack = |rn: &[f64], rt: &[f64]| -> Vec<f64> {
+            let mut v = Vec::with_capacity(n);
+            v.extend_from_slice(rn);
+            v.extend((0..m).map(|i| f[i] * rn[i] + rt[i]));
+            v.extend((0..m).map(|i| f[i] * rn[i] - rt[i]));
+            v
+        };
+        let d = stack(&zone.variable.normal, &zone.variable.tangential);
+        // Gaps: R_c ← R_c − R·η (normal and tangential link forces of the opened gaps).
+        let mut rcn = zone.constant.normal.clone();
+        let mut rct = zone.constant.tangential.clone();
+        for j in 0..m {
+            let eta = zone.gap[j];
+            if eta != 0.0 {
+                for i in 0..m {
+                    rcn[i] -= zone.rnn[(i, j)] * eta;
+                    rct[i] -= zone.rtn[(i, j)] * eta;
+                }
+            }
+        }
+        let q0 = stack(&rcn, &rct);
+        let mut dir = vec![1.0; n];
+        for i in 0..m {
+            dir[m + i] = f[i].max(1.0);
+            dir[2 * m + i] = f[i].max(1.0);
+        }
+        let lexicographic_order = (m..n).chain(0..m).collect();
+        Self {
+            problem: ParametricLcp { m: mm, q0, d },
+            tightening_direction: dir,
+            lexicographic_order,
+            pairs: m,
+        }
+    }
+
+    /// The tightening of amount `c` in this problem's direction (`None` for `c = 0`).
+    pub fn tightening(&self, c: f64) -> Option<Tightening> {
+        (c > 0.0).then(|| Tightening {
+            amount: c,
+            direction: self.tightening_direction.clone(),
+        })
+    }
+
+    /// The paper's label of an LCP variable: `x_n1`, `x_t1+`, `x_t1-`, `z_n1`, …, `p`.
+    pub fn label(&self, var: Var) -> String {
+        let m = self.pairs;
+        let part = |i: usize| match i / m {
+            0 => format!("n{}", i % m + 1),
+            1 => format!("t{}+", i % m + 1),
+            _ => format!("t{}-", i % m + 1),
+        };
+        match var {
+            Var::X(i) => format!("x_{}", part(i)),
+            Var::Z(i) => format!("z_{}", part(i)),
+            Var::Driver => "p".to_string(),
+        }
+    }
+}

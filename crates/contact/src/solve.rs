@@ -1,0 +1,439 @@
+//! Solving a contact zone along the load path and reading the answer as a structure.
+
+use std::fmt;
+
+use unilateral_lcp::{
+    follow_path, solution_at, tableaux, Follow, LoadPath, PathOptions, PathPoint, PathStatus,
+    Residual, Settings, Tableau, Var,
+};
+
+use crate::lcp::ContactLcp;
+use crate::{ContactError, ContactZone, SolveSettings, Trace};
+
+/// The state of a contact pair in a solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairState {
+    /// No compression: the points separate (or just touch without force).
+    Open,
+    /// Closed, `|x_t| ≤ f·x_n`, no slip.
+    Stick,
+    /// Closed and slipping with `z_t > 0` (`x_t = −f·x_n`).
+    SlipPlus,
+    /// Closed and slipping with `z_t < 0` (`x_t = +f·x_n`).
+    SlipMinus,
+}
+
+impl PairState {
+    /// `"open"`, `"stick"`, `"slip+"`, `"slip-"`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PairState::Open => "open",
+            PairState::Stick => "stick",
+            PairState::SlipPlus => "slip+",
+            PairState::SlipMinus => "slip-",
+        }
+    }
+}
+
+impl fmt::Display for PairState {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// What happens to a pair at an event of the load path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EventKind {
+    /// Its normal force reached zero: the pair opens.
+    Opens,
+    /// Its opening reached zero: the pair closes.
+    Closes,
+    /// Friction reached its limit with slip in the `+` direction.
+    StartsSlippingPlus,
+    /// Friction reached its limit with slip in the `−` direction.
+    StartsSlippingMinus,
+    /// The slip stopped: the pair sticks again.
+    Sticks,
+}
+
+/// A change of the working scheme at one pair.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Event {
+    /// 0-based pair index.
+    pub pair: usize,
+    /// The pair's name.
+    pub name: String,
+    /// What happens.
+    pub kind: EventKind,
+}
+
+impl fmt::Display for Event {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let what = match self.kind {
+            EventKind::Opens => "opens",
+            EventKind::Closes => "closes",
+            EventKind::StartsSlippingPlus => "starts to slip in the + direction",
+            EventKind::StartsSlippingMinus => "starts to slip in the − direction",
+            EventKind::Sticks => "sticks again",
+        };
+        write!(f, "pair {} {what}", self.name)
+    }
+}
+
+/// One step of the load path: the load at which the working scheme changed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadStep {
+    /// 1-based step number.
+    pub index: usize,
+    /// The load parameter (with the tightening, as traced).
+    pub p: f64,
+    /// Label of the entering variable (`z_n1`, `p`, …).
+    pub entering: String,
+    /// Label of the leaving variable.
+    pub leaving: String,
+    /// The events the step stands for.
+    pub events: Vec<Event>,
+    /// `p` decreased at this step (a turning point: solutions may be non-unique).
+    pub turning: bool,
+}
+
+/// Forces, mutual displacements and state of one pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairResult {
+    /// The pair's name.
+    pub name: String,
+    /// Normal force, compression positive.
+    pub x_n: f64,
+    /// Tangential force.
+    pub x_t: f64,
+    /// Normal mutual displacement, opening positive.
+    pub z_n: f64,
+    /// Tangential mutual displacement (slip).
+    pub z_t: f64,
+    /// The state.
+    pub state: PairState,
+}
+
+/// How the load path ended, in the language of the structure.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    /// The target load was reached (Criterion 1).
+    TargetReached,
+    /// The working scheme no longer changes for `p ≥ p_from` (Criterion 2a).
+    Ray {
+        /// The load of the last event.
+        p_from: f64,
+    },
+    /// The structure becomes a mechanism at `p_limit` (Criterion 2b).
+    Mechanism {
+        /// The limit load.
+        p_limit: f64,
+        /// Rates of `(z_n, z_t)` per pair in the mechanism, normalised to a largest rate of 1.
+        mode: Vec<(f64, f64)>,
+    },
+    /// The path came back to `p = 0`.
+    ReturnedToZero,
+    /// The pivot cap was reached.
+    IterationLimit,
+    /// No solution at `p = 0` was found.
+    NoSolutionAtStart,
+    /// A numerically singular basis stopped the path.
+    NumericalFailure,
+}
+
+impl Outcome {
+    /// The `status` key of result files.
+    pub fn status(&self) -> &'static str {
+        match self {
+            Outcome::TargetReached => "target_reached",
+            Outcome::Ray { .. } => "ray",
+            Outcome::Mechanism { .. } => "mechanism",
+            Outcome::ReturnedToZero => "returned_to_zero",
+            Outcome::IterationLimit => "iteration_limit",
+            Outcome::NoSolutionAtStart => "no_solution_at_start",
+            Outcome::NumericalFailure => "numerical_failure",
+        }
+    }
+
+    /// A sentence for engineers.
+    pub fn reading(&self, target: f64) -> String {
+        match self {
+            Outcome::TargetReached => {
+                format!("the load reached the target p* = {target} (Criterion 1)")
+            }
+            Outcome::Ray { p_from } => format!(
+                "the working scheme no longer changes for p ≥ {p_from:.6} (Criterion 2a: ray)"
+            ),
+            Outcome::Mechanism { p_limit, .. } => {
+                format!("the structure becomes a mechanism at p_lim = {p_limit:.6} (Criterion 2b)")
+            }
+            Outcome::ReturnedToZero => "the load path turned back to p = 0".into(),
+            Outcome::IterationLimit => "the pivot cap was reached before the path ended".into(),
+            Outcome::NoSolutionAtStart => {
+                "the problem has no solution at p = 0 (the constant load alone)".into()
+            }
+            Outcome::NumericalFailure => {
+                "a basis became numerically singular; the path stopped".into()
+            }
+        }
+    }
+}
+
+/// The answer of [`solve`].
+#[derive(Debug, Clone)]
+pub struct ContactSolution {
+    /// How the path ended.
+    pub outcome: Outcome,
+    /// The load of the reported solution (`None` when there is none).
+    pub p: Option<f64>,
+    /// The tightening `c` used.
+    pub tightening: f64,
+    /// The settings used.
+    pub settings: SolveSettings,
+    /// Every step of the load path with its events.
+    pub steps: Vec<LoadStep>,
+    /// Number of steps made before the target was reached (the rest lie beyond `p*`).
+    pub steps_before_target: usize,
+    /// Per pair, at the reported load (empty when there is no solution).
+    pub pairs: Vec<PairResult>,
+    /// Verified residuals of the reported solution.
+    pub residual: Option<Residual>,
+    /// Remarks for the reader (dependence on `c`, turning points, fallbacks).
+    pub notes: Vec<String>,
+    /// Pivots spent removing the tightening from the reported solution.
+    pub tightening_pivots: usize,
+    /// The LCP that was solved.
+    pub lcp: ContactLcp,
+    /// The engine's load path.
+    pub path: LoadPath,
+    pub(crate) options: PathOptions,
+    pub(crate) engine: Settings,
+    pub(crate) names: Vec<String>,
+    pub(crate) friction: Vec<f64>,
+}
+
+fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
+    Settings {
+        pivot_tolerance: s.pivot_tolerance,
+        max_pivots: s.max_pivots,
+        lexicographic_order: Some(lcp.lexicographic_order.clone()),
+        ..Settings::default()
+    }
+}
+
+/// Follows the load path of a contact zone and reads the answer as pair states and events.
+///
+/// ```
+/// use faer::mat;
+/// use unilateral_contact::{solve, ContactZone, Outcome, PairState, SolveSettings, Trace};
+///
+/// // The paper's Example 1: a beam on three supports, load in the right span.
+/// let mut zone = ContactZone::new(
+///     mat![[0.1875, -0.375, 0.1875], [-0.375, 0.75, -0.375], [0.1875, -0.375, 0.1875]],
+///     mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
+/// );
+/// zone.friction = vec![0.6; 3];
+/// zone.variable.normal = vec![-0.09375, 0.6875, 0.40625];
+/// let settings = SolveSettings { tightening: 1.0, trace: Trace::End, ..Default::default() };
+/// let sol = solve(&zone, &settings).unwrap();
+/// assert!(matches!(sol.outcome, Outcome::Ray { .. }));
+/// assert_eq!(sol.steps[0].events[0].to_string(), "pair 1 opens");
+/// assert_eq!(sol.pairs[0].state, PairState::Open);
+/// assert!((sol.pairs[0].z_n - 0.5).abs() < 1e-12);
+/// assert!((sol.pairs[1].x_n - 0.5).abs() < 1e-12);
+/// ```
+pub fn solve(
+    zone: &ContactZone,
+    settings: &SolveSettings,
+) -> Result<ContactSolution, ContactError> {
+    zone.validate()?;
+    settings.validate()?;
+    let lcp = ContactLcp::build(zone);
+    let options = PathOptions {
+        target: settings.target,
+        follow: match settings.trace {
+            Trace::Target => Follow::ToTarget,
+            Trace::End => Follow::ToEnd,
+        },
+        tightening: lcp.tightening(settings.tightening),
+    };
+    let engine = engine_settings(&lcp, settings);
+    let path = follow_path(&lcp.problem, &options, &engine)
+        .map_err(|e| ContactError::Settings(e.to_string()))?;
+    let m = lcp.pairs;
+    let names = zone.pair_names.clone();
+    let steps: Vec<LoadStep> = path
+        .steps
+        .iter()
+        .map(|s| LoadStep {
+            index: s.index,
+            p: s.p,
+            entering: lcp.label(s.entering),
+            leaving: lcp.label(s.leaving),
+            events: events_of(s.leaving, m, &names),
+            turning: s.turning,
+        })
+        .collect();
+    let outcome = match path.status {
+        PathStatus::TargetReached => Outcome::TargetReached,
+        PathStatus::Ray => Outcome::Ray {
+            p_from: path.steps.last().map_or(0.0, |s| s.p),
+        },
+        PathStatus::Mechanism => Outcome::Mechanism {
+            p_limit: path.p_limit.unwrap_or(0.0),
+            mode: path
+                .mechanism
+                .as_ref()
+                .map(|mm| {
+                    (0..m)
+                        .map(|i| (mm.dz[i], (mm.dz[m + i] - mm.dz[2 * m + i]) / 2.0))
+                        .collect()
+                })
+                .unwrap_or_default(),
+        },
+        PathStatus::ReturnedToZero => Outcome::ReturnedToZero,
+        PathStatus::IterationLimit => Outcome::IterationLimit,
+        PathStatus::NoSolutionAtStart => Outcome::NoSolutionAtStart,
+        PathStatus::NumericalFailure => Outcome::NumericalFailure,
+    };
+    let mut notes = Vec::new();
+    let no_constant = zone.constant.normal.iter().all(|&v| v == 0.0)
+        && zone.constant.tangential.iter().all(|&v| v == 0.0)
+        && zone.gap.iter().all(|&g| g == 0.0);
+    if settings.tightening > 0.0 && no_constant {
+        notes.push(format!(
+            "the tightening c = {} is artificial and there is no constant load: the loads of the \
+             intermediate events depend on c, the final working scheme does not",
+            settings.tightening
+        ));
+    } else if settings.tightening > 0.0 {
+        notes.push(format!(
+            "the tightening c = {} is artificial: the loads of the events depend on it; the \
+             reported solution does not contain it",
+            settings.tightening
+        ));
+    }
+    if steps.iter().any(|s| s.turning) {
+        notes.push(
+            "the load decreased at a step (a turning point of the load path): the solution at a \
+             given load may not be unique"
+                .into(),
+        );
+    }
+    let solution = path.solution.clone();
+    if let Some(sol) = &solution {
+        if sol.fallback {
+            notes.push(
+                "the tightening could not be removed along the path; the reported solution comes \
+                 from a fresh solve at this load and may belong to another branch"
+                    .into(),
+            );
+        }
+    }
+    let steps_before_target = path.target_segment.unwrap_or(steps.len());
+    let mut out = ContactSolution {
+        outcome,
+        p: None,
+        tightening: settings.tightening,
+        settings: settings.clone(),
+        steps,
+        steps_before_target,
+        pairs: Vec::new(),
+        residual: None,
+        notes,
+        tightening_pivots: 0,
+        lcp,
+        path,
+        options,
+        engine,
+        names,
+        friction: zone.friction.clone(),
+    };
+    if let Some(sol) = solution {
+        out.set_point(&sol);
+    }
+    Ok(out)
+}
+
+fn events_of(leaving: Var, m: usize, names: &[String]) -> Vec<Event> {
+    let ev = |i: usize, kind| {
+        vec![Event {
+            pair: i % m,
+            name: names[i % m].clone(),
+            kind,
+        }]
+    };
+    match leaving {
+        Var::X(i) if i < m => ev(i, EventKind::Opens),
+        Var::X(i) if i < 2 * m => ev(i, EventKind::StartsSlippingPlus),
+        Var::X(i) => ev(i, EventKind::StartsSlippingMinus),
+        Var::Z(i) if i < m => ev(i, EventKind::Closes),
+        Var::Z(i) => ev(i, EventKind::Sticks),
+        Var::Driver => Vec::new(),
+    }
+}
+
+impl ContactSolution {
+    fn set_point(&mut self, sol: &PathPoint) {
+        self.p = Some(sol.p);
+        self.residual = Some(sol.residual);
+        self.tightening_pivots = sol.tightening_pivots;
+        self.pairs = pair_results(&sol.x, &sol.z, &self.names, &self.friction);
+    }
+
+    /// The solution without tightening at another load `p` on the traced path (`None` when `p`
+    /// is not on it).
+    pub fn at(&self, p: f64) -> Option<(Vec<PairResult>, Residual)> {
+        let pt = solution_at(
+            &self.lcp.problem,
+            &self.options,
+            &self.engine,
+            &self.path,
+            p,
+        )
+        .ok()??;
+        Some((
+            pair_results(&pt.x, &pt.z, &self.names, &self.friction),
+            pt.residual,
+        ))
+    }
+
+    /// The tableaux of the path in the paper's layout (at most `max_steps` steps).
+    pub fn tableaux(&self, max_steps: Option<usize>) -> Vec<Tableau> {
+        tableaux(&self.lcp.problem, &self.options, &self.path, max_steps).unwrap_or_default()
+    }
+}
+
+/// Pair results from the LCP's `x` and `z`.
+pub fn pair_results(x: &[f64], z: &[f64], names: &[String], friction: &[f64]) -> Vec<PairResult> {
+    let m = names.len();
+    let xmax = x.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let zmax = z.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
+    (0..m)
+        .map(|i| {
+            let x_n = x[i];
+            let x_t = (x[m + i] - x[2 * m + i]) / 2.0;
+            let z_n = z[i];
+            let z_t = (z[m + i] - z[2 * m + i]) / 2.0;
+            let state = if z_n > tz || x_n <= tx {
+                PairState::Open
+            } else if z[m + i] > tz && z[m + i] > z[2 * m + i] {
+                PairState::SlipPlus
+            } else if z[2 * m + i] > tz {
+                PairState::SlipMinus
+            } else {
+                PairState::Stick
+            };
+            let _ = friction;
+            PairResult {
+                name: names[i].clone(),
+                x_n,
+                x_t,
+                z_n,
+                z_t,
+                state,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,170 @@
+//! The inverse of the basis kernel `K = A[R, S]`, stored column-major with spare capacity so that
+//! every update is a sequence of contiguous `axpy`s.
+
+/// `G = K⁻¹`: rows follow the basic non-slack columns `S`, columns the rows `R`.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct KernelInverse {
+    k: usize,
+    ld: usize,
+    data: Vec<f64>,
+}
+
+#[inline]
+pub(crate) fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
+    let n = y.len().min(x.len());
+    let (y, x) = (&mut y[..n], &x[..n]);
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += a * xi;
+    }
+}
+
+#[inline]
+pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 8];
+    let mut ca = a.chunks_exact(8);
+    let mut cb = b.chunks_exact(8);
+    for (x, y) in (&mut ca).zip(&mut cb) {
+        for l in 0..8 {
+            acc[l] += x[l] * y[l];
+        }
+    }
+    let mut s: f64 = acc.iter().sum();
+    for (x, y) in ca.remainder().iter().zip(cb.remainder()) {
+        s += x * y;
+    }
+    s
+}
+
+impl KernelInverse {
+    /// Replaces the content by the `k × k` matrix `f(a, b)`.
+    pub fn assign(&mut self, k: usize, f: impl Fn(usize, usize) -> f64) {
+        self.k = k;
+        self.ld = k.max(self.ld).max(8);
+        self.data = vec![0.0; self.ld * self.ld];
+        for b in 0..k {
+            for a in 0..k {
+                self.data[b * self.ld + a] = f(a, b);
+            }
+        }
+    }
+
+    pub fn clear(&mut self) {
+        self.k = 0;
+    }
+
+    #[inline]
+    pub fn col(&self, b: usize) -> &[f64] {
+        &self.data[b * self.ld..b * self.ld + self.k]
+    }
+
+    #[inline]
+    fn col_mut(&mut self, b: usize) -> &mut [f64] {
+        let k = self.k;
+        &mut self.data[b * self.ld..b * self.ld + k]
+    }
+
+    #[inline]
+    pub fn get(&self, a: usize, b: usize) -> f64 {
+        self.data[b * self.ld + a]
+    }
+
+    /// `y = G v`.
+    pub fn solve(&self, v: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.k];
+        for (b, &vb) in v.iter().enumerate().take(self.k) {
+            if vb != 0.0 {
+                axpy(&mut y, vb, self.col(b));
+            }
+        }
+        y
+    }
+
+    /// `vᵀ G`.
+    pub fn row_times(&self, v: &[f64]) -> Vec<f64> {
+        (0..self.k).map(|b| dot(v, self.col(b))).collect()
+    }
+
+    fn grow(&mut self, k: usize) {
+        if k <= self.ld {
+            return;
+        }
+        let ld = (2 * self.ld).max(k).max(8);
+        let mut data = vec![0.0; ld * ld];
+        for b in 0..self.k {
+            data[b * ld..b * ld + self.k].copy_from_slice(self.col(b));
+        }
+        self.ld = ld;
+        self.data = data;
+    }
+
+    /// Borders `K` with a column `u` and a row `v` (corner `δ`), given `ũ = G u` and
+    /// `ṽᵀ = vᵀ G` and `σ = δ − vᵀ ũ`.
+    pub fn border(&mut self, ut: &[f64], vt: &[f64], sigma: f64) {
+        let k = self.k;
+        self.grow(k + 1);
+        let ld = self.ld;
+        let f: Vec<f64> = ut.iter().map(|u| u / sigma).collect();
+        for (b, &vb) in vt.iter().enumerate().take(k) {
+            let col = &mut self.data[b * ld..b * ld + k + 1];
+            axpy(&mut col[..k], vb, &f);
+            col[k] = -vb / sigma;
+        }
+        let col = &mut self.data[k * ld..k * ld + k + 1];
+        for (c, fa) in col.iter_mut().zip(&f) {
+            *c = -fa;
+        }
+        col[k] = 1.0 / sigma;
+        self.k = k + 1;
+    }
+
+    /// Removes row `a` and column `b` of `K` (a pivot on `G[a, b]`); the last row and column
+    /// move into the freed places.
+    pub fn remove(&mut self, a: usize, b: usize) {
+        let k = self.k;
+        let piv = self.get(a, b);
+        let mut f: Vec<f64> = self.col(b).iter().map(|g| g / piv).collect();
+        f[a] = 0.0;
+        for c in 0..k {
+            let ga = self.get(a, c);
+            if ga != 0.0 {
+                axpy(self.col_mut(c), -ga, &f);
+            }
+        }
+        let ld = self.ld;
+        if b != k - 1 {
+            self.data
+                .copy_within((k - 1) * ld..(k - 1) * ld + k, b * ld);
+        }
+        if a != k - 1 {
+            for c in 0..k - 1 {
+                self.data[c * ld + a] = self.data[c * ld + k - 1];
+            }
+        }
+        self.k = k - 1;
+    }
+
+    /// Replaces column `a` of `K` (row `a` of `G`) given `ũ = G u` for the new column.
+    pub fn replace_column(&mut self, a: usize, ut: &[f64]) {
+        let piv = ut[a];
+        for c in 0..self.k {
+            let ra = self.get(a, c) / piv;
+            if ra != 0.0 {
+                let col = self.col_mut(c);
+                axpy(col, -ra, ut);
+                col[a] = ra;
+            }
+        }
+    }
+
+    /// Replaces row `b` of `K` by `v`, given `w = G e_b`, `ṽᵀ = vᵀ G` and `vᵀ w`.
+    pub fn replace_row(&mut self, b: usize, w: &[f64], vt: &[f64], vw: f64) {
+        for (c, &vc) in vt.iter().enumerate().take(self.k) {
+            let corr = (vc - if c == b { 1.0 } else { 0.0 }) / vw;
+            if corr != 0.0 {
+                axpy(self.col_mut(c), -corr, w);
+            }
+        }
+    }
+}
