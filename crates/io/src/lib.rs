@@ -19,7 +19,9 @@
 mod dat;
 mod error;
 mod json;
+mod model;
 mod mtx;
+mod output;
 mod reader;
 mod text;
 mod toml_tree;
@@ -28,5 +30,7 @@ mod zone;
 
 pub use dat::{read_fc2d, read_siconos_lcp, Fc2dProblem};
 pub use error::{InputError, InputErrorKind, Location};
+pub use model::*;
 pub use mtx::read_matrix_market;
+pub use output::*;
 pub use zone::{read_contact_zone, read_lcp, ContactZoneProblem};

@@ -1,0 +1,1 @@
+//! Structural contact analysis (work in progress).

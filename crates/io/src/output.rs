@@ -1,0 +1,1 @@
+//! Writing results (work in progress).
