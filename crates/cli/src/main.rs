@@ -1,1 +1,222 @@
-fn main() {}
+//! `unilateral`: frictional unilateral contact of 2D structures under a growing load.
+//!
+//! A thin front end: it parses arguments, calls the libraries and maps their answers to exit
+//! codes (0 an answer, 2 bad input, 1 internal failure).
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+mod examples;
+
+/// Frictional unilateral contact of 2D structures under a growing load, followed exactly
+/// from event to event by the parametric Lemke method.
+#[derive(Parser, Debug)]
+#[command(name = "unilateral", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum TraceArg {
+    /// Stop at the target load (Criterion 1).
+    Target,
+    /// Follow the path until the scheme stops changing or a mechanism forms.
+    End,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Follow the load path of a problem file and report the solution.
+    Solve {
+        /// A contact-zone problem (.toml or .json).
+        file: PathBuf,
+        /// The load p* at which the solution is reported (default: the file's, else 1).
+        #[arg(long)]
+        target: Option<f64>,
+        /// How far to follow the path.
+        #[arg(long, value_enum)]
+        trace: Option<TraceArg>,
+        /// The artificial tightening c ≥ 0.
+        #[arg(long)]
+        tightening: Option<f64>,
+        /// Write the result document as JSON to this file (`-` for stdout).
+        #[arg(long, value_name = "OUT.json")]
+        json: Option<PathBuf>,
+        /// Write CSV tables (pairs.csv, steps.csv) into this directory.
+        #[arg(long, value_name = "DIR")]
+        csv: Option<PathBuf>,
+        /// Write pictures and an HTML report into this directory (not available yet).
+        #[arg(long, value_name = "DIR")]
+        report: Option<PathBuf>,
+    },
+    /// Print the Lemke tableaux of the path, step by step, as in the paper's Tables 1-3.
+    Tableau {
+        /// A contact-zone problem (.toml or .json).
+        file: PathBuf,
+        /// Print at most this many steps.
+        #[arg(long)]
+        steps: Option<usize>,
+        /// Write the tableaux as JSON to this file (`-` for stdout).
+        #[arg(long, value_name = "OUT.json")]
+        json: Option<PathBuf>,
+    },
+    /// Solve a plain LCP w = Mz + q (Siconos .dat, .toml or .json).
+    Lcp {
+        /// The problem file.
+        file: PathBuf,
+        /// Write the result as JSON to this file (`-` for stdout).
+        #[arg(long, value_name = "OUT.json")]
+        json: Option<PathBuf>,
+    },
+    /// List the bundled examples, or write one out to start from.
+    Example {
+        /// The example to write out.
+        name: Option<String>,
+        /// Directory to write into (default: the current directory).
+        #[arg(long, value_name = "DIR", default_value = ".")]
+        to: PathBuf,
+        /// Overwrite an existing file.
+        #[arg(long)]
+        force: bool,
+    },
+}
+
+/// A failure of the run: bad input (exit 2) or an internal failure (exit 1).
+enum Failure {
+    Input(String),
+    Internal(String),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Input(msg)) => {
+            eprintln!("error: {msg}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Internal(msg)) => {
+            eprintln!("internal error: {msg}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
+    match cli.command {
+        Command::Solve {
+            file,
+            target,
+            trace,
+            tightening,
+            json,
+            csv,
+            report,
+        } => {
+            if report.is_some() {
+                return Err(Failure::Input(
+                    "--report: pictures and HTML reports are not available in this version".into(),
+                ));
+            }
+            let mut problem = unilateral_io::read_contact_zone(&file)
+                .map_err(|e| Failure::Input(e.to_string()))?;
+            if let Some(t) = target {
+                problem.settings.target = t;
+            }
+            if let Some(t) = trace {
+                problem.settings.trace = match t {
+                    TraceArg::Target => unilateral_contact::Trace::Target,
+                    TraceArg::End => unilateral_contact::Trace::End,
+                };
+            }
+            if let Some(c) = tightening {
+                problem.settings.tightening = c;
+            }
+            problem
+                .settings
+                .validate()
+                .map_err(|e| Failure::Input(format!("command line: {e}")))?;
+            let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
+                .map_err(|e| Failure::Input(format!("{}: {e}", file.display())))?;
+            let title = format!(
+                "unilateral {} — {} ({} contact pairs)",
+                env!("CARGO_PKG_VERSION"),
+                file.display(),
+                problem.zone.pairs()
+            );
+            if json.as_deref() != Some(Path::new("-")) {
+                print!("{}", unilateral_io::contact_summary(&sol, &title));
+            }
+            if let Some(out) = json {
+                write_json(&out, &unilateral_io::contact_json(&sol))?;
+            }
+            if let Some(dir) = csv {
+                let files = unilateral_io::write_contact_csv(&sol, &dir).map_err(|e| {
+                    Failure::Input(format!("cannot write CSV into {}: {e}", dir.display()))
+                })?;
+                for f in files {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            Ok(())
+        }
+        Command::Tableau { file, steps, json } => {
+            let problem = unilateral_io::read_contact_zone(&file)
+                .map_err(|e| Failure::Input(e.to_string()))?;
+            let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
+                .map_err(|e| Failure::Input(format!("{}: {e}", file.display())))?;
+            let tables = sol.tableaux(steps);
+            let label = |v| sol.lcp.label(v);
+            if let Some(out) = &json {
+                write_json(out, &unilateral_io::tableaux_json(&tables, &label))?;
+            }
+            if json.as_deref() != Some(Path::new("-")) {
+                println!(
+                    "{} — parametric Lemke tableaux (tightening c = {}); * marks the leading column and row\n",
+                    file.display(),
+                    problem.settings.tightening
+                );
+                for t in &tables {
+                    println!("{}", unilateral_io::tableau_text(t, &label));
+                }
+                println!("{}", sol.outcome.reading(problem.settings.target));
+            }
+            Ok(())
+        }
+        Command::Lcp { file, json } => {
+            let lcp = unilateral_io::read_lcp(&file).map_err(|e| Failure::Input(e.to_string()))?;
+            let sol = unilateral_lcp::solve_lcp(&lcp, &unilateral_lcp::Settings::default())
+                .map_err(|e| Failure::Input(format!("{}: {e}", file.display())))?;
+            if json.as_deref() != Some(Path::new("-")) {
+                let title = format!("{} (n = {})", file.display(), lcp.q.len());
+                print!("{}", unilateral_io::lcp_summary(&sol, &title));
+            }
+            if let Some(out) = json {
+                write_json(&out, &unilateral_io::lcp_json(&sol))?;
+            }
+            Ok(())
+        }
+        Command::Example { name, to, force } => examples::run(name.as_deref(), &to, force),
+    }
+}
+
+fn write_json(out: &Path, value: &serde_json::Value) -> Result<(), Failure> {
+    let text =
+        serde_json::to_string_pretty(value).map_err(|e| Failure::Internal(format!("JSON: {e}")))?;
+    if out == Path::new("-") {
+        println!("{text}");
+        return Ok(());
+    }
+    std::fs::write(out, text + "\n")
+        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))
+}

@@ -330,9 +330,11 @@ impl<'a> Pivoter<'a> {
             if let Some((t_target, stop)) = target {
                 if crossed.is_none() && t_rate > 0.0 && t_now <= t_target {
                     let theta_t = (t_target - t_now) / t_rate;
+                    // Reaching the target together with a basic variable counts as reaching
+                    // the target: the solution there is the same, and no pivot is needed.
                     let hit = match step {
                         None => true,
-                        Some((_, th)) => theta_t <= th,
+                        Some((_, th)) => theta_t <= th + TIE * th.abs().max(theta_t.abs()),
                     };
                     if hit {
                         *crossed = Some(records.len());

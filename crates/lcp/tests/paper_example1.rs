@@ -91,6 +91,10 @@ fn default_trace_stops_before_the_first_event_with_the_same_answer() {
     assert!(path.steps.is_empty());
     let sol = path.solution.as_ref().unwrap();
     assert!(sol.tightening_pivots > 0, "c must be driven out");
+    assert!(
+        !sol.fallback,
+        "c must be removed along the path, not by a fresh solve"
+    );
     assert!((sol.z[0] - 0.5).abs() < 1e-12);
     assert!((sol.x[1] - 0.5).abs() < 1e-12 && (sol.x[2] - 0.5).abs() < 1e-12);
 }

@@ -1,0 +1,45 @@
+//! The bundled examples, compiled into the binary.
+
+use std::path::Path;
+
+use crate::Failure;
+
+/// `(name, file name, description, content)`.
+const EXAMPLES: &[(&str, &str, &str, &str)] = &[(
+    "example1-contact-zone",
+    "example1-contact-zone.toml",
+    "the paper's Example 1 as contact-zone matrices: beam on three supports (Tables 1-3)",
+    include_str!("../../../examples/example1-contact-zone.toml"),
+)];
+
+pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Failure> {
+    let Some(name) = name else {
+        println!("bundled examples (write one out with `unilateral example NAME`):");
+        for (n, _, d, _) in EXAMPLES {
+            println!("  {n:<28} {d}");
+        }
+        return Ok(());
+    };
+    let Some((_, file, _, content)) = EXAMPLES
+        .iter()
+        .find(|(n, f, _, _)| *n == name || *f == name)
+    else {
+        let names: Vec<&str> = EXAMPLES.iter().map(|e| e.0).collect();
+        return Err(Failure::Input(format!(
+            "no example named '{name}'; the examples are: {}",
+            names.join(", ")
+        )));
+    };
+    let path = to.join(file);
+    if path.exists() && !force {
+        return Err(Failure::Input(format!(
+            "{} exists; use --force to overwrite it",
+            path.display()
+        )));
+    }
+    std::fs::create_dir_all(to)
+        .and_then(|_| std::fs::write(&path, content))
+        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
