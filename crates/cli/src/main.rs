@@ -34,13 +34,13 @@ enum Command {
         /// A contact-zone problem (.toml or .json).
         file: PathBuf,
         /// The load p* at which the solution is reported (default: the file's, else 1).
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         target: Option<f64>,
         /// How far to follow the path.
         #[arg(long, value_enum)]
         trace: Option<TraceArg>,
         /// The artificial tightening c ≥ 0.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         tightening: Option<f64>,
         /// Write the result document as JSON to this file (`-` for stdout).
         #[arg(long, value_name = "OUT.json")]

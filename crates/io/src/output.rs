@@ -388,7 +388,7 @@ pub fn tableaux_json(ts: &[Tableau], label: &dyn Fn(unilateral_lcp::Var) -> Stri
                     "entries": t.entries,
                     "rhs": t.rhs,
                     "ratios": t.ratios,
-                    "entering": t.entering.map(|v| label(v)),
+                    "entering": t.entering.map(label),
                     "leaving_row": t.leaving_row,
                 })
             })

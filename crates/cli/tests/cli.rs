@@ -1,0 +1,490 @@
+//! Integration tests that run the real `unilateral` binary.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+/// The repository root (two levels above this crate).
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The project's shared data beside the repository, if present.
+fn shared_data() -> Option<PathBuf> {
+    let candidates = [
+        std::env::var_os("UNILATERAL_SHARED_DATA").map(PathBuf::from),
+        Some(root().join("../shared/data")),
+    ];
+    let found = candidates
+        .into_iter()
+        .flatten()
+        .find(|p| p.join("lcp").is_dir());
+    if found.is_none() && std::env::var_os("CI").is_some() {
+        panic!("../shared/data is missing in CI");
+    }
+    found
+}
+
+/// One run of the binary in a fresh temporary directory.
+struct TestCommand {
+    dir: tempfile::TempDir,
+    args: Vec<String>,
+}
+
+struct Output {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+impl TestCommand {
+    fn new(args: &[&str]) -> Self {
+        Self {
+            dir: tempfile::tempdir().expect("temp dir"),
+            args: args.iter().map(|s| s.to_string()).collect(),
+        }
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.dir.path().join(name)
+    }
+
+    fn arg(mut self, a: impl AsRef<std::ffi::OsStr>) -> Self {
+        self.args.push(a.as_ref().to_string_lossy().into_owned());
+        self
+    }
+
+    fn run(&self) -> Output {
+        let out = Command::new(env!("CARGO_BIN_EXE_unilateral"))
+            .args(&self.args)
+            .current_dir(self.dir.path())
+            .output()
+            .expect("run unilateral");
+        Output {
+            code: out.status.code().unwrap_or(-1),
+            stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+            stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+        }
+    }
+
+    fn json(&self, file: &str) -> Value {
+        let text = std::fs::read_to_string(self.path(file)).expect("JSON written");
+        serde_json::from_str(&text).expect("valid JSON")
+    }
+}
+
+fn example1() -> PathBuf {
+    root().join("examples/example1-contact-zone.toml")
+}
+
+fn close(v: &Value, want: f64, tol: f64) -> bool {
+    v.as_f64().is_some_and(|x| (x - want).abs() <= tol)
+}
+
+#[test]
+fn solve_example1_reports_the_papers_answer() {
+    let cmd = TestCommand::new(&["solve"]).arg(example1());
+    let cmd = cmd.arg("--json").arg("out.json");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(out.stdout.contains("status: ray"), "{}", out.stdout);
+    assert!(out.stdout.contains("pair 1 opens"), "{}", out.stdout);
+    assert!(out.stdout.contains("verified"));
+    let j = cmd.json("out.json");
+    assert_eq!(j["status"], "ray");
+    assert!(close(&j["p"], 1.0, 0.0));
+    assert!(close(&j["steps"][0]["p"], 32.0 / 3.0, 1e-9));
+    assert_eq!(j["steps"][0]["leaving"], "x_n1");
+    assert_eq!(j["steps"][0]["events"][0], "pair 1 opens");
+    let pairs = j["pairs"].as_array().unwrap();
+    assert_eq!(pairs[0]["state"], "open");
+    assert!(close(&pairs[0]["z_n"], 0.5, 1e-12));
+    for p in &pairs[1..] {
+        assert!(close(&p["x_n"], 0.5, 1e-12));
+        assert!(close(&p["x_t"], 0.0, 1e-12));
+        assert!(close(&p["z_n"], 0.0, 1e-12));
+    }
+    assert!(j["residual"]["equation"].as_f64().unwrap() <= 1e-12);
+    assert!(j["p_limit"].is_null());
+}
+
+#[test]
+fn default_trace_stops_at_the_target_with_the_same_answer() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(example1())
+        .arg("--trace")
+        .arg("target")
+        .arg("--json")
+        .arg("out.json");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("out.json");
+    assert_eq!(j["status"], "target_reached");
+    assert_eq!(j["steps"].as_array().unwrap().len(), 0);
+    assert!(close(&j["pairs"][0]["z_n"], 0.5, 1e-12));
+    assert!(close(&j["pairs"][1]["x_n"], 0.5, 1e-12));
+    assert!(close(&j["pairs"][2]["x_n"], 0.5, 1e-12));
+    assert!(out.stdout.contains("depend on c"), "{}", out.stdout);
+}
+
+#[test]
+fn csv_tables_are_written() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(example1())
+        .arg("--csv")
+        .arg("tables");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let pairs = std::fs::read_to_string(cmd.path("tables/pairs.csv")).unwrap();
+    assert_eq!(pairs.lines().count(), 4);
+    assert!(pairs.lines().nth(1).unwrap().ends_with(",open"));
+    let steps = std::fs::read_to_string(cmd.path("tables/steps.csv")).unwrap();
+    assert!(steps.contains("pair 1 opens"));
+}
+
+/// The paper's Tables 1-3 (formulation.md §5), typed from the paper: entries by row in the
+/// order x_n1..x_t3-, z_n1..z_t3-, p, then rhs. Table 2's rows x_t3± carry typos in the paper
+/// (−1 where −0.6 and −0.5 belong); they are written here as the spec corrects them.
+#[test]
+fn tableau_reproduces_tables_1_2_3() {
+    let cmd = TestCommand::new(&["tableau"])
+        .arg(example1())
+        .arg("--json")
+        .arg("t.json");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("t.json");
+    let tables = j.as_array().unwrap();
+    assert_eq!(tables.len(), 3);
+    let t1: [[f64; 20]; 9] = [
+        [
+            1., 0., 0., 0., 0., 0., 0., 0., 0., -0.1875, 0.375, -0.1875, 0., 0., 0., 0., 0., 0.,
+            0.09375, 1.,
+        ],
+        [
+            0., 1., 0., 0., 0., 0., 0., 0., 0., 0.375, -0.75, 0.375, 0., 0., 0., 0., 0., 0.,
+            -0.6875, 1.,
+        ],
+        [
+            0., 0., 1., 0., 0., 0., 0., 0., 0., -0.1875, 0.375, -0.1875, 0., 0., 0., 0., 0., 0.,
+            -0.40625, 1.,
+        ],
+        [
+            0., 0., 0., 1., 0., 0., 0., 0., 0., -0.1125, 0.225, -0.1125, -0.5, 0.5, 0., 0.5, -0.5,
+            0., 0.05625, 1.,
+        ],
+        [
+            0., 0., 0., 0., 1., 0., 0., 0., 0., 0.225, -0.45, 0.225, 0.5, -1., 0.5, -0.5, 1., -0.5,
+            -0.4125, 1.,
+        ],
+        [
+            0., 0., 0., 0., 0., 1., 0., 0., 0., -0.1125, 0.225, -0.1125, 0., 0.5, -0.5, 0., -0.5,
+            0.5, -0.24375, 1.,
+        ],
+        [
+            0., 0., 0., 0., 0., 0., 1., 0., 0., -0.1125, 0.225, -0.1125, 0.5, -0.5, 0., -0.5, 0.5,
+            0., 0.05625, 1.,
+        ],
+        [
+            0., 0., 0., 0., 0., 0., 0., 1., 0., 0.225, -0.45, 0.225, -0.5, 1., -0.5, 0.5, -1., 0.5,
+            -0.4125, 1.,
+        ],
+        [
+            0., 0., 0., 0., 0., 0., 0., 0., 1., -0.1125, 0.225, -0.1125, 0., -0.5, 0.5, 0., 0.5,
+            -0.5, -0.24375, 1.,
+        ],
+    ];
+    let a = 32.0 / 3.0;
+    let t2: [[f64; 20]; 9] = [
+        [
+            a, 0., 0., 0., 0., 0., 0., 0., 0., -2., 4., -2., 0., 0., 0., 0., 0., 0., 1., a,
+        ],
+        [
+            22. / 3.,
+            1.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            -1.,
+            2.,
+            -1.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            25. / 3.,
+        ],
+        [
+            13. / 3.,
+            0.,
+            1.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            -1.,
+            2.,
+            -1.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            16. / 3.,
+        ],
+        [
+            -0.6, 0., 0., 1., 0., 0., 0., 0., 0., 0., 0., 0., -0.5, 0.5, 0., 0.5, -0.5, 0., 0., 0.4,
+        ],
+        [
+            4.4, 0., 0., 0., 1., 0., 0., 0., 0., -0.6, 1.2, -0.6, 0.5, -1., 0.5, -0.5, 1., -0.5,
+            0., 5.4,
+        ],
+        [
+            2.6, 0., 0., 0., 0., 1., 0., 0., 0., -0.6, 1.2, -0.6, 0., 0.5, -0.5, 0., -0.5, 0.5, 0.,
+            3.6,
+        ],
+        [
+            -0.6, 0., 0., 0., 0., 0., 1., 0., 0., 0., 0., 0., 0.5, -0.5, 0., -0.5, 0.5, 0., 0., 0.4,
+        ],
+        [
+            4.4, 0., 0., 0., 0., 0., 0., 1., 0., -0.6, 1.2, -0.6, -0.5, 1., -0.5, 0.5, -1., 0.5,
+            0., 5.4,
+        ],
+        [
+            2.6, 0., 0., 0., 0., 0., 0., 0., 1., -0.6, 1.2, -0.6, 0., -0.5, 0.5, 0., 0.5, -0.5, 0.,
+            3.6,
+        ],
+    ];
+    let t3: [[f64; 20]; 9] = [
+        [
+            -16. / 3.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            1.,
+            -2.,
+            1.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            0.,
+            -0.5,
+            -16. / 3.,
+        ],
+        [
+            2., 1., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., -0.5, 3.,
+        ],
+        [
+            -1., 0., 1., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., 0., -0.5, 0.,
+        ],
+        [
+            -0.6, 0., 0., 1., 0., 0., 0., 0., 0., 0., 0., 0., -0.5, 0.5, 0., 0.5, -0.5, 0., 0., 0.4,
+        ],
+        [
+            1.2, 0., 0., 0., 1., 0., 0., 0., 0., 0., 0., 0., 0.5, -1., 0.5, -0.5, 1., -0.5, -0.3,
+            2.2,
+        ],
+        [
+            -0.6, 0., 0., 0., 0., 1., 0., 0., 0., 0., 0., 0., 0., 0.5, -0.5, 0., -0.5, 0.5, -0.3,
+            0.4,
+        ],
+        [
+            -0.6, 0., 0., 0., 0., 0., 1., 0., 0., 0., 0., 0., 0.5, -0.5, 0., -0.5, 0.5, 0., 0., 0.4,
+        ],
+        [
+            1.2, 0., 0., 0., 0., 0., 0., 1., 0., 0., 0., 0., -0.5, 1., -0.5, 0.5, -1., 0.5, -0.3,
+            2.2,
+        ],
+        [
+            -0.6, 0., 0., 0., 0., 0., 0., 0., 1., 0., 0., 0., 0., -0.5, 0.5, 0., 0.5, -0.5, -0.3,
+            0.4,
+        ],
+    ];
+    let basis = [
+        vec![
+            "x_n1", "x_n2", "x_n3", "x_t1+", "x_t2+", "x_t3+", "x_t1-", "x_t2-", "x_t3-",
+        ],
+        vec![
+            "p", "x_n2", "x_n3", "x_t1+", "x_t2+", "x_t3+", "x_t1-", "x_t2-", "x_t3-",
+        ],
+        vec![
+            "z_n1", "x_n2", "x_n3", "x_t1+", "x_t2+", "x_t3+", "x_t1-", "x_t2-", "x_t3-",
+        ],
+    ];
+    for (k, expect) in [t1, t2, t3].iter().enumerate() {
+        let t = &tables[k];
+        for i in 0..9 {
+            assert_eq!(t["basis"][i], basis[k][i], "table {} row {i}", k + 1);
+            for c in 0..19 {
+                let got = t["entries"][i][c].as_f64().unwrap();
+                assert!(
+                    (got - expect[i][c]).abs() <= 1e-9,
+                    "table {} [{i}][{c}] = {got}",
+                    k + 1
+                );
+            }
+            let rhs = t["rhs"][i].as_f64().unwrap();
+            assert!(
+                (rhs - expect[i][19]).abs() <= 1e-9,
+                "table {} rhs {i} = {rhs}",
+                k + 1
+            );
+        }
+    }
+    // Leading row and column, and the minimum-ratio column.
+    assert_eq!(tables[0]["entering"], "p");
+    assert_eq!(tables[0]["leaving_row"], 0);
+    let ratios = &tables[0]["ratios"];
+    assert!(close(&ratios[0], 32.0 / 3.0, 1e-9));
+    assert!(close(&ratios[3], 160.0 / 9.0, 1e-9));
+    assert!(close(&ratios[6], 160.0 / 9.0, 1e-9));
+    for i in [1, 2, 4, 5, 7, 8] {
+        assert!(ratios[i].is_null());
+    }
+    assert_eq!(tables[1]["entering"], "z_n1");
+    assert!(tables[1]["leaving_row"].is_null());
+    assert!(tables[1]["ratios"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .all(Value::is_null));
+    assert!(out.stdout.contains("leading column: p; leading row: x_n1"));
+}
+
+#[test]
+fn example_lists_and_writes_a_solvable_file() {
+    let list = TestCommand::new(&["example"]).run();
+    assert_eq!(list.code, 0);
+    assert!(list.stdout.contains("example1-contact-zone"));
+    let cmd = TestCommand::new(&["example", "example1-contact-zone", "--to", "here"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let written = cmd.path("here/example1-contact-zone.toml");
+    assert!(written.is_file());
+    let again = TestCommand::new(&["solve"]).arg(&written).run();
+    assert_eq!(again.code, 0, "{}", again.stderr);
+    let missing = TestCommand::new(&["example", "no-such-example"]).run();
+    assert_eq!(missing.code, 2);
+    assert!(missing.stderr.contains("no example named"));
+}
+
+#[test]
+fn lcp_command_on_every_shared_file() {
+    let Some(data) = shared_data() else {
+        eprintln!("skipped: ../shared/data not found");
+        return;
+    };
+    let mut files: Vec<PathBuf> = std::fs::read_dir(data.join("lcp"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "dat"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 10);
+    for f in files {
+        let cmd = TestCommand::new(&["lcp"])
+            .arg(&f)
+            .arg("--json")
+            .arg("r.json");
+        let out = cmd.run();
+        assert_eq!(out.code, 0, "{}: {}", f.display(), out.stderr);
+        let j = cmd.json("r.json");
+        let status = j["status"].as_str().unwrap().to_string();
+        assert_eq!(status, "solved", "{}: {}", f.display(), out.stdout);
+        let r = &j["residual"];
+        for k in ["equation", "feasibility", "complementarity"] {
+            assert!(r[k].as_f64().unwrap() <= 1e-10, "{}: {k}", f.display());
+        }
+    }
+}
+
+#[test]
+fn report_is_refused_clearly_until_it_exists() {
+    let out = TestCommand::new(&["solve"])
+        .arg(example1())
+        .arg("--report")
+        .arg("r")
+        .run();
+    assert_eq!(out.code, 2);
+    assert!(out.stderr.contains("--report"));
+}
+
+#[test]
+fn command_line_errors_exit_2() {
+    assert_eq!(TestCommand::new(&["frobnicate"]).run().code, 2);
+    assert_eq!(TestCommand::new(&["solve"]).run().code, 2);
+    let out = TestCommand::new(&["solve", "does-not-exist.toml"]).run();
+    assert_eq!(out.code, 2);
+    assert!(out.stderr.contains("does-not-exist.toml"), "{}", out.stderr);
+    let out = TestCommand::new(&["solve"])
+        .arg(example1())
+        .arg("--target")
+        .arg("-1")
+        .run();
+    assert_eq!(out.code, 2);
+    assert!(out.stderr.contains("target"), "{}", out.stderr);
+}
+
+/// Every file of the bad-input corpus: exit code 2, a message that names the file and the
+/// expected problem, and never a panic.
+#[test]
+fn bad_inputs_exit_2_with_a_message_naming_the_file() {
+    let dir = root().join("tests/data/bad");
+    let table = std::fs::read_to_string(dir.join("EXPECTED.txt")).unwrap();
+    let mut count = 0;
+    for line in table.lines() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let cols: Vec<&str> = line.split(" | ").collect();
+        let (file, fragment) = (cols[0], cols[cols.len() - 1]);
+        let command = if file.ends_with(".mtx") {
+            continue; // Matrix Market files are read through a problem file.
+        } else if file.starts_with("fc2d_") {
+            continue; // no command reads the fc2d form
+        } else if file.starts_with("lcp_") {
+            "lcp"
+        } else {
+            "solve"
+        };
+        let out = TestCommand::new(&[command]).arg(dir.join(file)).run();
+        assert_eq!(out.code, 2, "{file}: {}{}", out.stdout, out.stderr);
+        let name = Path::new(file).file_name().unwrap().to_string_lossy();
+        let stem = name.trim_end_matches(|c| c != '.');
+        assert!(
+            out.stderr.contains(&*name) || out.stderr.contains(stem),
+            "{file}: message does not name the file: {}",
+            out.stderr
+        );
+        if !file.starts_with("fc2d_") {
+            assert!(
+                out.stderr.contains(fragment),
+                "{file}: expected '{fragment}' in: {}",
+                out.stderr
+            );
+        }
+        assert!(!out.stderr.contains("panicked"), "{file} panicked");
+        count += 1;
+    }
+    assert!(count >= 20, "only {count} bad inputs");
+}
