@@ -379,7 +379,7 @@ pub fn follow_path(
     let mut p_prev = 0.0f64;
     let mut p_max = 0.0f64;
     for (k, r) in records.iter().enumerate() {
-        let zero = 1e-12 * p_prev.abs().max(1.0);
+        let zero = 1e-9 * p_prev.abs().max(1.0);
         steps.push(Step {
             index: k + 1,
             p: r.driver,

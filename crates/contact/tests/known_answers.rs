@@ -1,0 +1,302 @@
+//! Contact zones with known answers, each checked against an independent computation:
+//! closed forms, exhaustive enumeration of the `3m` LCP in exact arithmetic (the oracle crate),
+//! the oracle's exact parametric path, and — for frictionless cases — a quadratic program
+//! solved by projected Gauss–Seidel.
+
+use faer::Mat;
+use unilateral_contact::{
+    solve, ContactLcp, ContactZone, EventKind, Outcome, PairState, SolveSettings, Trace,
+};
+use unilateral_oracle as oracle;
+
+fn rows(m: &Mat<f64>) -> Vec<Vec<f64>> {
+    (0..m.nrows())
+        .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
+        .collect()
+}
+
+/// Every solution of the zone's LCP at load `p`, by exhaustive enumeration (exact).
+fn enumerated(zone: &ContactZone, p: f64) -> Vec<(Vec<f64>, Vec<f64>)> {
+    let lcp = ContactLcp::build(zone);
+    oracle::enumerate_parametric(&rows(&lcp.problem.m), &lcp.problem.q0, &lcp.problem.d, p)
+        .into_iter()
+        .map(|s| (s.w_f64(), s.z_f64()))
+        .collect()
+}
+
+/// The reported pair values agree with one of the enumerated solutions at the reported load.
+fn assert_matches_enumeration(
+    zone: &ContactZone,
+    p: f64,
+    pairs: &[unilateral_contact::PairResult],
+) {
+    let m = zone.pairs();
+    let sols = enumerated(zone, p);
+    assert!(!sols.is_empty(), "enumeration finds no solution at p = {p}");
+    let found = sols.iter().any(|(x, z)| {
+        (0..m).all(|i| {
+            let xt = (x[m + i] - x[2 * m + i]) / 2.0;
+            let zt = (z[m + i] - z[2 * m + i]) / 2.0;
+            let scale = 1.0 + x[i].abs() + z[i].abs();
+            (pairs[i].x_n - x[i]).abs() <= 1e-9 * scale
+                && (pairs[i].z_n - z[i]).abs() <= 1e-9 * scale
+                && (pairs[i].x_t - xt).abs() <= 1e-9 * scale
+                && (pairs[i].z_t - zt).abs() <= 1e-9 * scale
+        })
+    });
+    assert!(
+        found,
+        "reported solution at p = {p} is none of the {} enumerated",
+        sols.len()
+    );
+}
+
+/// A bar of `m` nodes on a rigid base, clamped at its far end, pressed by a constant force `N` at
+/// every node and pulled by `F·p` at the free end (the discrete form of the paper's Example 2).
+/// Axial springs of stiffness `k` join the nodes; node 1 is joined to the clamp.
+fn pulled_bar(m: usize, k: f64, n: f64, f: f64, force: f64) -> ContactZone {
+    let rtt = Mat::<f64>::from_fn(m, m, |i, j| {
+        if i == j {
+            if i == m - 1 {
+                k
+            } else {
+                2.0 * k
+            }
+        } else if i.abs_diff(j) == 1 {
+            -k
+        } else {
+            0.0
+        }
+    });
+    let mut zone = ContactZone::new(Mat::zeros(m, m), rtt);
+    zone.friction = vec![f; m];
+    zone.constant.normal = vec![n; m];
+    zone.variable.tangential = (0..m)
+        .map(|i| if i == m - 1 { -force } else { 0.0 })
+        .collect();
+    zone
+}
+
+/// With a physical pressing load, nodes start to slip one by one from the free end, the j-th at
+/// `p_j = j·f·N/F` (the load not carried by the friction of the slipping nodes goes through one
+/// spring into the first stuck node); when all slip the clamp takes the rest: a ray.
+#[test]
+fn pressed_bar_slips_node_by_node_from_the_free_end() {
+    let (m, k, n, f, force) = (4, 100.0, 10.0, 0.25, 1.0);
+    let zone = pulled_bar(m, k, n, f, force);
+    let settings = SolveSettings {
+        trace: Trace::End,
+        target: 12.0,
+        ..Default::default()
+    };
+    let sol = solve(&zone, &settings).unwrap();
+    assert_eq!(sol.steps.len(), m, "{:?}", sol.steps);
+    for (j, step) in sol.steps.iter().enumerate() {
+        let expect = (j + 1) as f64 * f * n / force;
+        assert!(
+            (step.p - expect).abs() < 1e-10 * expect,
+            "step {j}: p = {}",
+            step.p
+        );
+        assert_eq!(step.events.len(), 1);
+        assert_eq!(step.events[0].pair, m - 1 - j, "slips from the free end");
+        assert_eq!(step.events[0].kind, EventKind::StartsSlippingPlus);
+    }
+    assert!(matches!(sol.outcome, Outcome::Ray { .. }));
+    // At p* = 12 > 4·fN/F every node slips; the clamp spring carries F·p − m·f·N.
+    let p = sol.p.unwrap();
+    assert_eq!(p, 12.0);
+    for pr in &sol.pairs {
+        assert_eq!(pr.state, PairState::SlipPlus);
+        assert!(
+            (pr.x_t + f * n).abs() < 1e-10,
+            "friction at its limit against the slip"
+        );
+        assert!((pr.x_n - n).abs() < 1e-12);
+    }
+    let clamp_force = force * p - m as f64 * f * n;
+    assert!((sol.pairs[0].z_t - clamp_force / k).abs() < 1e-10);
+    assert_matches_enumeration(&zone, p, &sol.pairs);
+    // Between events: two nodes slip at p = 2.5·fN/F.
+    let (pairs, res) = sol.at(2.5 * f * n / force).unwrap();
+    assert!(res.max() < 1e-12);
+    let slipping: Vec<_> = pairs.iter().map(|p| p.state).collect();
+    assert_eq!(
+        slipping,
+        [
+            PairState::Stick,
+            PairState::Stick,
+            PairState::SlipPlus,
+            PairState::SlipPlus
+        ]
+    );
+    assert_matches_enumeration(&zone, 2.5 * f * n / force, &pairs);
+}
+
+/// Projected Gauss–Seidel for `min ½zᵀAz + bᵀz, z ≥ 0` (A symmetric positive definite): the
+/// frictionless contact problem as a quadratic program, an independent method.
+fn qp_pgs(a: &Mat<f64>, b: &[f64]) -> Vec<f64> {
+    let n = b.len();
+    let mut z = vec![0.0; n];
+    for _ in 0..20000 {
+        for i in 0..n {
+            let r: f64 = b[i]
+                + (0..n)
+                    .filter(|&j| j != i)
+                    .map(|j| a[(i, j)] * z[j])
+                    .sum::<f64>();
+            z[i] = (-r / a[(i, i)]).max(0.0);
+        }
+    }
+    z
+}
+
+/// Two supports with initial gaps under a growing pressing load, frictionless: the start is not
+/// feasible (`q(0) = −Rnn·η`), so the scheme at `p = 0` comes from a standard Lemke solve (both
+/// pairs open by their gaps); then the pairs close one after the other.
+#[test]
+fn gaps_close_one_after_the_other() {
+    let rnn = Mat::<f64>::from_fn(2, 2, |i, j| if i == j { 2.0 } else { -1.0 });
+    let mut zone = ContactZone::new(rnn.clone(), Mat::<f64>::identity(2, 2));
+    zone.gap = vec![0.1, 0.3];
+    zone.variable.normal = vec![1.0, 1.0];
+    let sol = solve(
+        &zone,
+        &SolveSettings {
+            trace: Trace::End,
+            target: 2.0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let closes: Vec<(usize, f64)> = sol
+        .steps
+        .iter()
+        .flat_map(|s| s.events.iter().map(move |e| (e, s.p)))
+        .filter(|(e, _)| e.kind == EventKind::Closes)
+        .map(|(e, p)| (e.pair, p))
+        .collect();
+    // Both open: z = η − p·Rnn⁻¹·Rv = η − p·(1, 1) → pair 1 closes at p = 0.1.
+    assert_eq!(closes[0].0, 0);
+    assert!((closes[0].1 - 0.1).abs() < 1e-12);
+    // Then pair 1 closed, pair 2 open: x_1 = 0 ... z_2 = 0.3 − 2p + (stuff): from the LCP with
+    // z_1 = 0: x_2 = 2(z_2 − 0.3) − (0 − 0.1) + p = 0 → z_2 = 0.3 − (p + 0.1)/2 → p = 0.5.
+    assert_eq!(closes[1].0, 1);
+    assert!((closes[1].1 - 0.5).abs() < 1e-12);
+    assert!(matches!(sol.outcome, Outcome::Ray { .. }));
+    // The QP at p = 2 (displacement of the supports u = z − η): min ½uᵀRu + p·Rvᵀu, u ≥ −η.
+    let p = 2.0;
+    let b: Vec<f64> = (0..2)
+        .map(|i| {
+            p * zone.variable.normal[i] - (0..2).map(|j| rnn[(i, j)] * zone.gap[j]).sum::<f64>()
+        })
+        .collect();
+    let z_qp = qp_pgs(&rnn, &b);
+    for i in 0..2 {
+        assert!((sol.pairs[i].z_n - z_qp[i]).abs() < 1e-9);
+        assert_eq!(sol.pairs[i].state, PairState::Stick);
+    }
+    // x = Rnn(z − η) + p·Rv: both carry p·1 + ... compare with the closed form at z = 0.
+    assert!((sol.pairs[0].x_n - (2.0 - 0.2 + 0.3)).abs() < 1e-12);
+    assert_matches_enumeration(&zone, p, &sol.pairs);
+}
+
+/// A block on two supports pressed by `N` each, pushed sideways by `p·H` shared 60/40: support 1
+/// slips at `p = f·N/(0.6·H)`, support 2 when the rest reaches `f·N`, and then nothing holds the
+/// block horizontally: a mechanism at `p_lim = 2·f·N/H`.
+#[test]
+fn sliding_block_becomes_a_mechanism() {
+    let (n, f, h) = (10.0, 0.5, 4.0);
+    let rtt = Mat::<f64>::from_fn(2, 2, |i, j| if i == j { 3.0 } else { -3.0 });
+    let rnn = Mat::<f64>::from_fn(2, 2, |i, j| if i == j { 5.0 } else { 1.0 });
+    let mut zone = ContactZone::new(rnn, rtt);
+    zone.friction = vec![f; 2];
+    zone.constant.normal = vec![n; 2];
+    zone.variable.tangential = vec![-0.6 * h, -0.4 * h];
+    let sol = solve(
+        &zone,
+        &SolveSettings {
+            trace: Trace::End,
+            target: 10.0,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let p_lim = 2.0 * f * n / h;
+    match &sol.outcome {
+        Outcome::Mechanism { p_limit, mode } => {
+            assert!((p_limit - p_lim).abs() < 1e-12, "p_lim = {p_limit}");
+            // Both supports slide together, nothing opens.
+            assert!((mode[0].1 - mode[1].1).abs() < 1e-12 && mode[0].1.abs() > 0.1);
+            assert!(mode[0].0.abs() < 1e-12 && mode[1].0.abs() < 1e-12);
+        }
+        other => panic!("expected a mechanism, got {other:?}"),
+    }
+    assert!((sol.steps[0].p - f * n / (0.6 * h)).abs() < 1e-12);
+    assert_eq!(sol.steps[0].events[0].pair, 0);
+    // The reported solution is at p_lim, both at the friction limit.
+    assert_eq!(sol.p, Some(p_lim));
+    for pr in &sol.pairs {
+        assert!((pr.x_t.abs() - f * n).abs() < 1e-10);
+    }
+    // Independent: a solution exists just below p_lim and none just above.
+    assert!(!enumerated(&zone, p_lim * 0.999).is_empty());
+    assert!(enumerated(&zone, p_lim * 1.001).is_empty());
+}
+
+/// Coupled normal and tangential stiffness with high friction (non-symmetric M, no uniqueness):
+/// after two pairs reach the friction limit the load parameter decreases while the scheme keeps
+/// changing — a turning point of the load path. The path is compared step by step with the
+/// oracle's exact parametric path, and every breakpoint is checked by enumeration.
+#[test]
+fn path_turns_back() {
+    let r = [
+        [1.125, -0.5, 0.5, 0.1875],
+        [-0.5, 2.3125, 0.5625, 0.0],
+        [0.5, 0.5625, 0.625, -0.0625],
+        [0.1875, 0.0, -0.0625, 0.375],
+    ];
+    let blk = |i0: usize, j0: usize| Mat::<f64>::from_fn(2, 2, |i, j| r[i0 + i][j0 + j]);
+    let mut zone = ContactZone::new(blk(0, 0), blk(2, 2));
+    zone.rnt = blk(0, 2);
+    zone.rtn = blk(2, 0);
+    zone.friction = vec![1.25, 1.75];
+    zone.constant.normal = vec![1.0, 0.5];
+    zone.variable.normal = vec![-0.25, 0.0];
+    zone.variable.tangential = vec![0.75, 0.25];
+    let sol = solve(
+        &zone,
+        &SolveSettings {
+            trace: Trace::End,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(sol.steps.iter().any(|s| s.turning), "{:?}", sol.steps);
+    assert!(sol.notes.iter().any(|n| n.contains("turning point")));
+    let lcp = ContactLcp::build(&zone);
+    let exact = oracle::parametric_path(
+        &rows(&lcp.problem.m),
+        &lcp.problem.q0,
+        &lcp.problem.d,
+        None,
+        Some(&lcp.lexicographic_order),
+    );
+    assert_eq!(exact.steps.len(), sol.steps.len());
+    for (mine, theirs) in sol.steps.iter().zip(&exact.steps) {
+        assert!(
+            (mine.p - theirs.p_f64()).abs() < 1e-10,
+            "{} vs {}",
+            mine.p,
+            theirs.p_f64()
+        );
+        assert_eq!(mine.turning, theirs.p_decreased);
+    }
+    for step in &sol.steps {
+        assert!(
+            !enumerated(&zone, step.p).is_empty(),
+            "no solution at breakpoint p = {}",
+            step.p
+        );
+    }
+}
