@@ -184,7 +184,7 @@ fn gaps_close_one_after_the_other() {
     assert_eq!(closes[1].0, 1);
     assert!((closes[1].1 - 0.5).abs() < 1e-12);
     assert!(matches!(sol.outcome, Outcome::Ray { .. }));
-    // The QP at p = 2 (displacement of the supports u = z − η): min ½uᵀRu + p·Rvᵀu, u ≥ −η.
+    // The same problem as a QP at p = 2: min ½zᵀRz + (p·Rv − R·η)ᵀz over z ≥ 0.
     let p = 2.0;
     let b: Vec<f64> = (0..2)
         .map(|i| {
@@ -192,9 +192,9 @@ fn gaps_close_one_after_the_other() {
         })
         .collect();
     let z_qp = qp_pgs(&rnn, &b);
-    for i in 0..2 {
-        assert!((sol.pairs[i].z_n - z_qp[i]).abs() < 1e-9);
-        assert_eq!(sol.pairs[i].state, PairState::Stick);
+    for (pair, zq) in sol.pairs.iter().zip(&z_qp) {
+        assert!((pair.z_n - zq).abs() < 1e-9);
+        assert_eq!(pair.state, PairState::Stick);
     }
     // x = Rnn(z − η) + p·Rv: both carry p·1 + ... compare with the closed form at z = 0.
     assert!((sol.pairs[0].x_n - (2.0 - 0.2 + 0.3)).abs() < 1e-12);
