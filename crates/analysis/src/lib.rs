@@ -1,1 +1,400 @@
-//! Structural contact analysis (work in progress).
+//! # unilateral-analysis — structural contact analysis from model to results
+//!
+//! [`analyze`] takes a finite-element [`Model`] with contact pairs and the solve settings and
+//! runs the whole chain:
+//!
+//! 1. validate the model and condense it to the contact zone (`unilateral-fem`): the contact
+//!    stiffness matrix `R` and the contact load vectors `R_c`, `R_v` of `formulation.md` §2;
+//! 2. follow the load path of the parametric LCP (`unilateral-contact`): events, pair states,
+//!    the solution at the target load (or at the end of the path);
+//! 3. recover displacements, reactions, internal forces and stresses at the reported load
+//!    and check the equilibrium of the whole structure.
+//!
+//! Results at other loads of the path (for instance at every event, for pictures) come from
+//! [`Analysis::results_at`].
+//!
+//! Node and element names (as a model file gives them) may be passed with [`analyze_named`]
+//! so that errors and extremes name them.
+
+use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
+use unilateral_fem::{
+    Condensed, ContactSolution as FemSolution, DofLabel, ElementId, FemError, Model, NodeId,
+    Results,
+};
+
+pub use unilateral_contact::{Outcome, PairState};
+
+/// Largest relative out-of-balance force accepted in the recovered results.
+pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-6;
+
+/// Names of nodes and elements, used in messages and in [`Extremes`]. Missing names are
+/// replaced by the 0-based index.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Names {
+    /// Name of node `NodeId(i)`.
+    pub nodes: Vec<String>,
+    /// Name of element `ElementId(i)`.
+    pub elements: Vec<String>,
+}
+
+impl Names {
+    /// The name of a node.
+    pub fn node(&self, n: NodeId) -> String {
+        self.nodes
+            .get(n.0)
+            .cloned()
+            .unwrap_or_else(|| n.0.to_string())
+    }
+
+    /// The name of an element.
+    pub fn element(&self, e: ElementId) -> String {
+        self.elements
+            .get(e.0)
+            .cloned()
+            .unwrap_or_else(|| e.0.to_string())
+    }
+}
+
+/// What can go wrong in an analysis.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum AnalysisError {
+    /// The model is inconsistent (bad ids, zero-length element, non-positive property, …).
+    #[error("the model is invalid: {message}")]
+    Model {
+        /// The problem, with node and element names.
+        message: String,
+        /// The finite-element error.
+        #[source]
+        source: FemError,
+    },
+    /// The bonded structure (every contact pair a rigid link) is a mechanism.
+    #[error(
+        "the structure is unstable even with every contact pair closed and stuck: it can move \
+         freely at {}; add supports or contact pairs, or connect the parts",
+        list(.free)
+    )]
+    Unstable {
+        /// The DOFs that move in the mechanism: (node name, DOF), largest amplitudes first.
+        free: Vec<(String, DofLabel)>,
+    },
+    /// The contact zone or the settings were refused by the contact solver.
+    #[error("contact problem: {0}")]
+    Contact(#[from] ContactError),
+    /// Recovering the results at `p` failed.
+    #[error("recovering the results at p = {p}: {source}")]
+    Recovery {
+        /// The load parameter.
+        p: f64,
+        /// The finite-element error.
+        #[source]
+        source: FemError,
+    },
+    /// The recovered results are not in equilibrium (an internal failure).
+    #[error("the results at p = {p} are out of balance (relative residual {relative:.3e})")]
+    Equilibrium {
+        /// The load parameter.
+        p: f64,
+        /// The relative out-of-balance force.
+        relative: f64,
+    },
+    /// The requested load is not on the traced load path.
+    #[error("p = {p} is not on the traced load path (it ends at {end})")]
+    NotOnPath {
+        /// The requested load.
+        p: f64,
+        /// The last load of the path.
+        end: String,
+    },
+}
+
+fn list(free: &[(String, DofLabel)]) -> String {
+    let mut s: Vec<String> = free
+        .iter()
+        .take(12)
+        .map(|(n, d)| format!("node `{n}` {d}"))
+        .collect();
+    if free.len() > 12 {
+        s.push(format!("… ({} DOFs in all)", free.len()));
+    }
+    s.join(", ")
+}
+
+/// A value at a node.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NodeValue {
+    /// The node.
+    pub node: NodeId,
+    /// Its name.
+    pub name: String,
+    /// The value.
+    pub value: f64,
+}
+
+/// A value in an element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ElementValue {
+    /// The element.
+    pub element: ElementId,
+    /// Its name.
+    pub name: String,
+    /// The value, with its sign.
+    pub value: f64,
+    /// Where: the distance from the start node (frames, bars), or the Gauss point (plane).
+    pub at: [f64; 2],
+}
+
+/// The largest results of a solution.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Extremes {
+    /// Largest translation `√(ux² + uy²)`.
+    pub displacement: Option<NodeValue>,
+    /// Largest `|M|` in frames (value signed, `at[0]` = distance from the start node).
+    pub moment: Option<ElementValue>,
+    /// Largest `|N|` in frames and bars (tension positive).
+    pub axial: Option<ElementValue>,
+    /// Largest `|Q|` in frames.
+    pub shear: Option<ElementValue>,
+    /// Largest von Mises stress in plane elements (`at` = Gauss point coordinates).
+    pub von_mises: Option<ElementValue>,
+    /// Most compressive principal stress in plane elements.
+    pub min_principal: Option<ElementValue>,
+}
+
+/// A finished analysis: the condensed model, the contact solution along the load path, and
+/// the full results at the reported load.
+///
+/// ```
+/// use unilateral_analysis::{analyze, Outcome, PairState};
+/// use unilateral_contact::{SolveSettings, Trace};
+/// use unilateral_fem::{ContactPairSpec, FrameSection, Load, LoadGroup, Model};
+///
+/// // The paper's Example 1: a two-span beam (spans 2, EI = 1, EA = 2) on three unilateral
+/// // supports with friction 0.6, a unit load in the middle of the right span.
+/// let mut model = Model::new();
+/// let n: Vec<_> = [0.0, 2.0, 3.0, 4.0].iter().map(|&x| model.add_node(x, 0.0)).collect();
+/// for w in n.windows(2) {
+///     model.add_frame(w[0], w[1], FrameSection::new(1.0, 2.0, 1.0));
+/// }
+/// for &i in &[n[0], n[1], n[3]] {
+///     model.add_contact_pair(ContactPairSpec::to_ground(i, [0.0, 1.0]).friction(0.6));
+/// }
+/// model.add_load(LoadGroup::Variable, Load::Nodal { node: n[2], fx: 0.0, fy: -1.0, m: 0.0 });
+///
+/// let settings = SolveSettings { tightening: 1.0, trace: Trace::End, ..Default::default() };
+/// let a = analyze(&model, &settings)?;
+/// assert!(matches!(a.solution.outcome, Outcome::Ray { .. }));
+/// assert_eq!(a.solution.pairs[0].state, PairState::Open);
+/// let r = a.results.as_ref().unwrap();
+/// assert!((r.displacements[0][1] - 0.5).abs() < 1e-9); // uplift P·L³/(16·EI)
+/// let ext = a.extremes().unwrap();
+/// assert_eq!(ext.displacement.unwrap().node, n[0]);
+/// # Ok::<(), unilateral_analysis::AnalysisError>(())
+/// ```
+#[derive(Debug)]
+pub struct Analysis {
+    /// The contact zone of the model (`R`, `R_c`, `R_v`) and the means of recovery.
+    pub condensed: Condensed,
+    /// The same data as handed to the contact solver.
+    pub zone: ContactZone,
+    /// The load path, its events and the pair results at the reported load.
+    pub solution: unilateral_contact::ContactSolution,
+    /// Full results at the reported load (`None` when the path reports no solution).
+    pub results: Option<Results>,
+    /// Names used in messages.
+    pub names: Names,
+}
+
+/// Runs the analysis of a model (names default to the 0-based indices).
+pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
+    analyze_named(model, settings, &Names::default())
+}
+
+/// Runs the analysis of a model whose nodes and elements have names.
+pub fn analyze_named(
+    model: &Model,
+    settings: &SolveSettings,
+    names: &Names,
+) -> Result<Analysis, AnalysisError> {
+    settings.validate()?;
+    let condensed = model.condense().map_err(|e| fem_error(e, names))?;
+    let zone = zone_of(&condensed);
+    let solution = unilateral_contact::solve(&zone, settings)?;
+    let mut a = Analysis {
+        condensed,
+        zone,
+        solution,
+        results: None,
+        names: names.clone(),
+    };
+    if let Some(p) = a.solution.p {
+        let r = a.recover(p, &a.solution.pairs)?;
+        a.results = Some(r);
+    }
+    Ok(a)
+}
+
+/// The contact zone of a condensed model.
+pub fn zone_of(c: &Condensed) -> ContactZone {
+    ContactZone {
+        rnn: c.rnn.clone(),
+        rnt: c.rnt.clone(),
+        rtn: c.rtn.clone(),
+        rtt: c.rtt.clone(),
+        friction: c.friction.clone(),
+        gap: c.gap.clone(),
+        constant: ContactLoad {
+            normal: c.constant.normal.clone(),
+            tangential: c.constant.tangential.clone(),
+        },
+        variable: ContactLoad {
+            normal: c.variable.normal.clone(),
+            tangential: c.variable.tangential.clone(),
+        },
+        pair_names: c.pair_names.clone(),
+    }
+}
+
+fn fem_error(e: FemError, names: &Names) -> AnalysisError {
+    match &e {
+        FemError::Unstable { free, .. } => AnalysisError::Unstable {
+            free: free.iter().map(|f| (names.node(f.node), f.dof)).collect(),
+        },
+        _ => {
+            let message = match &e {
+                FemError::ZeroLength { element, a, b } => format!(
+                    "element `{}` has zero length (nodes `{}` and `{}` coincide)",
+                    names.element(*element),
+                    names.node(*a),
+                    names.node(*b)
+                ),
+                FemError::NonPositiveProperty {
+                    element,
+                    property,
+                    value,
+                } => format!(
+                    "element `{}`: {property} must be positive and finite, got {value}",
+                    names.element(*element)
+                ),
+                FemError::BadSupport { node, reason } => {
+                    format!("node `{}`: bad supports: {reason}", names.node(*node))
+                }
+                _ => e.to_string(),
+            };
+            AnalysisError::Model { message, source: e }
+        }
+    }
+}
+
+impl Analysis {
+    /// The load of the reported solution.
+    pub fn p(&self) -> Option<f64> {
+        self.solution.p
+    }
+
+    fn recover(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
+        let sol = FemSolution {
+            p,
+            x_n: pairs.iter().map(|r| r.x_n).collect(),
+            x_t: pairs.iter().map(|r| r.x_t).collect(),
+            z_n: pairs.iter().map(|r| r.z_n).collect(),
+            z_t: pairs.iter().map(|r| r.z_t).collect(),
+        };
+        let r = self
+            .condensed
+            .recover(&sol)
+            .map_err(|source| AnalysisError::Recovery { p, source })?;
+        let relative = r.equilibrium.relative();
+        if relative.is_nan() || relative > EQUILIBRIUM_TOLERANCE {
+            return Err(AnalysisError::Equilibrium { p, relative });
+        }
+        Ok(r)
+    }
+
+    /// The pair results (without tightening) and full structural results at another load `p`
+    /// of the traced path.
+    pub fn results_at(&self, p: f64) -> Result<(Vec<PairResult>, Results), AnalysisError> {
+        let Some((pairs, _)) = self.solution.at(p) else {
+            let end = match &self.solution.outcome {
+                Outcome::Ray { .. } => "infinity (ray)".to_string(),
+                _ => self
+                    .solution
+                    .steps
+                    .last()
+                    .map_or("p = 0".to_string(), |s| format!("p = {}", s.p)),
+            };
+            return Err(AnalysisError::NotOnPath { p, end });
+        };
+        let r = self.recover(p, &pairs)?;
+        Ok((pairs, r))
+    }
+
+    /// The loads of the events along the path (one per step), in order.
+    pub fn event_loads(&self) -> Vec<f64> {
+        self.solution.steps.iter().map(|s| s.p).collect()
+    }
+
+    /// Extremes of the results at the reported load.
+    pub fn extremes(&self) -> Option<Extremes> {
+        self.results.as_ref().map(|r| extremes(r, &self.names))
+    }
+}
+
+/// The largest displacement, internal forces and stresses of a set of results.
+pub fn extremes(r: &Results, names: &Names) -> Extremes {
+    let mut ex = Extremes::default();
+    for (i, d) in r.displacements.iter().enumerate() {
+        let v = d[0].hypot(d[1]);
+        if ex.displacement.as_ref().is_none_or(|b| v > b.value) {
+            ex.displacement = Some(NodeValue {
+                node: NodeId(i),
+                name: names.node(NodeId(i)),
+                value: v,
+            });
+        }
+    }
+    let better =
+        |cur: &Option<ElementValue>, v: f64| cur.as_ref().is_none_or(|b| v.abs() > b.value.abs());
+    for line in &r.lines {
+        for pt in &line.diagram {
+            let mk = |value: f64| ElementValue {
+                element: line.element,
+                name: names.element(line.element),
+                value,
+                at: [pt.s, 0.0],
+            };
+            if better(&ex.axial, pt.n) {
+                ex.axial = Some(mk(pt.n));
+            }
+            if better(&ex.moment, pt.m) && (pt.m != 0.0 || ex.moment.is_none()) {
+                ex.moment = Some(mk(pt.m));
+            }
+            if better(&ex.shear, pt.q) && (pt.q != 0.0 || ex.shear.is_none()) {
+                ex.shear = Some(mk(pt.q));
+            }
+        }
+    }
+    for pl in &r.planes {
+        for (g, s) in pl.stress.iter().enumerate() {
+            let [sx, sy, txy, sz] = *s;
+            let vm = (0.5 * ((sx - sy).powi(2) + (sy - sz).powi(2) + (sz - sx).powi(2))
+                + 3.0 * txy * txy)
+                .sqrt();
+            let c = 0.5 * (sx + sy);
+            let rad = (0.25 * (sx - sy).powi(2) + txy * txy).sqrt();
+            let s2 = c - rad;
+            let mk = |value: f64| ElementValue {
+                element: pl.element,
+                name: names.element(pl.element),
+                value,
+                at: pl.gauss_points[g],
+            };
+            if ex.von_mises.as_ref().is_none_or(|b| vm > b.value) {
+                ex.von_mises = Some(mk(vm));
+            }
+            if ex.min_principal.as_ref().is_none_or(|b| s2 < b.value) {
+                ex.min_principal = Some(mk(s2));
+            }
+        }
+    }
+    ex
+}
