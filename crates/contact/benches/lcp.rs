@@ -106,18 +106,33 @@ fn memory_mib() -> (f64, f64) {
     (field("VmHWM:"), field("VmRSS:"))
 }
 
+/// CPU time of the whole process (all threads), from `/proc/self/stat`, in seconds.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Fields after the command name `(…)`: utime and stime are fields 14 and 15.
+    let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+    let f: Vec<f64> = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|v| v.parse().ok())
+        .collect();
+    f.iter().sum::<f64>() / 100.0 // USER_HZ = 100 on Linux
+}
+
 /// Resets VmHWM to the current RSS (Linux ≥ 4.0); false if refused.
 fn reset_peak() -> bool {
     std::fs::write("/proc/self/clear_refs", "5").is_ok()
 }
 
-/// Runs `f` once; its time and the peak memory during it.
-fn measured<T>(f: impl FnOnce() -> T) -> (T, Duration, f64) {
+/// One run of `f`: its result, wall time, CPU time (s, 10 ms resolution) and peak memory.
+fn measured<T>(f: impl FnOnce() -> T) -> (T, Duration, f64, f64) {
     reset_peak();
+    let c = cpu_seconds();
     let t = Instant::now();
     let out = black_box(f());
     let dt = t.elapsed();
-    (out, dt, memory_mib().0)
+    (out, dt, cpu_seconds() - c, memory_mib().0)
 }
 
 fn report(sizes: &[usize]) {
@@ -131,8 +146,18 @@ fn report(sizes: &[usize]) {
         }
     );
     println!(
-        "{:>5} {:>5} {:>9} {:>20} {:>7} {:>9} {:>9} {:>9} {:>7} {:>9}",
-        "m", "n", "what", "status", "pivots", "ms/pivot", "total s", "LU s", "×LU", "peak MiB"
+        "{:>5} {:>5} {:>9} {:>20} {:>7} {:>9} {:>9} {:>9} {:>9} {:>7} {:>9}",
+        "m",
+        "n",
+        "what",
+        "status",
+        "pivots",
+        "ms/pivot",
+        "total s",
+        "cpu s",
+        "LU s",
+        "×LU",
+        "peak MiB"
     );
     for &m in sizes {
         let pb = Problem::new(m);
@@ -140,30 +165,33 @@ fn report(sizes: &[usize]) {
         // The LU first: the best of three (it is the yardstick).
         let mut lu_time = Duration::MAX;
         let mut lu_peak = 0.0f64;
+        let mut lu_cpu = f64::MAX;
         for _ in 0..3 {
-            let (_, dt, peak) = measured(|| pb.lu());
+            let (_, dt, cpu, peak) = measured(|| pb.lu());
             lu_time = lu_time.min(dt);
+            lu_cpu = lu_cpu.min(cpu);
             lu_peak = lu_peak.max(peak);
         }
         let lu_s = lu_time.as_secs_f64();
-        let row = |what: &str, status: String, pivots: usize, dt: Duration, peak: f64| {
+        let row = |what: &str, status: String, pivots: usize, dt: Duration, cpu: f64, peak: f64| {
             let s = dt.as_secs_f64();
             println!(
-                "{m:>5} {n:>5} {what:>9} {status:>20} {pivots:>7} {:>9.3} {s:>9.3} {lu_s:>9.3} {:>7.1} {peak:>9.1}",
+                "{m:>5} {n:>5} {what:>9} {status:>20} {pivots:>7} {:>9.3} {s:>9.3} {cpu:>9.2} {lu_s:>9.3} {:>7.1} {peak:>9.1}",
                 1e3 * s / pivots.max(1) as f64,
                 s / lu_s,
             );
         };
-        row("lu", "-".into(), 0, lu_time, lu_peak);
-        let (sol, dt, peak) = measured(|| pb.solve_standard());
+        row("lu", "-".into(), 0, lu_time, lu_cpu, lu_peak);
+        let (sol, dt, cpu, peak) = measured(|| pb.solve_standard());
         row(
             "standard",
             format!("{:?}", sol.status),
             sol.pivots,
             dt,
+            cpu,
             peak,
         );
-        let (path, dt, peak) = measured(|| pb.follow());
+        let (path, dt, cpu, peak) = measured(|| pb.follow());
         let pivots = path.steps.len() + path.start_pivots;
         row(
             "path",
@@ -174,7 +202,15 @@ fn report(sizes: &[usize]) {
             ),
             pivots,
             dt,
+            cpu,
             peak,
+        );
+        // Non-zero z along the path: a lower bound of the kernel size k of the revised basis.
+        let nz: Vec<usize> = path.breakpoints.iter().map(|b| b.z.len()).collect();
+        println!(
+            "      path: non-zero z per breakpoint (≈ kernel size k): mean {:.0}, max {} (n = {n})",
+            nz.iter().sum::<usize>() as f64 / nz.len().max(1) as f64,
+            nz.iter().max().copied().unwrap_or(0)
         );
         println!(
             "      standard: {:.2}·m pivots ({:?}); path: {} steps + {} start pivots = {:.2}·m, p_max = {:.4}",
@@ -220,67 +256,18 @@ fn benches(c: &mut Criterion, sizes: &[usize]) {
     group.finish();
 }
 
-fn diagnose(m: usize) {
-    let pb = Problem::new(m);
-    for (name, st) in [
-        ("default order", Settings::default()),
-        ("contact order", pb.settings.clone()),
-        (
-            "contact order, tol 1e-7",
-            Settings {
-                pivot_tolerance: Some(1e-7),
-                ..pb.settings.clone()
-            },
-        ),
-        (
-            "contact order, tol 1e-12",
-            Settings {
-                pivot_tolerance: Some(1e-12),
-                ..pb.settings.clone()
-            },
-        ),
-        (
-            "contact order, refactor 1",
-            Settings {
-                refactor_interval: 1,
-                ..pb.settings.clone()
-            },
-        ),
-    ] {
-        let s = solve_lcp(&pb.standard, &st).unwrap();
-        println!("{m} {name}: {:?} {:?}", s.status, s.attempts);
-    }
-    let qabs = pb.standard.q.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    let zeros: Vec<usize> = (0..pb.n())
-        .filter(|&i| pb.standard.q[i].abs() <= 1e-12 * qabs)
-        .collect();
-    println!(
-        "q entries ~0 at p = 1: {zeros:?}; negative: {}",
-        pb.standard.q.iter().filter(|v| **v < 0.0).count()
-    );
-    for p in [0.5, 0.9, 0.99, 1.0, 1.01, 1.1, 2.0] {
-        let pr = &pb.contact.problem;
-        let q = pr.q0.iter().zip(&pr.d).map(|(a, b)| a + p * b).collect();
-        let s = solve_lcp(&Lcp { m: pr.m.clone(), q }, &pb.settings).unwrap();
-        println!("{m} p = {p}: {:?} {}", s.status, s.pivots);
-    }
-}
-
 fn main() {
-    if let Ok(m) = std::env::var("ONLY_PATH") {
-        let pb = Problem::new(m.parse().unwrap());
+    // One run of one size, for `perf record`: UNILATERAL_BENCH_PROFILE=path:1000 (or standard:m).
+    if let Ok(spec) = std::env::var("UNILATERAL_BENCH_PROFILE") {
+        let (what, m) = spec.split_once(':').expect("what:m");
+        let pb = Problem::new(m.parse().expect("m"));
         let t = Instant::now();
-        let path = pb.follow();
-        println!(
-            "path: {} steps, {} refact., {:?}",
-            path.steps.len(),
-            path.refactorizations,
-            t.elapsed()
-        );
-        return;
-    }
-    if let Ok(m) = std::env::var("DIAG") {
-        diagnose(m.parse().unwrap());
+        let pivots = match what {
+            "path" => pb.follow().steps.len(),
+            "standard" => pb.solve_standard().pivots,
+            _ => panic!("UNILATERAL_BENCH_PROFILE=path:m or standard:m"),
+        };
+        println!("{what} m = {m}: {pivots} pivots in {:?}", t.elapsed());
         return;
     }
     let bench_mode = std::env::args().any(|a| a == "--bench");

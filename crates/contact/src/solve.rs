@@ -321,7 +321,12 @@ pub fn solve(
         );
     }
     let solution = path.solution.clone();
-    if let Some(sol) = &solution {
+    if let Some(p_art) = path.artificial_mechanism {
+        notes.push(format!(
+            "the path traced with the artificial tightening c = {} ended in a mechanism at              p = {p_art:.6}; that limit belongs to the tightening, not to the structure: the real              problem has a verified solution at the target, found by a fresh solve there (the              events between p = {p_art:.6} and the target are not traced)",
+            settings.tightening
+        ));
+    } else if let Some(sol) = &solution {
         if sol.fallback {
             notes.push(
                 "the tightening could not be removed along the path; the reported solution comes \

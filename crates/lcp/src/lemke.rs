@@ -259,6 +259,12 @@ pub(crate) fn lemke_run(prep: &Prepared, q: &[f64], cov: &[f64], settings: &Sett
                 Err(_) => LemkeOutcome::Singular,
             }
         }
+        // A ray with the artificial variable already at zero is a solution, not a ray.
+        Ending::Ray { .. }
+            if piv.driver_value() <= 1e-12 * cols.h.iter().fold(1.0f64, |a, b| a.max(b.abs())) =>
+        {
+            LemkeOutcome::Solved(piv.basis.slot_var.clone(), piv.beta.clone())
+        }
         Ending::Ray { .. } => LemkeOutcome::Ray,
         Ending::TargetReached => unreachable!("no target in Lemke's method"),
         Ending::IterationLimit => LemkeOutcome::IterationLimit,

@@ -162,6 +162,12 @@ pub struct LoadPath {
     pub start_pivots: usize,
     /// Fresh factorisations of the basis during the path.
     pub refactorizations: usize,
+    /// Set when the path traced with an artificial tightening ended in a mechanism at this load
+    /// although the real problem (without tightening) has a solution at the target: the
+    /// mechanism belongs to the tightening, not to the structure. The status is then
+    /// [`PathStatus::TargetReached`] and the solution comes from a fresh solve at the target
+    /// (`fallback` is set on it).
+    pub artificial_mechanism: Option<f64>,
     pub(crate) start_slots: Vec<usize>,
     pub(crate) records: Vec<(usize, usize)>,
     /// The number of steps made before the load first reached the target (the target lies on
@@ -346,6 +352,7 @@ pub fn follow_path(
                     solution: None,
                     start_pivots,
                     refactorizations: 0,
+                    artificial_mechanism: None,
                     start_slots: (0..n).collect(),
                     records: vec![],
                     target_segment: None,
@@ -408,6 +415,7 @@ pub fn follow_path(
         solution: None,
         start_pivots,
         refactorizations: piv.refactorizations,
+        artificial_mechanism: None,
         start_slots,
         records: records.iter().map(|r| (r.entering, r.leaving)).collect(),
         target_segment: crossed,
@@ -463,6 +471,16 @@ pub fn follow_path(
             None
         }
     };
+    if let (PathStatus::Mechanism, Some(p_lim)) = (path.status, path.p_limit) {
+        if c0 > 0.0 && p_lim < options.target {
+            if let Some(pt) = fresh_solution(problem, options.target, settings) {
+                path.status = PathStatus::TargetReached;
+                path.artificial_mechanism = Some(p_lim);
+                path.solution = Some(pt);
+                return Ok(path);
+            }
+        }
+    }
     if let Some((seg, p)) = report {
         path.solution = solution_on_segment(problem, &prep, &path, seg, p, c0, &cov, settings);
     }
@@ -541,30 +559,46 @@ fn solution_on_segment(
         .zip(&problem.d)
         .map(|(q, d)| q + p * d)
         .collect();
-    let found = remove_tightening(prep, &q_real, slots, c0, cov, settings);
-    let (x, z, pivots, fallback) = match found {
-        Some((x, z, k)) => (x, z, k, false),
-        None => {
-            let lcp = Lcp {
-                m: problem.m.clone(),
-                q: q_real.clone(),
-            };
-            let sol = solve_lcp(&lcp, settings).ok()?;
-            if sol.status != LcpStatus::Solved {
-                return None;
-            }
-            let pt = sol.point?;
-            (pt.w, pt.z, sol.pivots, true)
+    match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
+        Some((x, z, pivots)) => {
+            let residual = Residual::of(&problem.m, &q_real, &x, &z);
+            Some(PathPoint {
+                p,
+                x,
+                z,
+                residual,
+                tightening_pivots: pivots,
+                fallback: false,
+            })
         }
+        None => fresh_solution(problem, p, settings),
+    }
+}
+
+/// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified.
+fn fresh_solution(problem: &ParametricLcp, p: f64, settings: &Settings) -> Option<PathPoint> {
+    let q: Vec<f64> = problem
+        .q0
+        .iter()
+        .zip(&problem.d)
+        .map(|(q, d)| q + p * d)
+        .collect();
+    let lcp = Lcp {
+        m: problem.m.clone(),
+        q,
     };
-    let residual = Residual::of(&problem.m, &q_real, &x, &z);
+    let sol = solve_lcp(&lcp, settings).ok()?;
+    if sol.status != LcpStatus::Solved {
+        return None;
+    }
+    let pt = sol.point?;
     Some(PathPoint {
         p,
-        x,
-        z,
-        residual,
-        tightening_pivots: pivots,
-        fallback,
+        x: pt.w,
+        z: pt.z,
+        residual: pt.residual,
+        tightening_pivots: sol.pivots,
+        fallback: true,
     })
 }
 

@@ -322,9 +322,6 @@ fn coupled_pairs_mechanism_is_the_methods_not_the_engines() {
 }
 
 #[test]
-#[ignore = "false mechanism of the max(1, f) tightening (formulation §3) with coupled pairs: the \
-            engine matches the exact oracle, but reports a limit load 59/58 for a structure that \
-            carries p = 2"]
 fn coupled_pairs_target_beyond_the_false_limit_load() {
     let c = coupled_pairs();
     let n = c.d.len();
@@ -354,7 +351,12 @@ fn coupled_pairs_target_beyond_the_false_limit_load() {
         "p_lim {:?}",
         path.p_limit
     );
+    assert!(
+        (path.artificial_mechanism.unwrap() - 59.0 / 58.0).abs() < 1e-12,
+        "the artificial mechanism is reported"
+    );
     let sol = path.solution.expect("a solution at the target");
     assert_eq!(sol.p, 2.0);
+    assert!(sol.fallback && sol.residual.max() < 1e-10);
     assert_close("z", &sol.z, &real[0].z_f64(), 1e-9).unwrap();
 }
