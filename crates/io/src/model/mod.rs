@@ -99,9 +99,15 @@ impl ModelNames {
             .unwrap_or_else(|| id.0.to_string())
     }
 
-    /// The node a name refers to.
+    /// The node a name refers to: a node's name, or a set of exactly one node
+    /// (`beam.end`, `soil.top_left`).
     pub fn node_id(&self, name: &str) -> Option<NodeId> {
-        self.node_ids.get(name).copied()
+        self.node_ids.get(name).copied().or_else(|| {
+            self.node_sets
+                .get(name)
+                .filter(|s| s.len() == 1)
+                .map(|s| s[0])
+        })
     }
 
     /// The nodes of a named set (or the single node of that name).
