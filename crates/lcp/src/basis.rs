@@ -221,6 +221,44 @@ impl Basis {
         rho
     }
 
+    /// What [`Basis::inverse_entry`] needs of a slot: for a slack row, `A[i, S]`.
+    pub fn inverse_row_data(&self, cols: &Columns, slot: usize) -> Vec<f64> {
+        let var = self.slot_var[slot];
+        if var < self.n {
+            self.s_cols.iter().map(|&c| cols.entry(var, c)).collect()
+        } else {
+            Vec::new()
+        }
+    }
+
+    /// An estimate of the largest entry of the row of `B⁻¹` at `slot` (a tolerance scale).
+    pub fn inverse_row_scale(&self, slot: usize, data: &[f64]) -> f64 {
+        let g = self.kinv.max_entry();
+        if self.slot_var[slot] < self.n {
+            1.0 + g * data.iter().map(|v| v.abs()).sum::<f64>()
+        } else {
+            g
+        }
+    }
+
+    /// Entry `(slot, r)` of `B⁻¹` in `O(k)`, with `data` from [`Basis::inverse_row_data`].
+    pub fn inverse_entry(&self, slot: usize, r: usize, data: &[f64]) -> f64 {
+        let var = self.slot_var[slot];
+        let b = self.r_pos[r];
+        if var < self.n {
+            let unit = if r == var { 1.0 } else { 0.0 };
+            if b == NONE {
+                unit
+            } else {
+                unit - dot(data, self.kinv.col(b))
+            }
+        } else if b == NONE {
+            0.0
+        } else {
+            self.kinv.get(self.s_pos[var], b)
+        }
+    }
+
     /// Replaces the column at `slot` by `entering`, given `alpha = B⁻¹ A[:, entering]`.
     pub fn pivot(&mut self, cols: &Columns, entering: usize, slot: usize, alpha: &[f64]) {
         let n = self.n;

@@ -7,6 +7,9 @@ pub(crate) struct KernelInverse {
     k: usize,
     ld: usize,
     data: Vec<f64>,
+    /// An estimate of `max |G|`: exact after `assign`, raised by the new row and column of
+    /// `border` (a scale for tolerances, not a bound).
+    gmax: f64,
 }
 
 #[inline]
@@ -38,14 +41,22 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 impl KernelInverse {
+    /// An estimate of the largest entry of `G` (exact after a refactorisation).
+    pub fn max_entry(&self) -> f64 {
+        self.gmax
+    }
+
     /// Replaces the content by the `k × k` matrix `f(a, b)`.
     pub fn assign(&mut self, k: usize, f: impl Fn(usize, usize) -> f64) {
         self.k = k;
         self.ld = k.max(self.ld).max(8);
         self.data = vec![0.0; self.ld * self.ld];
+        self.gmax = 0.0;
         for b in 0..k {
             for a in 0..k {
-                self.data[b * self.ld + a] = f(a, b);
+                let v = f(a, b);
+                self.gmax = self.gmax.max(v.abs());
+                self.data[b * self.ld + a] = v;
             }
         }
     }
@@ -116,6 +127,9 @@ impl KernelInverse {
             *c = -fa;
         }
         col[k] = 1.0 / sigma;
+        let new_col = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let new_row = vt.iter().fold(0.0f64, |m, v| m.max(v.abs())) / sigma.abs();
+        self.gmax = self.gmax.max(new_col).max(new_row);
         self.k = k + 1;
     }
 

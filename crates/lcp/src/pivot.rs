@@ -145,6 +145,9 @@ impl<'a> Pivoter<'a> {
         if ties.len() == 1 {
             return ties[0];
         }
+        if self.start_is_slack {
+            return self.lex_pick_lazy(ties, alpha, largest);
+        }
         let mut best = ties[0];
         let mut best_vec = self.lex_vector(best, alpha[best]);
         for &s in &ties[1..] {
@@ -161,6 +164,43 @@ impl<'a> Pivoter<'a> {
             }
         }
         best
+    }
+
+    /// [`Pivoter::lex_pick`] from the slack start: entries of `B⁻¹` are computed one priority
+    /// column at a time, for the candidates still tied, so a tie usually costs a few `O(k)` dots
+    /// instead of a whole row of `B⁻¹` per candidate.
+    fn lex_pick_lazy(&self, ties: &[usize], alpha: &[f64], largest: bool) -> usize {
+        let mut alive: Vec<(usize, Vec<f64>)> = ties
+            .iter()
+            .map(|&s| (s, self.basis.inverse_row_data(self.cols, s)))
+            .collect();
+        // Entries are equal when they differ by round-off of the rows they belong to.
+        let thr = 1e-9
+            * alive
+                .iter()
+                .map(|(s, data)| self.basis.inverse_row_scale(*s, data) / alpha[*s].abs())
+                .fold(0.0f64, f64::max);
+        for &r in &self.priority {
+            let vals: Vec<f64> = alive
+                .iter()
+                .map(|(s, data)| self.basis.inverse_entry(*s, r, data) / alpha[*s])
+                .collect();
+            if max_abs(&vals) <= thr {
+                continue;
+            }
+            let best = if largest {
+                vals.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+            } else {
+                vals.iter().copied().fold(f64::INFINITY, f64::min)
+            };
+            let keep: Vec<bool> = vals.iter().map(|v| (v - best).abs() <= thr).collect();
+            let mut k = keep.iter();
+            alive.retain(|_| *k.next().unwrap_or(&false));
+            if alive.len() == 1 {
+                break;
+            }
+        }
+        alive[0].0
     }
 
     /// Minimum-ratio test over the positive entries of `alpha`, ties broken lexicographically
