@@ -1181,7 +1181,12 @@ impl<'d> Builder<'d> {
 
     fn loads(&mut self, top: &Table) -> Result<(), InputError> {
         let Some(loads) = top.table("loads")? else {
-            return Ok(());
+            return Err(self.err(
+                Some(Pos { line: 1, col: 1 }),
+                "loads.variable",
+                InputErrorKind::MissingKey,
+                "the model has no variable load ([loads.variable]): it is the load multiplied by the parameter p".into(),
+            ));
         };
         loads.check_keys(&["constant", "variable"])?;
         let mut any_variable = false;
@@ -1663,7 +1668,22 @@ impl Builder<'_> {
                 format!("{who} uses node `{}` more than once", self.node_name(*node))
             }
             _ if who.is_empty() => e.to_string(),
-            _ => format!("{who}: {e}"),
+            _ => {
+                // Drop the finite-element prefix ("element 4: ", "contact pair 2 (name): ").
+                let text = e.to_string();
+                let rest = match text.split_once(": ") {
+                    Some((head, rest))
+                        if head.starts_with("element ")
+                            || head.starts_with("contact pair ")
+                            || head.starts_with("spring ")
+                            || head.starts_with("node ") =>
+                    {
+                        rest.to_string()
+                    }
+                    _ => text,
+                };
+                format!("{who}: {rest}")
+            }
         };
         Err(self.err(pos, &key, InputErrorKind::Invalid, msg))
     }
