@@ -122,7 +122,8 @@ pub fn contact_summary(sol: &ContactSolution, title: &str) -> String {
                     " (tightening c = {} removed from it{})",
                     fmt_num(sol.tightening),
                     if sol.tightening_pivots > 0 {
-                        format!(" by {} pivots", sol.tightening_pivots)
+                        let n = sol.tightening_pivots;
+                        format!(" by {n} pivot{}", if n == 1 { "" } else { "s" })
                     } else {
                         String::new()
                     }
@@ -140,8 +141,9 @@ pub fn contact_summary(sol: &ContactSolution, title: &str) -> String {
     } else {
         let _ = writeln!(
             s,
-            "load path ({} steps{}):",
+            "load path ({} step{}{}):",
             sol.steps.len(),
+            if sol.steps.len() == 1 { "" } else { "s" },
             if sol.tightening > 0.0 {
                 format!(", traced with tightening c = {}", fmt_num(sol.tightening))
             } else {
