@@ -31,7 +31,7 @@ enum TraceArg {
 enum Command {
     /// Follow the load path of a problem file and report the solution.
     Solve {
-        /// A contact-zone problem (.toml or .json).
+        /// A structural model or a contact-zone problem (.toml or .json).
         file: PathBuf,
         /// The load p* at which the solution is reported (default: the file's, else 1).
         #[arg(long, allow_negative_numbers = true)]
@@ -128,44 +128,68 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     "--report: pictures and HTML reports are not available in this version".into(),
                 ));
             }
-            let mut problem = unilateral_io::read_contact_zone(&file)
-                .map_err(|e| Failure::Input(e.to_string()))?;
-            if let Some(t) = target {
-                problem.settings.target = t;
-            }
-            if let Some(t) = trace {
-                problem.settings.trace = match t {
-                    TraceArg::Target => unilateral_contact::Trace::Target,
-                    TraceArg::End => unilateral_contact::Trace::End,
-                };
-            }
-            if let Some(c) = tightening {
-                problem.settings.tightening = c;
-            }
-            problem
-                .settings
-                .validate()
-                .map_err(|e| Failure::Input(format!("command line: {e}")))?;
-            let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
-                .map_err(|e| Failure::Input(format!("{}: {e}", file.display())))?;
-            let title = format!(
-                "unilateral {} — {} ({} contact pairs)",
-                env!("CARGO_PKG_VERSION"),
-                file.display(),
-                problem.zone.pairs()
-            );
-            if json.as_deref() != Some(Path::new("-")) {
-                print!("{}", unilateral_io::contact_summary(&sol, &title));
-            }
-            if let Some(out) = json {
-                write_json(&out, &unilateral_io::contact_json(&sol))?;
-            }
-            if let Some(dir) = csv {
-                let files = unilateral_io::write_contact_csv(&sol, &dir).map_err(|e| {
-                    Failure::Input(format!("cannot write CSV into {}: {e}", dir.display()))
-                })?;
-                for f in files {
-                    eprintln!("wrote {}", f.display());
+            let problem =
+                unilateral_io::read_problem(&file).map_err(|e| Failure::Input(e.to_string()))?;
+            let overrides = Overrides {
+                target,
+                trace,
+                tightening,
+            };
+            match problem {
+                unilateral_io::Problem::ContactZone(mut problem) => {
+                    overrides.apply(&mut problem.settings)?;
+                    let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
+                        .map_err(|e| Failure::Input(format!("{}: {e}", file.display())))?;
+                    let title = format!(
+                        "unilateral {} — {} (contact zone, {} pairs)",
+                        env!("CARGO_PKG_VERSION"),
+                        file.display(),
+                        problem.zone.pairs()
+                    );
+                    if json.as_deref() != Some(Path::new("-")) {
+                        print!("{}", unilateral_io::contact_summary(&sol, &title));
+                    }
+                    if let Some(out) = json {
+                        write_json(&out, &unilateral_io::contact_json(&sol))?;
+                    }
+                    if let Some(dir) = csv {
+                        report_files(unilateral_io::write_contact_csv(&sol, &dir), &dir)?;
+                    }
+                }
+                unilateral_io::Problem::Structural(mut problem) => {
+                    overrides.apply(&mut problem.settings)?;
+                    let names = unilateral_analysis::Names {
+                        nodes: problem.names.nodes.clone(),
+                        elements: problem.names.elements.clone(),
+                    };
+                    let a = unilateral_analysis::analyze_named(
+                        &problem.model,
+                        &problem.settings,
+                        &names,
+                    )
+                    .map_err(|e| Failure::Input(format!("{}: {e}", file.display())))?;
+                    let title = format!(
+                        "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs)",
+                        env!("CARGO_PKG_VERSION"),
+                        file.display(),
+                        problem
+                            .title
+                            .as_deref()
+                            .map(|t| format!(": {t}"))
+                            .unwrap_or_default(),
+                        problem.names.nodes.len(),
+                        problem.names.elements.len(),
+                        a.zone.pairs()
+                    );
+                    if json.as_deref() != Some(Path::new("-")) {
+                        print!("{}", unilateral_io::structural_summary(&a, &title));
+                    }
+                    if let Some(out) = json {
+                        write_json(&out, &unilateral_io::structural_json(&a))?;
+                    }
+                    if let Some(dir) = csv {
+                        report_files(unilateral_io::write_structural_csv(&a, &dir), &dir)?;
+                    }
                 }
             }
             Ok(())
@@ -208,6 +232,42 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Example { name, to, force } => examples::run(name.as_deref(), &to, force),
     }
+}
+
+/// Command-line values that override the file's `[solve]` table.
+struct Overrides {
+    target: Option<f64>,
+    trace: Option<TraceArg>,
+    tightening: Option<f64>,
+}
+
+impl Overrides {
+    fn apply(&self, settings: &mut unilateral_contact::SolveSettings) -> Result<(), Failure> {
+        if let Some(t) = self.target {
+            settings.target = t;
+        }
+        if let Some(t) = self.trace {
+            settings.trace = match t {
+                TraceArg::Target => unilateral_contact::Trace::Target,
+                TraceArg::End => unilateral_contact::Trace::End,
+            };
+        }
+        if let Some(c) = self.tightening {
+            settings.tightening = c;
+        }
+        settings
+            .validate()
+            .map_err(|e| Failure::Input(format!("command line: {e}")))
+    }
+}
+
+fn report_files(written: std::io::Result<Vec<PathBuf>>, dir: &Path) -> Result<(), Failure> {
+    let files = written
+        .map_err(|e| Failure::Input(format!("cannot write CSV into {}: {e}", dir.display())))?;
+    for f in files {
+        eprintln!("wrote {}", f.display());
+    }
+    Ok(())
 }
 
 fn write_json(out: &Path, value: &serde_json::Value) -> Result<(), Failure> {

@@ -488,3 +488,102 @@ fn bad_inputs_exit_2_with_a_message_naming_the_file() {
     }
     assert!(count >= 20, "only {count} bad inputs");
 }
+
+#[test]
+fn structural_example1_reports_the_papers_answer_with_full_results() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .arg("--json")
+        .arg("out.json")
+        .arg("--csv")
+        .arg("tables");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(
+        out.stdout.contains("largest displacement"),
+        "{}",
+        out.stdout
+    );
+    assert!(out.stdout.contains("equilibrium"));
+    let j = cmd.json("out.json");
+    assert_eq!(j["status"], "ray");
+    assert!(close(&j["steps"][0]["p"], 32.0 / 3.0, 1e-9));
+    let pairs = j["pairs"].as_array().unwrap();
+    assert_eq!(pairs[0]["state"], "open");
+    // The uplift of the left support is P·L³/(16·EI) = 0.5; the others carry 0.5 each.
+    assert!(close(&pairs[0]["z_n"], 0.5, 1e-9));
+    assert!(close(&pairs[1]["x_n"], 0.5, 1e-9) && close(&pairs[2]["x_n"], 0.5, 1e-9));
+    assert!(!j["nodes"].as_array().unwrap().is_empty());
+    assert!(!j["frames"].as_array().unwrap().is_empty());
+    assert!(j["equilibrium"]["relative"].as_f64().unwrap() < 1e-9);
+    for f in [
+        "pairs.csv",
+        "steps.csv",
+        "displacements.csv",
+        "reactions.csv",
+        "frame_end_forces.csv",
+        "plane_stresses.csv",
+    ] {
+        assert!(cmd.path("tables").join(f).is_file(), "{f}");
+    }
+}
+
+#[test]
+fn sheet_pile_wall_main_job() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .arg("--json")
+        .arg("out.json");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("out.json");
+    assert_eq!(j["status"], "ray");
+    let state = |name: &str| {
+        j["pairs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|p| p["name"] == name)
+            .map(|p| p["state"].as_str().unwrap().to_string())
+            .unwrap()
+    };
+    // The paper's pattern: left opens at the top, right opens at the bottom and slides at the top.
+    assert_eq!(state("left.12"), "open");
+    assert_ne!(state("left.2"), "open");
+    assert_eq!(state("right.1"), "open");
+    assert!(state("right.12").starts_with("slip"));
+    assert!(!j["plane_elements"].as_array().unwrap().is_empty());
+}
+
+/// Every bad structural model: exit code 2 and a message naming the file and the problem.
+#[test]
+fn bad_models_exit_2_with_located_messages() {
+    let dir = root().join("tests/data/bad-models");
+    let table = std::fs::read_to_string(dir.join("EXPECTED.txt")).unwrap();
+    let mut count = 0;
+    for line in table.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let cols: Vec<&str> = line.split(" | ").collect();
+        let (file, place, fragment) = (cols[0], cols[1], cols[cols.len() - 1]);
+        let out = TestCommand::new(&["solve"]).arg(dir.join(file)).run();
+        assert_eq!(out.code, 2, "{file}: {}{}", out.stdout, out.stderr);
+        assert!(out.stderr.contains(file), "{file}: {}", out.stderr);
+        if place != "analysis" {
+            assert!(
+                out.stderr.contains(place),
+                "{file}: expected '{place}' in {}",
+                out.stderr
+            );
+        }
+        assert!(
+            out.stderr.contains(fragment),
+            "{file}: expected '{fragment}' in {}",
+            out.stderr
+        );
+        assert!(!out.stderr.contains("panicked"));
+        count += 1;
+    }
+    assert!(count >= 15, "only {count} bad models");
+}

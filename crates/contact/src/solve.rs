@@ -431,6 +431,12 @@ pub fn pair_results(x: &[f64], z: &[f64], names: &[String], friction: &[f64]) ->
                 PairState::Stick
             };
             let _ = friction;
+            // Round-off of the friction rows of an open pair is not a force.
+            let x_t = if state == PairState::Open && x_t.abs() <= tx {
+                0.0
+            } else {
+                x_t
+            };
             PairResult {
                 name: names[i].clone(),
                 x_n,

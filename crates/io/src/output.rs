@@ -397,3 +397,200 @@ pub fn tableaux_json(ts: &[Tableau], label: &dyn Fn(unilateral_lcp::Var) -> Stri
             .collect(),
     )
 }
+
+/// The human-readable summary of a structural analysis: the contact summary, then the largest
+/// displacement and internal forces and the equilibrium check.
+pub fn structural_summary(a: &unilateral_analysis::Analysis, title: &str) -> String {
+    let mut s = contact_summary(&a.solution, title);
+    if let (Some(r), Some(ex)) = (&a.results, a.extremes()) {
+        let _ = writeln!(s, "\nstructure at p = {}:", fmt_num(r.p));
+        if let Some(d) = &ex.displacement {
+            let [ux, uy, _] = r.displacements[d.node.0];
+            let _ = writeln!(
+                s,
+                "  largest displacement   {:>12} at node {} (ux = {}, uy = {})",
+                fmt_num(d.value),
+                d.name,
+                fmt_num(ux),
+                fmt_num(uy)
+            );
+        }
+        let line = |label: &str, v: &Option<unilateral_analysis::ElementValue>, s: &mut String| {
+            if let Some(v) = v {
+                let _ = writeln!(
+                    s,
+                    "  {label:<22} {:>12} in element {} at s = {}",
+                    fmt_num(v.value),
+                    v.name,
+                    fmt_num(v.at[0])
+                );
+            }
+        };
+        line("largest |M|", &ex.moment, &mut s);
+        line("largest |N|", &ex.axial, &mut s);
+        line("largest |Q|", &ex.shear, &mut s);
+        if let Some(v) = &ex.von_mises {
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>12} in element {} at ({}, {})",
+                "largest von Mises",
+                fmt_num(v.value),
+                v.name,
+                fmt_num(v.at[0]),
+                fmt_num(v.at[1])
+            );
+        }
+        let e = &r.equilibrium;
+        let _ = writeln!(
+            s,
+            "  equilibrium: applied + reactions + contact + springs = ({}, {}, {}), relative {:.1e}",
+            fmt_num(e.resultant[0]),
+            fmt_num(e.resultant[1]),
+            fmt_num(e.resultant[2]),
+            e.relative()
+        );
+    }
+    s
+}
+
+fn dof_name(d: &unilateral_fem::SupportDof) -> String {
+    match d {
+        unilateral_fem::SupportDof::Ux => "ux".into(),
+        unilateral_fem::SupportDof::Uy => "uy".into(),
+        unilateral_fem::SupportDof::Rz => "rz".into(),
+        unilateral_fem::SupportDof::Along(v) => format!("along({}, {})", v[0], v[1]),
+    }
+}
+
+/// The result document of a structural analysis: the contact document plus node
+/// displacements, reactions, frame end forces, plane-element stresses and the equilibrium check.
+pub fn structural_json(a: &unilateral_analysis::Analysis) -> Value {
+    let mut doc = contact_json(&a.solution);
+    let Some(r) = &a.results else {
+        return doc;
+    };
+    let names = &a.names;
+    let nodes: Vec<Value> = r
+        .displacements
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            json!({ "node": names.node(unilateral_fem::NodeId(i)), "ux": d[0], "uy": d[1], "rz": d[2] })
+        })
+        .collect();
+    let reactions: Vec<Value> = r
+        .reactions
+        .iter()
+        .map(|x| json!({ "node": names.node(x.node), "dof": dof_name(&x.dof), "value": x.value }))
+        .collect();
+    let frames: Vec<Value> = r
+        .lines
+        .iter()
+        .map(|l| {
+            let f = l.end_forces;
+            json!({
+                "element": names.element(l.element),
+                "end_forces": { "N1": f[0], "V1": f[1], "M1": f[2], "N2": f[3], "V2": f[4], "M2": f[5] },
+                "diagram": l.diagram.iter().map(|p| json!({ "s": p.s, "N": p.n, "Q": p.q, "M": p.m })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let planes: Vec<Value> = r
+        .planes
+        .iter()
+        .map(|pl| {
+            json!({
+                "element": names.element(pl.element),
+                "gauss_points": pl.gauss_points,
+                "stress": pl.stress.iter().map(|s| json!({ "sxx": s[0], "syy": s[1], "txy": s[2], "szz": s[3] })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let e = &r.equilibrium;
+    let obj = doc.as_object_mut().expect("an object");
+    obj.insert("nodes".into(), Value::Array(nodes));
+    obj.insert("reactions".into(), Value::Array(reactions));
+    obj.insert("frames".into(), Value::Array(frames));
+    obj.insert("plane_elements".into(), Value::Array(planes));
+    obj.insert(
+        "equilibrium".into(),
+        json!({ "applied": e.applied, "reactions": e.reactions, "contact": e.contact, "springs": e.springs, "resultant": e.resultant, "relative": e.relative() }),
+    );
+    doc
+}
+
+/// Writes the contact tables and one table per kind of structural result into `dir`.
+pub fn write_structural_csv(
+    a: &unilateral_analysis::Analysis,
+    dir: &Path,
+) -> std::io::Result<Vec<std::path::PathBuf>> {
+    let mut files = write_contact_csv(&a.solution, dir)?;
+    let Some(r) = &a.results else {
+        return Ok(files);
+    };
+    let names = &a.names;
+    let mut t = String::from("node,ux,uy,rz\n");
+    for (i, d) in r.displacements.iter().enumerate() {
+        let _ = writeln!(
+            t,
+            "{},{:e},{:e},{:e}",
+            csv_field(&names.node(unilateral_fem::NodeId(i))),
+            d[0],
+            d[1],
+            d[2]
+        );
+    }
+    files.push(write_table(dir, "displacements.csv", t)?);
+    let mut t = String::from("node,dof,value\n");
+    for x in &r.reactions {
+        let _ = writeln!(
+            t,
+            "{},{},{:e}",
+            csv_field(&names.node(x.node)),
+            csv_field(&dof_name(&x.dof)),
+            x.value
+        );
+    }
+    files.push(write_table(dir, "reactions.csv", t)?);
+    let mut t = String::from("element,N1,V1,M1,N2,V2,M2\n");
+    for l in &r.lines {
+        let f = l.end_forces;
+        let _ = writeln!(
+            t,
+            "{},{:e},{:e},{:e},{:e},{:e},{:e}",
+            csv_field(&names.element(l.element)),
+            f[0],
+            f[1],
+            f[2],
+            f[3],
+            f[4],
+            f[5]
+        );
+    }
+    files.push(write_table(dir, "frame_end_forces.csv", t)?);
+    let mut t = String::from("element,gauss_point,x,y,sxx,syy,txy,szz\n");
+    for pl in &r.planes {
+        for (g, (xy, st)) in pl.gauss_points.iter().zip(&pl.stress).enumerate() {
+            let _ = writeln!(
+                t,
+                "{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
+                csv_field(&names.element(pl.element)),
+                g + 1,
+                xy[0],
+                xy[1],
+                st[0],
+                st[1],
+                st[2],
+                st[3]
+            );
+        }
+    }
+    files.push(write_table(dir, "plane_stresses.csv", t)?);
+    Ok(files)
+}
+
+fn write_table(dir: &Path, name: &str, text: String) -> std::io::Result<std::path::PathBuf> {
+    let path = dir.join(name);
+    std::fs::write(&path, text)?;
+    Ok(path)
+}

@@ -227,6 +227,15 @@ pub fn read_problem(path: &Path) -> Result<Problem, InputError> {
         if top.get("load").is_some() {
             return read_contact_zone(path).map(Problem::ContactZone);
         }
+        if top.entries.is_empty() {
+            return Err(InputError::at(
+                path,
+                None,
+                InputErrorKind::MissingKey,
+                "the file is empty: missing the `contact_zone` table of a contact-zone problem, \
+                 or the nodes, blocks or members of a structural model",
+            ));
+        }
     }
     build::read(&doc, &top).map(Problem::Structural)
 }
