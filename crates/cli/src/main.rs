@@ -158,6 +158,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 }
                 unilateral_io::Problem::Structural(mut problem) => {
                     overrides.apply(&mut problem.settings)?;
+                    let progress = Progress::new();
+                    progress.say(&format!(
+                        "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, \
+                         following the load path, recovering the results…",
+                        problem.names.nodes.len(),
+                        problem.names.elements.len(),
+                        problem.names.pairs.len()
+                    ));
                     let names = unilateral_analysis::Names {
                         nodes: problem.names.nodes.clone(),
                         elements: problem.names.elements.clone(),
@@ -168,6 +176,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         &names,
                     )
                     .map_err(|e| Failure::Input(format!("{}: {e}", file.display())))?;
+                    progress.say(&format!(
+                        "done: {} steps of the load path, {:.2} s",
+                        a.solution.steps.len(),
+                        progress.elapsed()
+                    ));
                     let title = format!(
                         "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs)",
                         env!("CARGO_PKG_VERSION"),
@@ -231,6 +244,32 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Example { name, to, force } => examples::run(name.as_deref(), &to, force),
+    }
+}
+
+/// Progress messages on stderr, only when it is a terminal (never in pipes, files or tests).
+struct Progress {
+    start: std::time::Instant,
+    on: bool,
+}
+
+impl Progress {
+    fn new() -> Self {
+        use std::io::IsTerminal;
+        Self {
+            start: std::time::Instant::now(),
+            on: std::io::stderr().is_terminal(),
+        }
+    }
+
+    fn say(&self, msg: &str) {
+        if self.on {
+            eprintln!("unilateral: {msg}");
+        }
+    }
+
+    fn elapsed(&self) -> f64 {
+        self.start.elapsed().as_secs_f64()
     }
 }
 
