@@ -417,7 +417,8 @@ fn contact_load(t: &Table, m: usize, required: bool) -> Result<ContactLoad, Inpu
     })
 }
 
-fn solve_settings(t: &Table) -> Result<SolveSettings, InputError> {
+/// The `[solve]` table, shared by contact-zone problems and structural models.
+pub(crate) fn solve_settings(t: &Table) -> Result<SolveSettings, InputError> {
     t.check_keys(SOLVE_KEYS)?;
     let doc = t.doc;
     let mut s = SolveSettings::default();

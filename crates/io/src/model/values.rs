@@ -1,6 +1,5 @@
 //! Small typed readers for model files: ids, references, points, flags and `[solve]`.
 
-use unilateral_contact::{ContactError, SolveSettings, Trace};
 
 use crate::error::{InputError, InputErrorKind, Pos};
 use crate::reader::{Doc, Table};
@@ -226,63 +225,5 @@ pub(crate) fn table_array<'n>(t: &Table<'n>, k: &str) -> Result<Vec<Table<'n>>, 
         .collect()
 }
 
-const SOLVE_KEYS: &[&str] = &[
-    "tightening",
-    "target",
-    "trace",
-    "pivot_tolerance",
-    "max_pivots",
-];
-
-/// The `[solve]` table (the same keys as in contact-zone problems).
-pub(crate) fn solve_settings(t: &Table) -> Result<SolveSettings, InputError> {
-    t.check_keys(SOLVE_KEYS)?;
-    let doc = t.doc;
-    let mut s = SolveSettings::default();
-    if let Some(c) = opt_number(t, "tightening")? {
-        if c < 0.0 {
-            return Err(doc.err(
-                t.get("tightening").and_then(|n| n.pos),
-                &t.child("tightening"),
-                InputErrorKind::Value,
-                format!("the tightening c must be ≥ 0, got {c}"),
-            ));
-        }
-        s.tightening = c;
-    }
-    if let Some(p) = opt_number(t, "target")? {
-        if p <= 0.0 {
-            return Err(doc.err(
-                t.get("target").and_then(|n| n.pos),
-                &t.child("target"),
-                InputErrorKind::Value,
-                format!("the target load p* must be > 0, got {p}"),
-            ));
-        }
-        s.target = p;
-    }
-    if t.get("trace").is_some() {
-        s.trace = match choice(t, "trace", &["target", "end"], None, "trace")? {
-            "end" => Trace::End,
-            _ => Trace::Target,
-        };
-    }
-    s.pivot_tolerance = opt_number(t, "pivot_tolerance")?;
-    if let Some(node) = t.get("max_pivots") {
-        s.max_pivots = Some(doc.positive_integer(node, &t.child("max_pivots"))?);
-    }
-    if let Err(e) = s.validate() {
-        let msg = match &e {
-            ContactError::Settings(m) => m.clone(),
-            other => other.to_string(),
-        };
-        let key = SOLVE_KEYS
-            .iter()
-            .find(|k| msg.starts_with(*k))
-            .copied()
-            .unwrap_or("");
-        let pos = t.get(key).and_then(|n| n.pos).or(t.pos);
-        return Err(doc.err(pos, &t.child(key), InputErrorKind::Value, msg));
-    }
-    Ok(s)
-}
+/// The `[solve]` table: the same keys and checks as in contact-zone problems.
+pub(crate) use crate::zone::solve_settings;
