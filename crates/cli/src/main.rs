@@ -48,9 +48,13 @@ enum Command {
         /// Write CSV tables (pairs.csv, steps.csv) into this directory.
         #[arg(long, value_name = "DIR")]
         csv: Option<PathBuf>,
-        /// Write pictures and an HTML report into this directory (not available yet).
+        /// Write the load-path charts, the structure picture and report.html into this directory.
         #[arg(long, value_name = "DIR")]
         report: Option<PathBuf>,
+        /// Write ParaView files (.vtu per event, .pvd collection) into this directory
+        /// (structural models).
+        #[arg(long, value_name = "DIR")]
+        vtk: Option<PathBuf>,
     },
     /// Print the Lemke tableaux of the path, step by step, as in the paper's Tables 1-3.
     Tableau {
@@ -122,12 +126,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
             json,
             csv,
             report,
+            vtk,
         } => {
-            if report.is_some() {
-                return Err(Failure::Input(
-                    "--report: pictures and HTML reports are not available in this version".into(),
-                ));
-            }
             let problem =
                 unilateral_io::read_problem(&file).map_err(|e| Failure::Input(e.to_string()))?;
             let overrides = Overrides {
@@ -154,6 +154,21 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     }
                     if let Some(dir) = csv {
                         report_files(unilateral_io::write_contact_csv(&sol, &dir), &dir)?;
+                    }
+                    if vtk.is_some() {
+                        return Err(Failure::Input(
+                            "--vtk needs a structural model: a contact-zone problem has no mesh"
+                                .into(),
+                        ));
+                    }
+                    if let Some(dir) = report {
+                        let files = unilateral_report::write_path_report(
+                            &sol,
+                            &dir,
+                            &unilateral_report::ReportOptions::default(),
+                        )
+                        .map_err(|e| Failure::Input(e.to_string()))?;
+                        report_files(Ok(files), &dir)?;
                     }
                 }
                 unilateral_io::Problem::Structural(mut problem) => {
@@ -202,6 +217,18 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     }
                     if let Some(dir) = csv {
                         report_files(unilateral_io::write_structural_csv(&a, &dir), &dir)?;
+                    }
+                    if let Some(dir) = vtk {
+                        report_files(unilateral_io::write_vtk(&a, &dir), &dir)?;
+                    }
+                    if let Some(dir) = report {
+                        let files = unilateral_report::write_report(
+                            &a,
+                            &dir,
+                            &unilateral_report::ReportOptions::default(),
+                        )
+                        .map_err(|e| Failure::Input(e.to_string()))?;
+                        report_files(Ok(files), &dir)?;
                     }
                 }
             }
@@ -301,8 +328,8 @@ impl Overrides {
 }
 
 fn report_files(written: std::io::Result<Vec<PathBuf>>, dir: &Path) -> Result<(), Failure> {
-    let files = written
-        .map_err(|e| Failure::Input(format!("cannot write CSV into {}: {e}", dir.display())))?;
+    let files =
+        written.map_err(|e| Failure::Input(format!("cannot write into {}: {e}", dir.display())))?;
     for f in files {
         eprintln!("wrote {}", f.display());
     }

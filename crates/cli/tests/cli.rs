@@ -418,14 +418,14 @@ fn lcp_command_on_every_shared_file() {
 }
 
 #[test]
-fn report_is_refused_clearly_until_it_exists() {
+fn vtk_needs_a_structural_model() {
     let out = TestCommand::new(&["solve"])
         .arg(example1())
-        .arg("--report")
-        .arg("r")
+        .arg("--vtk")
+        .arg("v")
         .run();
     assert_eq!(out.code, 2);
-    assert!(out.stderr.contains("--report"));
+    assert!(out.stderr.contains("--vtk"));
 }
 
 #[test]
