@@ -1,0 +1,452 @@
+//! Load-path charts: the forces and mutual displacements of the pairs against the load `p`,
+//! one small panel per pair, events marked and numbered.
+
+use unilateral_contact::{ContactSolution, EventKind, LoadStep, Outcome, PairResult};
+
+use crate::font::{self, Anchor};
+use crate::svg::{nice_range, num, ticks, Svg};
+
+/// The c-free solution sampled along the traced path: the start, every event load and the end.
+#[derive(Debug, Clone)]
+pub struct PathSamples {
+    /// The loads, in the order of the path.
+    pub loads: Vec<f64>,
+    /// The pair results at each load.
+    pub pairs: Vec<Vec<PairResult>>,
+}
+
+/// The load at which the charts end: the reported load, the limit load, or (for a ray) a
+/// little beyond the last event.
+pub fn end_load(sol: &ContactSolution) -> Option<f64> {
+    let last = sol.steps.iter().map(|s| s.p).fold(0.0f64, f64::max);
+    match &sol.outcome {
+        Outcome::Ray { p_from } => {
+            let beyond = if *p_from > 0.0 { 1.25 * p_from } else { 1.0 };
+            let _ = last;
+            Some(sol.p.map_or(beyond, |p| p.max(beyond)))
+        }
+        Outcome::Mechanism { p_limit, .. } => Some(*p_limit),
+        _ => sol.p.or(if last > 0.0 { Some(last) } else { None }),
+    }
+}
+
+/// Evaluates the solution without tightening at `p = 0`, at every event load and at the end.
+pub fn samples(sol: &ContactSolution) -> PathSamples {
+    let mut want: Vec<f64> = vec![0.0];
+    want.extend(
+        sol.steps
+            .iter()
+            .map(|s| s.p)
+            .filter(|p| p.is_finite() && *p >= 0.0),
+    );
+    if let Some(e) = end_load(sol) {
+        want.push(e);
+    }
+    let mut out = PathSamples {
+        loads: Vec::new(),
+        pairs: Vec::new(),
+    };
+    for p in want {
+        if out
+            .loads
+            .last()
+            .is_some_and(|q| (q - p).abs() <= 1e-12 * p.abs().max(1.0))
+        {
+            continue;
+        }
+        if let Some((pairs, _)) = sol.at(p) {
+            out.loads.push(p);
+            out.pairs.push(pairs);
+        } else if sol
+            .p
+            .is_some_and(|q| (q - p).abs() <= 1e-12 * p.abs().max(1.0))
+        {
+            out.loads.push(p);
+            out.pairs.push(sol.pairs.clone());
+        }
+    }
+    out
+}
+
+/// A short label of a step: `3: left.4 opens`.
+pub fn step_label(step: &LoadStep) -> String {
+    let what = if step.events.is_empty() {
+        format!("{} leaves, {} enters", step.leaving, step.entering)
+    } else {
+        step.events
+            .iter()
+            .map(|e| format!("{} {}", e.name, event_word(e.kind)))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    format!("{}: {what}", step.index)
+}
+
+/// One word for an event.
+pub fn event_word(k: EventKind) -> &'static str {
+    match k {
+        EventKind::Opens => "opens",
+        EventKind::Closes => "closes",
+        EventKind::StartsSlippingPlus => "slips+",
+        EventKind::StartsSlippingMinus => "slips−",
+        EventKind::Sticks => "sticks",
+    }
+}
+
+/// Which quantity a chart shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ChartKind {
+    /// `x_n` and `x_t`.
+    Forces,
+    /// `z_n` and `z_t`.
+    Displacements,
+}
+
+const C_NORMAL: &str = "#1f5fa8";
+const C_TANGENT: &str = "#d9731a";
+const C_EVENT: &str = "#b3261e";
+
+/// Wraps a text into lines no wider than `w` pixels.
+pub fn wrap(s: &str, size: f64, w: f64) -> Vec<String> {
+    let mut lines = Vec::new();
+    let mut cur = String::new();
+    for word in s.split_whitespace() {
+        let cand = if cur.is_empty() {
+            word.to_string()
+        } else {
+            format!("{cur} {word}")
+        };
+        if font::width(&cand, size) > w && !cur.is_empty() {
+            lines.push(std::mem::take(&mut cur));
+            cur = word.to_string();
+        } else {
+            cur = cand;
+        }
+    }
+    if !cur.is_empty() {
+        lines.push(cur);
+    }
+    lines
+}
+
+/// The SVG of one chart (small multiples, one panel per selected pair).
+pub fn chart(
+    sol: &ContactSolution,
+    s: &PathSamples,
+    selected: &[usize],
+    kind: ChartKind,
+) -> String {
+    let names: Vec<String> = sol.lcp_names();
+    let m = selected.len().max(1);
+    let cols = ((m as f64 * 1.5).sqrt().ceil() as usize).clamp(1, 6).min(m);
+    let rows = m.div_ceil(cols);
+    let (pw, ph) = (200.0, 120.0);
+    let (gap_x, gap_y) = (16.0, 40.0);
+    let left = 72.0;
+    let width = left + cols as f64 * (pw + gap_x) + 20.0;
+
+    // header text
+    let (title, a_lab, b_lab, what) = match kind {
+        ChartKind::Forces => (
+            "Load path: contact forces of the pairs",
+            "x_n (normal force, compression +)",
+            "x_t (tangential force)",
+            "forces",
+        ),
+        ChartKind::Displacements => (
+            "Load path: mutual displacements of the pairs",
+            "z_n (opening +)",
+            "z_t (slip)",
+            "mutual displacements",
+        ),
+    };
+    let mut caption = format!(
+        "The {what} of each pair against the load p, exact at p = 0, at every event and at the end, straight in between. Red marks: events of the pair (numbers as in the list below); grey lines: events of other pairs."
+    );
+    if sol.tightening > 0.0 {
+        caption.push_str(&format!(
+            " The values are those of the solution without tightening; the events are those of the path traced with the tightening c = {}, and the scheme without it may change at other loads.",
+            num(sol.tightening)
+        ));
+    }
+    let cap_lines = wrap(&caption, 9.0, width - 40.0);
+    let top = 40.0 + cap_lines.len() as f64 * 14.0 + 30.0;
+
+    // event list
+    let labels: Vec<(f64, String)> = sol
+        .steps
+        .iter()
+        .map(|st| (st.p, format!("{}   p = {}", step_label(st), num(st.p))))
+        .collect();
+    let ev_size = 8.5;
+    let ev_colw = labels
+        .iter()
+        .map(|l| font::width(&l.1, ev_size))
+        .fold(120.0f64, f64::max)
+        + 24.0;
+    let ev_cols = (((width - 40.0) / ev_colw).floor() as usize).max(1);
+    let ev_rows = labels.len().div_ceil(ev_cols);
+    let panels_h = rows as f64 * (ph + gap_y);
+    let height = top + panels_h + 30.0 + ev_rows as f64 * 14.0 + 20.0;
+
+    let mut g = Svg::new(width, height, title);
+    g.text(title, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
+    for (i, l) in cap_lines.iter().enumerate() {
+        g.text(
+            l,
+            20.0,
+            46.0 + 14.0 * i as f64,
+            9.0,
+            Anchor::Start,
+            "#444444",
+        );
+    }
+    // legend
+    let ly = top - 18.0;
+    g.line((20.0, ly - 3.0), (44.0, ly - 3.0), C_NORMAL, 2.0, "");
+    g.math(a_lab, 50.0, ly, 9.0, Anchor::Start, "#222222");
+    let x2 = 50.0 + font::width_rich(a_lab, 9.0) + 30.0;
+    g.line(
+        (x2, ly - 3.0),
+        (x2 + 24.0, ly - 3.0),
+        C_TANGENT,
+        2.0,
+        r#" stroke-dasharray="5 3""#,
+    );
+    g.math(b_lab, x2 + 30.0, ly, 9.0, Anchor::Start, "#222222");
+    let x3 = x2 + 30.0 + font::width_rich(b_lab, 9.0) + 30.0;
+    g.polygon(&tri(x3 + 6.0, ly - 3.0, 4.5), C_EVENT, "none", 0.0, "");
+    g.text(
+        "event of the pair",
+        x3 + 16.0,
+        ly,
+        9.0,
+        Anchor::Start,
+        "#222222",
+    );
+
+    if s.loads.len() < 2 || selected.is_empty() {
+        g.text(
+            "no load path to draw (no solution along the path)",
+            20.0,
+            top + 20.0,
+            10.0,
+            Anchor::Start,
+            "#b3261e",
+        );
+        return g.finish();
+    }
+
+    let val = |r: &PairResult| match kind {
+        ChartKind::Forces => (r.x_n, r.x_t),
+        ChartKind::Displacements => (r.z_n, r.z_t),
+    };
+    let pmax = s.loads.iter().cloned().fold(0.0f64, f64::max);
+    let pmin = s.loads.iter().cloned().fold(0.0f64, f64::min);
+    let (mut lo, mut hi) = (0.0f64, 0.0f64);
+    for pr in &s.pairs {
+        for &i in selected {
+            if let Some(r) = pr.get(i) {
+                let (a, b) = val(r);
+                for v in [a, b] {
+                    if v.is_finite() {
+                        lo = lo.min(v);
+                        hi = hi.max(v);
+                    }
+                }
+            }
+        }
+    }
+    let (lo, hi) = nice_range(lo, hi);
+    let (p0, p1) = nice_range(pmin, pmax);
+    let xt = ticks(p0, p1, 4);
+    let yt = ticks(lo, hi, 4);
+
+    for (k, &pi) in selected.iter().enumerate() {
+        let (r, c) = (k / cols, k % cols);
+        let ox = left + c as f64 * (pw + gap_x);
+        let oy = top + r as f64 * (ph + gap_y);
+        let fx = |p: f64| ox + (p - p0) / (p1 - p0) * pw;
+        let fy = |v: f64| oy + ph - (v - lo) / (hi - lo) * ph;
+        g.rect(ox, oy, pw, ph, "#fbfbfb", "#999999", 0.8);
+        for &t in &yt {
+            g.line((ox, fy(t)), (ox + pw, fy(t)), "#e4e4e4", 0.6, "");
+            if c == 0 {
+                g.text(&num(t), ox - 5.0, fy(t) + 3.5, 8.0, Anchor::End, "#444444");
+            }
+        }
+        for &t in &xt {
+            g.line((fx(t), oy), (fx(t), oy + ph), "#e4e4e4", 0.6, "");
+            if r == rows - 1 || k + cols >= m {
+                g.text(
+                    &num(t),
+                    fx(t),
+                    oy + ph + 13.0,
+                    8.0,
+                    Anchor::Middle,
+                    "#444444",
+                );
+            }
+        }
+        if lo < 0.0 && hi > 0.0 {
+            g.line((ox, fy(0.0)), (ox + pw, fy(0.0)), "#777777", 0.8, "");
+        }
+        // events of all pairs: faint lines; of this pair: marks and numbers
+        let mut own: Vec<(f64, usize)> = Vec::new();
+        for st in &sol.steps {
+            if !(st.p >= p0 && st.p <= p1) {
+                continue;
+            }
+            if st.events.iter().any(|e| e.pair == pi) {
+                own.push((st.p, st.index));
+            } else {
+                g.line((fx(st.p), oy), (fx(st.p), oy + ph), "#d0d0d0", 0.5, "");
+            }
+        }
+        // the curves
+        let a: Vec<(f64, f64)> = s
+            .loads
+            .iter()
+            .zip(&s.pairs)
+            .filter_map(|(&p, pr)| pr.get(pi).map(|x| (fx(p), fy(val(x).0))))
+            .collect();
+        let b: Vec<(f64, f64)> = s
+            .loads
+            .iter()
+            .zip(&s.pairs)
+            .filter_map(|(&p, pr)| pr.get(pi).map(|x| (fx(p), fy(val(x).1))))
+            .collect();
+        g.polyline(&b, C_TANGENT, 1.6, r#" stroke-dasharray="5 3""#);
+        g.polyline(&a, C_NORMAL, 1.8, "");
+        let mut last_x = f64::NEG_INFINITY;
+        let mut row = 0;
+        for (p, idx) in own {
+            let x = fx(p);
+            g.line(
+                (x, oy),
+                (x, oy + ph),
+                C_EVENT,
+                0.7,
+                r#" stroke-dasharray="2 2""#,
+            );
+            g.polygon(&tri(x, oy + ph - 4.0, 4.0), C_EVENT, "none", 0.0, "");
+            let lab = idx.to_string();
+            let w = font::width(&lab, 7.0);
+            row = if x - last_x < w + 3.0 {
+                (row + 1) % 3
+            } else {
+                0
+            };
+            if row == 0 {
+                last_x = x;
+            }
+            g.text(
+                &lab,
+                x + 2.0,
+                oy + 10.0 + 9.0 * row as f64,
+                7.0,
+                Anchor::Start,
+                C_EVENT,
+            );
+        }
+        // panel title: pair name and final state
+        let name = names.get(pi).cloned().unwrap_or_else(|| pi.to_string());
+        let state = sol
+            .pairs
+            .get(pi)
+            .map(|r| format!("  ({})", r.state))
+            .unwrap_or_default();
+        g.text(
+            &format!("{name}{state}"),
+            ox,
+            oy - 6.0,
+            9.0,
+            Anchor::Start,
+            "#111111",
+        );
+    }
+    // axis titles
+    let yb = top + panels_h - gap_y + 28.0;
+    g.text(
+        "load p",
+        left + (cols as f64 * (pw + gap_x)) / 2.0,
+        yb,
+        9.5,
+        Anchor::Middle,
+        "#222222",
+    );
+    let ylab = match kind {
+        ChartKind::Forces => "force",
+        ChartKind::Displacements => "displacement",
+    };
+    g.text_full(
+        ylab,
+        16.0,
+        top + panels_h / 2.0,
+        9.5,
+        Anchor::Middle,
+        90.0,
+        "#222222",
+        false,
+    );
+
+    // list of events
+    let ey = yb + 26.0;
+    if labels.is_empty() {
+        g.text(
+            "no events: the working scheme does not change",
+            20.0,
+            ey,
+            ev_size,
+            Anchor::Start,
+            "#444444",
+        );
+    }
+    for (i, (_, l)) in labels.iter().enumerate() {
+        let (r, c) = (i % ev_rows.max(1), i / ev_rows.max(1));
+        g.text(
+            l,
+            20.0 + c as f64 * ev_colw,
+            ey + r as f64 * 14.0,
+            ev_size,
+            Anchor::Start,
+            "#333333",
+        );
+    }
+    g.finish()
+}
+
+fn tri(x: f64, y: f64, s: f64) -> [(f64, f64); 3] {
+    [(x, y - s), (x - s, y + s * 0.8), (x + s, y + s * 0.8)]
+}
+
+/// The names of the pairs of a solution (from its results, else numbered).
+trait Names {
+    fn lcp_names(&self) -> Vec<String>;
+}
+
+impl Names for ContactSolution {
+    fn lcp_names(&self) -> Vec<String> {
+        if !self.pairs.is_empty() {
+            return self.pairs.iter().map(|r| r.name.clone()).collect();
+        }
+        (0..self.lcp.pairs).map(|i| (i + 1).to_string()).collect()
+    }
+}
+
+/// The indices of the pairs to show: all, or those named (in the given order; unknown names
+/// are skipped).
+pub fn select(sol: &ContactSolution, s: &PathSamples, names: Option<&[String]>) -> Vec<usize> {
+    let all: Vec<String> = s
+        .pairs
+        .first()
+        .map(|p| p.iter().map(|r| r.name.clone()).collect())
+        .unwrap_or_else(|| sol.lcp_names());
+    match names {
+        None => (0..all.len()).collect(),
+        Some(want) => want
+            .iter()
+            .filter_map(|w| all.iter().position(|n| n == w))
+            .collect(),
+    }
+}

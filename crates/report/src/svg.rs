@@ -1,0 +1,361 @@
+//! A tiny hand-written SVG writer: shapes, stroke-font text, number formatting, nice ticks and
+//! colour maps.
+
+use std::fmt::Write as _;
+
+use crate::font::{self, Anchor};
+
+/// A coordinate with at most two decimals (`-0` written as `0`).
+pub fn n(v: f64) -> String {
+    let r = (v * 100.0).round() / 100.0;
+    if r == 0.0 {
+        "0".into()
+    } else {
+        let s = format!("{r:.2}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
+/// XML escaping for attribute values and text content.
+pub fn esc(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => o.push_str("&amp;"),
+            '<' => o.push_str("&lt;"),
+            '>' => o.push_str("&gt;"),
+            '"' => o.push_str("&quot;"),
+            '\'' => o.push_str("&apos;"),
+            _ => o.push(c),
+        }
+    }
+    o
+}
+
+/// A number for people: four significant digits, exponent form outside `[1e-3, 1e5)`, a real
+/// minus sign.
+pub fn num(v: f64) -> String {
+    if !v.is_finite() {
+        return format!("{v}");
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let a = v.abs();
+    let s = if !(1e-3..1e5).contains(&a) {
+        let e = a.log10().floor() as i32;
+        let m = a / 10f64.powi(e);
+        let (m, e) = if format!("{m:.3}").starts_with("10") {
+            (m / 10.0, e + 1)
+        } else {
+            (m, e)
+        };
+        let ms = format!("{m:.3}");
+        let ms = ms.trim_end_matches('0').trim_end_matches('.');
+        format!("{ms}e{e}")
+    } else {
+        let digits = (3 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{a:.digits$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    };
+    if v < 0.0 {
+        format!("−{s}")
+    } else {
+        s
+    }
+}
+
+/// Nice tick values covering `[lo, hi]` (about `count` of them).
+pub fn ticks(lo: f64, hi: f64, count: usize) -> Vec<f64> {
+    if hi.is_nan() || lo.is_nan() || hi <= lo {
+        return vec![lo];
+    }
+    let raw = (hi - lo) / count.max(1) as f64;
+    let mag = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 2.5, 5.0, 10.0]
+        .iter()
+        .map(|k| k * mag)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * mag);
+    let first = (lo / step).ceil() as i64;
+    let last = (hi / step).floor() as i64;
+    (first..=last).map(|i| i as f64 * step).collect()
+}
+
+/// Rounds a range outwards to nice ticks: returns `(lo, hi)`.
+pub fn nice_range(lo: f64, hi: f64) -> (f64, f64) {
+    let (lo, hi) = if hi - lo <= f64::EPSILON * (lo.abs() + hi.abs()).max(1e-300) {
+        let d = if lo == 0.0 { 1.0 } else { lo.abs() * 0.5 };
+        (lo - d, hi + d)
+    } else {
+        (lo, hi)
+    };
+    let t = ticks(lo, hi, 5);
+    let step = if t.len() >= 2 { t[1] - t[0] } else { hi - lo };
+    ((lo / step).floor() * step, (hi / step).ceil() * step)
+}
+
+/// An SVG document being written.
+pub struct Svg {
+    body: String,
+    /// Width in pixels.
+    pub width: f64,
+    /// Height in pixels.
+    pub height: f64,
+}
+
+impl Svg {
+    /// An empty picture with a white background and a title (for accessibility).
+    pub fn new(width: f64, height: f64, title: &str) -> Self {
+        let mut s = Svg {
+            body: String::new(),
+            width,
+            height,
+        };
+        let _ = writeln!(s.body, "<title>{}</title>", esc(title));
+        let _ = writeln!(
+            s.body,
+            r##"<rect x="0" y="0" width="{}" height="{}" fill="#ffffff"/>"##,
+            n(width),
+            n(height)
+        );
+        s
+    }
+
+    /// Raw SVG markup.
+    pub fn raw(&mut self, s: &str) {
+        self.body.push_str(s);
+        self.body.push('\n');
+    }
+
+    /// A straight line.
+    pub fn line(&mut self, a: (f64, f64), b: (f64, f64), stroke: &str, width: f64, extra: &str) {
+        let _ = writeln!(
+            self.body,
+            r#"<line x1="{}" y1="{}" x2="{}" y2="{}" stroke="{stroke}" stroke-width="{}"{extra}/>"#,
+            n(a.0),
+            n(a.1),
+            n(b.0),
+            n(b.1),
+            n(width)
+        );
+    }
+
+    /// An open polyline.
+    pub fn polyline(&mut self, pts: &[(f64, f64)], stroke: &str, width: f64, extra: &str) {
+        if pts.len() < 2 {
+            return;
+        }
+        let _ = writeln!(
+            self.body,
+            r#"<polyline points="{}" fill="none" stroke="{stroke}" stroke-width="{}" stroke-linejoin="round"{extra}/>"#,
+            points(pts),
+            n(width)
+        );
+    }
+
+    /// A closed polygon.
+    pub fn polygon(
+        &mut self,
+        pts: &[(f64, f64)],
+        fill: &str,
+        stroke: &str,
+        width: f64,
+        extra: &str,
+    ) {
+        let _ = writeln!(
+            self.body,
+            r#"<polygon points="{}" fill="{fill}" stroke="{stroke}" stroke-width="{}" stroke-linejoin="round"{extra}/>"#,
+            points(pts),
+            n(width)
+        );
+    }
+
+    /// A rectangle.
+    #[allow(clippy::too_many_arguments)]
+    pub fn rect(&mut self, x: f64, y: f64, w: f64, h: f64, fill: &str, stroke: &str, width: f64) {
+        let _ = writeln!(
+            self.body,
+            r#"<rect x="{}" y="{}" width="{}" height="{}" fill="{fill}" stroke="{stroke}" stroke-width="{}"/>"#,
+            n(x),
+            n(y),
+            n(w),
+            n(h),
+            n(width)
+        );
+    }
+
+    /// A circle.
+    pub fn circle(&mut self, c: (f64, f64), r: f64, fill: &str, stroke: &str, width: f64) {
+        let _ = writeln!(
+            self.body,
+            r#"<circle cx="{}" cy="{}" r="{}" fill="{fill}" stroke="{stroke}" stroke-width="{}"/>"#,
+            n(c.0),
+            n(c.1),
+            n(r),
+            n(width)
+        );
+    }
+
+    /// An arrow from `a` to `b` (head at `b`).
+    pub fn arrow(&mut self, a: (f64, f64), b: (f64, f64), color: &str, width: f64, head: f64) {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+        let l = dx.hypot(dy);
+        if l < 1e-9 {
+            return;
+        }
+        let (ux, uy) = (dx / l, dy / l);
+        let h = head.min(0.6 * l).max(0.5 * head.min(l));
+        let base = (b.0 - ux * h, b.1 - uy * h);
+        self.line(a, base, color, width, r#" stroke-linecap="round""#);
+        let w = 0.45 * h;
+        self.polygon(
+            &[
+                b,
+                (base.0 - uy * w, base.1 + ux * w),
+                (base.0 + uy * w, base.1 - ux * w),
+            ],
+            color,
+            "none",
+            0.0,
+            "",
+        );
+    }
+
+    /// Text in the stroke font (plain).
+    pub fn text(&mut self, s: &str, x: f64, y: f64, size: f64, anchor: Anchor, color: &str) {
+        self.text_full(s, x, y, size, anchor, 0.0, color, false);
+    }
+
+    /// Text with subscripts (`z_n`).
+    pub fn math(&mut self, s: &str, x: f64, y: f64, size: f64, anchor: Anchor, color: &str) {
+        self.text_full(s, x, y, size, anchor, 0.0, color, true);
+    }
+
+    /// Text in the stroke font, rotated `angle` degrees counter-clockwise.
+    #[allow(clippy::too_many_arguments)]
+    pub fn text_full(
+        &mut self,
+        s: &str,
+        x: f64,
+        y: f64,
+        size: f64,
+        anchor: Anchor,
+        angle: f64,
+        color: &str,
+        rich: bool,
+    ) {
+        if s.trim().is_empty() {
+            return;
+        }
+        let d = font::path_data(s, x, y, size, anchor, angle, rich);
+        let _ = writeln!(
+            self.body,
+            r#"<path d="{d}" fill="none" stroke="{color}" stroke-width="{}" stroke-linecap="round" stroke-linejoin="round"><title>{}</title></path>"#,
+            n((size / 8.0).max(0.8)),
+            esc(s)
+        );
+    }
+
+    /// The finished document.
+    pub fn finish(self) -> String {
+        format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n{}</svg>\n",
+            self.body,
+            w = n(self.width),
+            h = n(self.height)
+        )
+    }
+}
+
+fn points(pts: &[(f64, f64)]) -> String {
+    let mut s = String::new();
+    for (i, p) in pts.iter().enumerate() {
+        if i > 0 {
+            s.push(' ');
+        }
+        let _ = write!(s, "{},{}", n(p.0), n(p.1));
+    }
+    s
+}
+
+/// A colour `#rrggbb` from components in `[0, 1]`.
+pub fn rgb(r: f64, g: f64, b: f64) -> String {
+    let c = |v: f64| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", c(r), c(g), c(b))
+}
+
+fn interp(stops: &[(f64, [f64; 3])], t: f64) -> String {
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    for w in stops.windows(2) {
+        let (t0, c0) = w[0];
+        let (t1, c1) = w[1];
+        if t <= t1 {
+            let s = if t1 > t0 { (t - t0) / (t1 - t0) } else { 0.0 };
+            return rgb(
+                c0[0] + s * (c1[0] - c0[0]),
+                c0[1] + s * (c1[1] - c0[1]),
+                c0[2] + s * (c1[2] - c0[2]),
+            );
+        }
+    }
+    let c = stops[stops.len() - 1].1;
+    rgb(c[0], c[1], c[2])
+}
+
+/// A sequential colour map (dark blue → teal → yellow) for `t` in `[0, 1]`.
+pub fn sequential(t: f64) -> String {
+    interp(
+        &[
+            (0.0, [0.267, 0.005, 0.329]),
+            (0.25, [0.230, 0.322, 0.546]),
+            (0.5, [0.128, 0.567, 0.551]),
+            (0.75, [0.369, 0.789, 0.383]),
+            (1.0, [0.993, 0.906, 0.144]),
+        ],
+        t,
+    )
+}
+
+/// A diverging colour map (blue → white → red) for `t` in `[0, 1]` (white at 0.5).
+pub fn diverging(t: f64) -> String {
+    interp(
+        &[
+            (0.0, [0.13, 0.40, 0.67]),
+            (0.5, [0.97, 0.97, 0.97]),
+            (1.0, [0.70, 0.09, 0.17]),
+        ],
+        t,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_well() {
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(1.5), "1.5");
+        assert_eq!(num(-0.25), "−0.25");
+        assert_eq!(num(1562.6), "1563");
+        assert_eq!(num(1.5626e6), "1.563e6");
+        assert_eq!(num(2.0e-5), "2e-5");
+        assert_eq!(n(-0.001), "0");
+    }
+
+    #[test]
+    fn ticks_are_nice() {
+        assert_eq!(ticks(0.0, 1.0, 5).len(), 6);
+        let (lo, hi) = nice_range(-0.3, 1.7);
+        assert!(lo <= -0.3 && hi >= 1.7);
+    }
+}
