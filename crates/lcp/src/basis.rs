@@ -231,7 +231,7 @@ impl Basis {
         }
     }
 
-    /// An estimate of the largest entry of the row of `B⁻¹` at `slot` (a tolerance scale).
+    /// A bound-like scale of the entries of the row of `B⁻¹` at `slot` (for tolerances).
     pub fn inverse_row_scale(&self, slot: usize, data: &[f64]) -> f64 {
         let g = self.kinv.max_entry();
         if self.slot_var[slot] < self.n {

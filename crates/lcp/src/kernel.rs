@@ -7,9 +7,8 @@ pub(crate) struct KernelInverse {
     k: usize,
     ld: usize,
     data: Vec<f64>,
-    /// An estimate of `max |G|`: exact after `assign`, raised by the new row and column of
-    /// `border` (a scale for tolerances, not a bound).
-    gmax: f64,
+    /// `max |G|`, computed on demand and cached until the next change (`NaN`: not known).
+    gmax: std::cell::Cell<f64>,
 }
 
 #[inline]
@@ -41,9 +40,21 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 impl KernelInverse {
-    /// An estimate of the largest entry of `G` (exact after a refactorisation).
+    /// The largest entry of `G` in magnitude (`O(k²)` after a change, then cached).
     pub fn max_entry(&self) -> f64 {
-        self.gmax
+        let g = self.gmax.get();
+        if !g.is_nan() {
+            return g;
+        }
+        let g = (0..self.k).fold(0.0f64, |m, b| {
+            self.col(b).iter().fold(m, |m, v| m.max(v.abs()))
+        });
+        self.gmax.set(g);
+        g
+    }
+
+    fn changed(&self) {
+        self.gmax.set(f64::NAN);
     }
 
     /// Replaces the content by the `k × k` matrix `f(a, b)`.
@@ -51,17 +62,16 @@ impl KernelInverse {
         self.k = k;
         self.ld = k.max(self.ld).max(8);
         self.data = vec![0.0; self.ld * self.ld];
-        self.gmax = 0.0;
+        self.changed();
         for b in 0..k {
             for a in 0..k {
-                let v = f(a, b);
-                self.gmax = self.gmax.max(v.abs());
-                self.data[b * self.ld + a] = v;
+                self.data[b * self.ld + a] = f(a, b);
             }
         }
     }
 
     pub fn clear(&mut self) {
+        self.changed();
         self.k = 0;
     }
 
@@ -127,15 +137,14 @@ impl KernelInverse {
             *c = -fa;
         }
         col[k] = 1.0 / sigma;
-        let new_col = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let new_row = vt.iter().fold(0.0f64, |m, v| m.max(v.abs())) / sigma.abs();
-        self.gmax = self.gmax.max(new_col).max(new_row);
+        self.changed();
         self.k = k + 1;
     }
 
     /// Removes row `a` and column `b` of `K` (a pivot on `G[a, b]`); the last row and column
     /// move into the freed places.
     pub fn remove(&mut self, a: usize, b: usize) {
+        self.changed();
         let k = self.k;
         let piv = self.get(a, b);
         let mut f: Vec<f64> = self.col(b).iter().map(|g| g / piv).collect();
@@ -161,6 +170,7 @@ impl KernelInverse {
 
     /// Replaces column `a` of `K` (row `a` of `G`) given `ũ = G u` for the new column.
     pub fn replace_column(&mut self, a: usize, ut: &[f64]) {
+        self.changed();
         let piv = ut[a];
         for c in 0..self.k {
             let ra = self.get(a, c) / piv;
@@ -174,6 +184,7 @@ impl KernelInverse {
 
     /// Replaces row `b` of `K` by `v`, given `w = G e_b`, `ṽᵀ = vᵀ G` and `vᵀ w`.
     pub fn replace_row(&mut self, b: usize, w: &[f64], vt: &[f64], vw: f64) {
+        self.changed();
         for (c, &vc) in vt.iter().enumerate().take(self.k) {
             let corr = (vc - if c == b { 1.0 } else { 0.0 }) / vw;
             if corr != 0.0 {

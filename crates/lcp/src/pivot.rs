@@ -65,6 +65,8 @@ pub(crate) struct Pivoter<'a> {
     value_scale: f64,
     /// Kernel residual seen on the last entering column.
     drift: f64,
+    /// Pivots since the basic values were last recomputed from the data.
+    since_values: usize,
 }
 
 impl<'a> Pivoter<'a> {
@@ -93,6 +95,7 @@ impl<'a> Pivoter<'a> {
             refactorizations: 0,
             value_scale,
             drift: 0.0,
+            since_values: 0,
         }
     }
 
@@ -239,6 +242,20 @@ impl<'a> Pivoter<'a> {
         Some((pick, val(pick) / alpha[pick]))
     }
 
+    /// Whether another candidate comes within `1e-7` (relative) of the minimum ratio at `slot`:
+    /// a tie that drift of the updated basic values could misjudge.
+    fn near_tie(&self, alpha: &[f64], slot: usize) -> bool {
+        let val = |i: usize| self.beta[i].max(0.0);
+        let rmin = val(slot) / alpha[slot];
+        let thr = self.tol.pivot * max_abs(alpha);
+        let zero = self.zero_value();
+        (0..alpha.len()).any(|i| {
+            i != slot
+                && alpha[i] > thr
+                && val(i) - rmin * alpha[i] <= 1e-7 * (val(i) + rmin * alpha[i]) + zero
+        })
+    }
+
     /// Lemke's first step: the driver enters at the row that makes the basis feasible, the
     /// lexicographically largest `β_i/α_i` over `α_i < 0`. Returns the slot, or `None` when the
     /// basis is already feasible.
@@ -287,13 +304,22 @@ impl<'a> Pivoter<'a> {
         self.basis.pivot(self.cols, entering, slot, alpha);
         self.pivots += 1;
         self.since_refactor += 1;
-        // Refactorising costs O(k³); doing it every ~k pivots keeps its share per pivot at
-        // O(k²), the order of an update. Lost accuracy triggers it earlier (`drift`).
-        let interval = self.refactor_interval.max(self.basis.kernel_size());
+        self.since_values += 1;
+        // Refactorising costs O(k³); doing it every ~k/4 pivots keeps its share per pivot at
+        // O(k²), the order of an update, and bounds the drift of the updated inverse. Lost
+        // accuracy on an entering column triggers it earlier (`drift`).
+        let interval = self.refactor_interval.max(self.basis.kernel_size() / 4);
         if self.since_refactor >= interval || self.drift > DRIFT {
             self.refactor()?;
         }
         Ok(leaving)
+    }
+
+    /// Basic values recomputed from the data with the current kernel inverse (`O(n·k + k²)`),
+    /// free of the drift that the updates `β −= θ·α` accumulate.
+    pub fn refresh_values(&mut self) {
+        self.beta = self.basis.solve(self.cols, &self.cols.h);
+        self.since_values = 0;
     }
 
     /// Fresh factorisation of the kernel and recomputation of the basic values from the data.
@@ -301,6 +327,7 @@ impl<'a> Pivoter<'a> {
         self.basis.refactor(self.cols)?;
         self.beta = self.basis.solve(self.cols, &self.cols.h);
         self.since_refactor = 0;
+        self.since_values = 0;
         self.drift = 0.0;
         self.refactorizations += 1;
         Ok(())
@@ -340,17 +367,21 @@ impl<'a> Pivoter<'a> {
             let (mut alpha, drift) = self.basis.ftran_checked(self.cols, entering);
             self.drift = drift;
             let mut step = self.ratio_test(&alpha);
-            // A ray or a tiny pivot is judged on a fresh factorisation, never on updates.
-            let doubtful = match step {
-                None => true,
-                Some((slot, _)) => alpha[slot] < 1e-6 * max_abs(&alpha),
-            };
-            if (doubtful || drift > DRIFT) && self.since_refactor > 0 {
+            // A ray is judged on a fresh factorisation, never on updates. A tiny pivot is judged
+            // on basic values recomputed from the data (the updated ones drift, and near-zero
+            // values decide ties); the column itself is accurate while the kernel's residual is.
+            if (step.is_none() || drift > DRIFT) && self.since_refactor > 0 {
                 if self.refactor().is_err() {
                     return (Ending::Singular, entering);
                 }
                 alpha = self.basis.ftran(self.cols, entering);
                 step = self.ratio_test(&alpha);
+            } else if let Some((slot, _)) = step {
+                let tiny = alpha[slot] < 1e-6 * max_abs(&alpha);
+                if (tiny || self.near_tie(&alpha, slot)) && self.since_values > 0 {
+                    self.refresh_values();
+                    step = self.ratio_test(&alpha);
+                }
             }
             let amax = max_abs(&alpha);
             // How far the driver moves along this segment.
