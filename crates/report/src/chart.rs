@@ -140,8 +140,8 @@ pub fn chart(
     let m = selected.len().max(1);
     let cols = ((m as f64 * 1.5).sqrt().ceil() as usize).clamp(1, 6).min(m);
     let rows = m.div_ceil(cols);
-    let (pw, ph) = (200.0, 120.0);
-    let (gap_x, gap_y) = (16.0, 40.0);
+    let (pw, ph) = (180.0, 110.0);
+    let (gap_x, gap_y) = (58.0, 40.0);
     let left = 72.0;
     let width = left + cols as f64 * (pw + gap_x) + 20.0;
 
@@ -161,7 +161,7 @@ pub fn chart(
         ),
     };
     let mut caption = format!(
-        "The {what} of each pair against the load p, exact at p = 0, at every event and at the end, straight in between. Red marks: events of the pair (numbers as in the list below); grey lines: events of other pairs."
+        "The {what} of each pair against the load p, exact at p = 0, at every event and at the end, straight in between. Each panel has its own vertical scale. Red marks: events of the pair (numbers as in the list below); grey lines: events of other pairs."
     );
     if sol.tightening > 0.0 {
         caption.push_str(&format!(
@@ -170,7 +170,7 @@ pub fn chart(
         ));
     }
     let cap_lines = wrap(&caption, 9.0, width - 40.0);
-    let top = 40.0 + cap_lines.len() as f64 * 14.0 + 30.0;
+    let top = 40.0 + cap_lines.len() as f64 * 14.0 + 44.0;
 
     // event list
     let labels: Vec<(f64, String)> = sol
@@ -202,7 +202,7 @@ pub fn chart(
         );
     }
     // legend
-    let ly = top - 18.0;
+    let ly = top - 30.0;
     g.line((20.0, ly - 3.0), (44.0, ly - 3.0), C_NORMAL, 2.0, "");
     g.math(a_lab, 50.0, ly, 9.0, Anchor::Start, "#222222");
     let x2 = 50.0 + font::width_rich(a_lab, 9.0) + 30.0;
@@ -243,11 +243,28 @@ pub fn chart(
     };
     let pmax = s.loads.iter().cloned().fold(0.0f64, f64::max);
     let pmin = s.loads.iter().cloned().fold(0.0f64, f64::min);
-    let (mut lo, mut hi) = (0.0f64, 0.0f64);
-    for pr in &s.pairs {
-        for &i in selected {
-            if let Some(r) = pr.get(i) {
-                let (a, b) = val(r);
+    let global_max = s
+        .pairs
+        .iter()
+        .flatten()
+        .map(|r| {
+            let (a, b) = val(r);
+            a.abs().max(b.abs())
+        })
+        .filter(|v| v.is_finite())
+        .fold(0.0f64, f64::max);
+    let (p0, p1) = nice_range(pmin, pmax);
+    let xt = ticks(p0, p1, 4);
+
+    for (k, &pi) in selected.iter().enumerate() {
+        let (r, c) = (k / cols, k % cols);
+        let ox = left + c as f64 * (pw + gap_x);
+        let oy = top + r as f64 * (ph + gap_y);
+        // each panel its own vertical scale, so that small forces show their kinks too
+        let (mut lo, mut hi) = (0.0f64, 0.0f64);
+        for pr in &s.pairs {
+            if let Some(x) = pr.get(pi) {
+                let (a, b) = val(x);
                 for v in [a, b] {
                     if v.is_finite() {
                         lo = lo.min(v);
@@ -256,24 +273,18 @@ pub fn chart(
                 }
             }
         }
-    }
-    let (lo, hi) = nice_range(lo, hi);
-    let (p0, p1) = nice_range(pmin, pmax);
-    let xt = ticks(p0, p1, 4);
-    let yt = ticks(lo, hi, 4);
-
-    for (k, &pi) in selected.iter().enumerate() {
-        let (r, c) = (k / cols, k % cols);
-        let ox = left + c as f64 * (pw + gap_x);
-        let oy = top + r as f64 * (ph + gap_y);
+        let tiny = 1e-12 * global_max;
+        if hi - lo <= tiny {
+            (lo, hi) = (0.0, 0.0);
+        }
+        let (lo, hi) = nice_range(lo, hi);
+        let yt = ticks(lo, hi, 4);
         let fx = |p: f64| ox + (p - p0) / (p1 - p0) * pw;
         let fy = |v: f64| oy + ph - (v - lo) / (hi - lo) * ph;
         g.rect(ox, oy, pw, ph, "#fbfbfb", "#999999", 0.8);
         for &t in &yt {
             g.line((ox, fy(t)), (ox + pw, fy(t)), "#e4e4e4", 0.6, "");
-            if c == 0 {
-                g.text(&num(t), ox - 5.0, fy(t) + 3.5, 8.0, Anchor::End, "#444444");
-            }
+            g.text(&num(t), ox - 4.0, fy(t) + 3.5, 8.0, Anchor::End, "#444444");
         }
         for &t in &xt {
             g.line((fx(t), oy), (fx(t), oy + ph), "#e4e4e4", 0.6, "");

@@ -135,8 +135,10 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
 
     // moments
     let lines: Vec<_> = res.map(|r| r.lines.clone()).unwrap_or_default();
+    let is_frame = |e: usize| matches!(model.elements().get(e), Some(Element::Frame { .. }));
     let mmax = lines
         .iter()
+        .filter(|l| is_frame(l.element.0))
         .flat_map(|l| l.diagram.iter().map(|d| d.m.abs()))
         .fold(0.0f64, f64::max);
     let km = if options.moments && mmax > 0.0 {
@@ -329,12 +331,16 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
                 if d.m.abs() >= 0.999 * mmax {
                     let b = [p0[0] + e[0] * d.s, p0[1] + e[1] * d.s];
                     let q = view.p(b[0] - yl[0] * d.m * km, b[1] - yl[1] * d.m * km);
+                    let o = view.p(b[0], b[1]);
+                    let (dx, dy) = (q.0 - o.0, q.1 - o.1);
+                    let l = dx.hypot(dy).max(1e-9);
+                    let (tx, ty) = (q.0 + 14.0 * dx / l, q.1 + 14.0 * dy / l + 3.5);
                     g.text(
                         &format!("M = {}", num(d.m)),
-                        q.0 + 4.0,
-                        q.1 - 4.0,
+                        tx,
+                        ty,
                         8.5,
-                        Anchor::Start,
+                        Anchor::Middle,
                         "#5b2a7a",
                     );
                 }
@@ -383,8 +389,10 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         let c = (c.0 + off * nv[0], c.1 - off * nv[1]);
         let f = force(i);
         if kf > 0.0 && f[0].hypot(f[1]) > 1e-9 * fmax {
-            let tail = (c.0 - kf * k * f[0], c.1 + kf * k * f[1]);
-            g.arrow(tail, c, "#2e7d32", 1.6, 8.0);
+            let (dx, dy) = (kf * k * f[0], -kf * k * f[1]);
+            let l = dx.hypot(dy);
+            let tip = (c.0 - 7.0 * dx / l, c.1 - 7.0 * dy / l); // stop at the symbol's edge
+            g.arrow((tip.0 - dx, tip.1 - dy), tip, "#2e7d32", 1.6, 8.0);
         }
         let state = sol
             .pairs
