@@ -65,6 +65,9 @@ pub struct Event {
     pub name: String,
     /// What happens.
     pub kind: EventKind,
+    /// A friction event of a pair that is open at the time: it only uses up the sideways
+    /// capacity that the artificial tightening gives an open pair (no force is transmitted).
+    pub while_open: bool,
 }
 
 impl fmt::Display for Event {
@@ -76,7 +79,11 @@ impl fmt::Display for Event {
             EventKind::StartsSlippingMinus => "starts to slip in the − direction",
             EventKind::Sticks => "sticks again",
         };
-        write!(f, "pair {} {what}", self.name)
+        write!(f, "pair {} {what}", self.name)?;
+        if self.while_open {
+            f.write_str(" (while open: within the tightening only)")?;
+        }
+        Ok(())
     }
 }
 
@@ -262,16 +269,35 @@ pub fn solve(
         .map_err(|e| ContactError::Settings(e.to_string()))?;
     let m = lcp.pairs;
     let names = zone.pair_names.clone();
+    // Which pairs are open, followed along the path, to mark friction events of open pairs.
+    let mut open = vec![false; m];
+    if let Some(start) = path.breakpoints.first() {
+        for &(i, v) in &start.z {
+            if i < m && v > 0.0 {
+                open[i] = true;
+            }
+        }
+    }
     let steps: Vec<LoadStep> = path
         .steps
         .iter()
-        .map(|s| LoadStep {
-            index: s.index,
-            p: s.p,
-            entering: lcp.label(s.entering),
-            leaving: lcp.label(s.leaving),
-            events: events_of(s.leaving, m, &names),
-            turning: s.turning,
+        .map(|s| {
+            let mut events = events_of(s.leaving, m, &names);
+            for e in &mut events {
+                match e.kind {
+                    EventKind::Opens => open[e.pair] = true,
+                    EventKind::Closes => open[e.pair] = false,
+                    _ => e.while_open = open[e.pair],
+                }
+            }
+            LoadStep {
+                index: s.index,
+                p: s.p,
+                entering: lcp.label(s.entering),
+                leaving: lcp.label(s.leaving),
+                events,
+                turning: s.turning,
+            }
         })
         .collect();
     let outcome = match path.status {
@@ -366,6 +392,7 @@ fn events_of(leaving: Var, m: usize, names: &[String]) -> Vec<Event> {
             pair: i % m,
             name: names[i % m].clone(),
             kind,
+            while_open: false,
         }]
     };
     match leaving {
