@@ -222,12 +222,13 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         report_files(unilateral_io::write_vtk(&a, &dir), &dir)?;
                     }
                     if let Some(dir) = report {
-                        let files = unilateral_report::write_report(
-                            &a,
-                            &dir,
-                            &unilateral_report::ReportOptions::default(),
-                        )
-                        .map_err(|e| Failure::Input(e.to_string()))?;
+                        let options = unilateral_report::ReportOptions {
+                            title: problem.title.clone(),
+                            ..Default::default()
+                        };
+                        let files =
+                            unilateral_report::write_report_for(&problem.model, &a, &dir, &options)
+                                .map_err(|e| Failure::Input(e.to_string()))?;
                         report_files(Ok(files), &dir)?;
                     }
                 }

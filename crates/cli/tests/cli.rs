@@ -587,3 +587,31 @@ fn bad_models_exit_2_with_located_messages() {
     }
     assert!(count >= 15, "only {count} bad models");
 }
+
+#[test]
+fn report_writes_pictures_and_a_self_contained_html() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .arg("--report")
+        .arg("rep");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    for f in [
+        "load-path-forces.svg",
+        "load-path-displacements.svg",
+        "structure.svg",
+    ] {
+        let svg = std::fs::read_to_string(cmd.path("rep").join(f)).unwrap();
+        assert!(svg.starts_with("<svg") || svg.starts_with("<?xml"), "{f}");
+        assert!(!svg.contains("<text"), "{f}: text must not depend on fonts");
+    }
+    let html = std::fs::read_to_string(cmd.path("rep/report.html")).unwrap();
+    assert!(html.matches("<svg").count() >= 3, "pictures inline");
+    assert!(!html.contains("http://") || html.contains("http://www.w3.org/2000/svg"));
+    let contact = TestCommand::new(&["solve"])
+        .arg(example1())
+        .arg("--report")
+        .arg("r2");
+    assert_eq!(contact.run().code, 0);
+    assert!(contact.path("r2/report.html").is_file());
+}
