@@ -1,12 +1,630 @@
-//! ParaView output (work in progress).
+//! ParaView output: the mesh and the contact pairs as VTK XML unstructured grids (ASCII), one
+//! pair of files per state of the load path, and a `.pvd` collection to step through them.
+//!
+//! Files written into the output directory (`NNN` = 0-based snapshot number, zero-padded):
+//!
+//! * `mesh_NNN.vtu` — points = nodes (`z = 0`, undeformed), cells = elements in element order
+//!   (frames and bars as `VTK_LINE`, plane elements as `VTK_QUAD`).
+//!   Point data: `displacement` (`ux, uy, 0`, for *Warp By Vector*), `rotation` (`rz`),
+//!   `nodal_stress` (`sxx, syy, txy` extrapolated from the Gauss points and averaged over the
+//!   plane elements at the node; 0 at nodes without one) and `nodal_von_mises`.
+//!   Cell data: `kind` (1 frame, 2 bar, 3 plane), `material` (0-based number of the distinct
+//!   section or plane material, in order of first use), `element` (0-based element index),
+//!   `stress` (`sxx, syy, txy` averaged over the 4 Gauss points; 0 for lines), `szz`,
+//!   `von_mises` (of the averaged stress), `axial_force` (the signed `N` of largest magnitude
+//!   along a frame or bar, tension positive), `max_abs_moment` and `max_abs_shear` (0 for
+//!   plane elements).
+//! * `pairs_NNN.vtu` — one cell per contact pair, in pair order: a `VTK_VERTEX` at node B for a
+//!   pair with the ground, a `VTK_LINE` from A to B for a node-to-node pair. Points `0..m` are
+//!   the B nodes of the pairs; the A nodes of node-to-node pairs follow.
+//!   Cell data: `state` (0 open, 1 stick, 2 slip+, 3 slip−), `x_n`, `x_t`, `z_n`, `z_t`,
+//!   `force` (`x_n·n + x_t·t`, the force on B), `normal`, `tangent`, `friction`, `pair`.
+//!   Point data (so that glyphs can be drawn and coloured without filters): the node's
+//!   `displacement`, the pair's `force` on that node (`−force` at A), `state`, `x_n`, `x_t`,
+//!   `z_n`, `z_t` and `pair`.
+//! * `unilateral.pvd` — the collection: for every snapshot, `mesh_NNN.vtu` as part 0 and
+//!   `pairs_NNN.vtu` as part 1 (no pairs files when the model has no pairs), `timestep` = the
+//!   load parameter `p`.
+//!
+//! The snapshots are the start of the path (`p = 0`) and the loads of the events of the path
+//! below the reported load (when the results there can be recovered), sorted by `p` without
+//! repeats, and the reported solution last. Each `.vtu` also carries its load as the field
+//! `TimeValue`.
 
+// `lib.rs` re-exports only `write_vtk` so far; until it also re-exports `write_vtk_for` and
+// `PVD_FILE`, the library itself does not use them.
+#![allow(dead_code)]
+
+use std::borrow::Cow;
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::io;
 use std::path::{Path, PathBuf};
 
+use unilateral_analysis::Analysis;
+use unilateral_contact::{PairResult, PairState};
+use unilateral_fem::{Element, Endpoint, Model, Results};
+
+/// Name of the collection file written by [`write_vtk_for`].
+pub const PVD_FILE: &str = "unilateral.pvd";
+
+/// VTK cell type of a vertex.
+const VTK_VERTEX: u8 = 1;
+/// VTK cell type of a 2-node line.
+const VTK_LINE: u8 = 3;
+/// VTK cell type of a 4-node quadrilateral.
+const VTK_QUAD: u8 = 9;
+
 /// Writes the model and its results as VTK XML files into `dir`; returns the files written.
-pub fn write_vtk(
-    analysis: &unilateral_analysis::Analysis,
-    dir: &Path,
-) -> std::io::Result<Vec<PathBuf>> {
+///
+/// The node coordinates are not reachable from an [`Analysis`]: this always fails with
+/// [`io::ErrorKind::Unsupported`]. Use [`write_vtk_for`] with the analysed model.
+pub fn write_vtk(analysis: &Analysis, dir: &Path) -> io::Result<Vec<PathBuf>> {
     let _ = (analysis, dir);
-    Ok(Vec::new())
+    Err(io::Error::new(
+        io::ErrorKind::Unsupported,
+        "the VTK output needs the model's node coordinates, which the analysis does not keep \
+         within reach (use write_vtk_for with the model)",
+    ))
+}
+
+/// Writes the mesh, the contact pairs and their results along the load path as VTK XML files
+/// into `dir` (created if missing), with a `.pvd` collection ([`PVD_FILE`]) for ParaView;
+/// returns the files written, the collection last. See the module documentation for the
+/// contents.
+///
+/// `model` must be the model `analysis` was made from; a model whose node, element or pair
+/// counts do not match gives an [`io::ErrorKind::InvalidInput`] error.
+pub fn write_vtk_for(model: &Model, analysis: &Analysis, dir: &Path) -> io::Result<Vec<PathBuf>> {
+    check_match(model, analysis)?;
+    let snapshots = snapshots(analysis);
+    let mesh = MeshGeometry::new(model);
+    let pairs = PairGeometry::new(model, analysis);
+    std::fs::create_dir_all(dir)?;
+    let width = snapshots.len().saturating_sub(1).to_string().len().max(3);
+    let mut files = Vec::new();
+    let mut pvd = String::from(
+        "<?xml version=\"1.0\"?>\n\
+         <VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
+         \x20 <Collection>\n",
+    );
+    let empty;
+    let list: &[Snapshot] = if snapshots.is_empty() {
+        // No state of the path could be recovered: the geometry alone.
+        empty = [Snapshot {
+            p: 0.0,
+            pairs: Cow::Borrowed(&[]),
+            results: None,
+        }];
+        &empty
+    } else {
+        &snapshots
+    };
+    for (k, snap) in list.iter().enumerate() {
+        let name = format!("mesh_{k:0width$}.vtu");
+        files.push(write_file(dir, &name, &mesh.vtu(model, snap))?);
+        dataset(&mut pvd, snap.p, 0, &name);
+        if pairs.m > 0 {
+            let name = format!("pairs_{k:0width$}.vtu");
+            files.push(write_file(dir, &name, &pairs.vtu(snap))?);
+            dataset(&mut pvd, snap.p, 1, &name);
+        }
+    }
+    pvd.push_str("  </Collection>\n</VTKFile>\n");
+    files.push(write_file(dir, PVD_FILE, &pvd)?);
+    Ok(files)
+}
+
+fn write_file(dir: &Path, name: &str, text: &str) -> io::Result<PathBuf> {
+    let path = dir.join(name);
+    std::fs::write(&path, text)?;
+    Ok(path)
+}
+
+fn dataset(pvd: &mut String, p: f64, part: usize, file: &str) {
+    pvd.push_str("    <DataSet timestep=\"");
+    num(pvd, p);
+    let _ = writeln!(pvd, "\" group=\"\" part=\"{part}\" file=\"{file}\"/>");
+}
+
+fn invalid(message: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidInput, message)
+}
+
+/// The model must be the analysed one: same numbers of pairs, nodes and elements, and the
+/// element results on elements of the right kind.
+fn check_match(model: &Model, a: &Analysis) -> io::Result<()> {
+    if model.pairs().len() != a.condensed.pairs() {
+        return Err(invalid(format!(
+            "the model has {} contact pairs but the analysis {}: not the analysed model",
+            model.pairs().len(),
+            a.condensed.pairs()
+        )));
+    }
+    let Some(r) = &a.results else {
+        return Ok(());
+    };
+    let (nodes, elements) = (model.nodes().len(), model.elements().len());
+    if r.displacements.len() != nodes || r.nodal_stress.len() != nodes {
+        return Err(invalid(format!(
+            "the model has {nodes} nodes but the results {}: not the analysed model",
+            r.displacements.len()
+        )));
+    }
+    let lines_ok = r.lines.iter().all(|l| {
+        matches!(
+            model.elements().get(l.element.0),
+            Some(Element::Frame { .. } | Element::Bar { .. })
+        )
+    });
+    let planes_ok = r.planes.iter().all(|pl| {
+        matches!(
+            model.elements().get(pl.element.0),
+            Some(Element::Plane { .. })
+        )
+    });
+    if !lines_ok || !planes_ok || r.lines.len() + r.planes.len() != elements {
+        return Err(invalid(format!(
+            "the model has {elements} elements but the results {} lines and {} plane \
+             elements: not the analysed model",
+            r.lines.len(),
+            r.planes.len()
+        )));
+    }
+    Ok(())
+}
+
+/// One state of the load path.
+struct Snapshot<'a> {
+    p: f64,
+    pairs: Cow<'a, [PairResult]>,
+    results: Option<Cow<'a, Results>>,
+}
+
+/// The start, the events below the reported load (where recoverable) and the reported
+/// solution, sorted by load without repeats.
+fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
+    let same = |x: f64, y: f64| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0);
+    let last = a.p().zip(a.results.as_ref());
+    let mut loads: Vec<f64> = std::iter::once(0.0)
+        .chain(a.event_loads())
+        .filter(|p| p.is_finite())
+        .filter(|&p| last.is_none_or(|(end, _)| p < end && !same(p, end)))
+        .collect();
+    loads.sort_by(f64::total_cmp);
+    loads.dedup_by(|x, y| same(*x, *y));
+    let mut out: Vec<Snapshot> = loads
+        .into_iter()
+        .filter_map(|p| {
+            let (pairs, r) = a.results_at(p).ok()?;
+            Some(Snapshot {
+                p,
+                pairs: Cow::Owned(pairs),
+                results: Some(Cow::Owned(r)),
+            })
+        })
+        .collect();
+    if let Some((p, r)) = last {
+        out.push(Snapshot {
+            p,
+            pairs: Cow::Borrowed(&a.solution.pairs),
+            results: Some(Cow::Borrowed(r)),
+        });
+    }
+    out
+}
+
+/// The parts of a mesh file that do not change along the path.
+struct MeshGeometry {
+    n_points: usize,
+    n_cells: usize,
+    /// `<Points>` and `<Cells>`.
+    grid: String,
+    /// Cell arrays `kind`, `material`, `element`.
+    cell_ids: String,
+}
+
+impl MeshGeometry {
+    fn new(model: &Model) -> Self {
+        let mut grid = String::from("      <Points>\n");
+        f64_array(
+            &mut grid,
+            "Points",
+            &[],
+            model.nodes().iter().map(|&[x, y]| [x, y, 0.0]),
+        );
+        grid.push_str("      </Points>\n      <Cells>\n");
+        let elements = model.elements();
+        let mut connectivity = Vec::new();
+        let mut offsets = Vec::with_capacity(elements.len());
+        let mut types = Vec::with_capacity(elements.len());
+        let mut kinds = Vec::with_capacity(elements.len());
+        let mut materials = Vec::with_capacity(elements.len());
+        let mut seen: HashMap<(u8, Vec<u64>), i64> = HashMap::new();
+        for e in elements {
+            let (kind, nodes, ty, key): (u8, &[_], u8, Vec<f64>) = match e {
+                Element::Frame { nodes, section, .. } => (1, nodes, VTK_LINE, section_key(section)),
+                Element::Bar { nodes, section } => (2, nodes, VTK_LINE, section_key(section)),
+                Element::Plane {
+                    nodes,
+                    material: m,
+                    analysis,
+                    formulation,
+                } => {
+                    let a = matches!(analysis, unilateral_fem::PlaneAnalysis::PlaneStrain);
+                    let f = matches!(formulation, unilateral_fem::PlaneFormulation::QM6);
+                    let key = vec![
+                        m.e,
+                        m.nu,
+                        m.thickness,
+                        m.alpha,
+                        a as u8 as f64,
+                        f as u8 as f64,
+                    ];
+                    (3, nodes, VTK_QUAD, key)
+                }
+            };
+            connectivity.extend(nodes.iter().map(|n| n.0 as i64));
+            offsets.push(connectivity.len() as i64);
+            types.push(i64::from(ty));
+            kinds.push(i64::from(kind));
+            let next = seen.len() as i64;
+            let bits = key.iter().map(|v| v.to_bits()).collect();
+            materials.push(*seen.entry((kind.min(2), bits)).or_insert(next));
+        }
+        int_array(&mut grid, "Int64", "connectivity", connectivity);
+        int_array(&mut grid, "Int64", "offsets", offsets);
+        int_array(&mut grid, "UInt8", "types", types);
+        grid.push_str("      </Cells>\n");
+        let mut cell_ids = String::new();
+        int_array(&mut cell_ids, "Int32", "kind", kinds);
+        int_array(&mut cell_ids, "Int32", "material", materials);
+        int_array(&mut cell_ids, "Int64", "element", 0..elements.len() as i64);
+        Self {
+            n_points: model.nodes().len(),
+            n_cells: elements.len(),
+            grid,
+            cell_ids,
+        }
+    }
+
+    fn vtu(&self, model: &Model, snap: &Snapshot) -> String {
+        let mut s = header(snap.p, self.n_points, self.n_cells);
+        if let Some(r) = snap.results.as_deref() {
+            point_results(&mut s, r);
+        }
+        s.push_str(&self.grid);
+        s.push_str("      <CellData Scalars=\"kind\">\n");
+        s.push_str(&self.cell_ids);
+        if let Some(r) = snap.results.as_deref() {
+            cell_results(&mut s, model, r);
+        }
+        s.push_str("      </CellData>\n");
+        s.push_str(FOOTER);
+        s
+    }
+}
+
+/// `E, A, I, h, α` of a frame or bar section (bars: `I` and `h` do not matter to them, but
+/// the same numbers make the same material).
+fn section_key(s: &unilateral_fem::FrameSection) -> Vec<f64> {
+    vec![s.e, s.area, s.inertia, s.depth, s.alpha]
+}
+
+fn point_results(s: &mut String, r: &Results) {
+    s.push_str("      <PointData Vectors=\"displacement\">\n");
+    f64_array(
+        s,
+        "displacement",
+        &["ux", "uy", "uz"],
+        r.displacements.iter().map(|d| [d[0], d[1], 0.0]),
+    );
+    f64_array(s, "rotation", &[], r.displacements.iter().map(|d| [d[2]]));
+    let nodal = |n: &Option<[f64; 4]>| n.unwrap_or([0.0; 4]);
+    f64_array(
+        s,
+        "nodal_stress",
+        &["sxx", "syy", "txy"],
+        r.nodal_stress.iter().map(|n| {
+            let [sx, sy, t, _] = nodal(n);
+            [sx, sy, t]
+        }),
+    );
+    f64_array(
+        s,
+        "nodal_von_mises",
+        &[],
+        r.nodal_stress.iter().map(|n| [von_mises(nodal(n))]),
+    );
+    s.push_str("      </PointData>\n");
+}
+
+fn cell_results(s: &mut String, model: &Model, r: &Results) {
+    let n = model.elements().len();
+    let mut stress = vec![[0.0; 4]; n];
+    for pl in &r.planes {
+        let mut avg = [0.0; 4];
+        for g in &pl.stress {
+            for (a, v) in avg.iter_mut().zip(g) {
+                *a += v / pl.stress.len() as f64;
+            }
+        }
+        stress[pl.element.0] = avg;
+    }
+    let mut line = vec![[0.0; 3]; n];
+    for l in &r.lines {
+        let mut v = [0.0f64; 3];
+        for pt in &l.diagram {
+            if pt.n.abs() > v[0].abs() {
+                v[0] = pt.n;
+            }
+            v[1] = v[1].max(pt.m.abs());
+            v[2] = v[2].max(pt.q.abs());
+        }
+        line[l.element.0] = v;
+    }
+    f64_array(
+        s,
+        "stress",
+        &["sxx", "syy", "txy"],
+        stress.iter().map(|t| [t[0], t[1], t[2]]),
+    );
+    f64_array(s, "szz", &[], stress.iter().map(|t| [t[3]]));
+    f64_array(s, "von_mises", &[], stress.iter().map(|&t| [von_mises(t)]));
+    f64_array(s, "axial_force", &[], line.iter().map(|v| [v[0]]));
+    f64_array(s, "max_abs_moment", &[], line.iter().map(|v| [v[1]]));
+    f64_array(s, "max_abs_shear", &[], line.iter().map(|v| [v[2]]));
+}
+
+/// Von Mises stress of `[σxx, σyy, τxy, σzz]`.
+fn von_mises([sx, sy, txy, sz]: [f64; 4]) -> f64 {
+    (0.5 * ((sx - sy).powi(2) + (sy - sz).powi(2) + (sz - sx).powi(2)) + 3.0 * txy * txy).sqrt()
+}
+
+/// The parts of a pairs file that do not change along the path.
+struct PairGeometry {
+    m: usize,
+    n_points: usize,
+    /// Node of each point (B nodes of the pairs, then A nodes of node-to-node pairs).
+    point_node: Vec<usize>,
+    /// Pair of each point.
+    point_pair: Vec<usize>,
+    /// `+1` at B, `−1` at A.
+    point_sign: Vec<f64>,
+    /// `<Points>` and `<Cells>`.
+    grid: String,
+    normals: Vec<[f64; 2]>,
+    tangents: Vec<[f64; 2]>,
+    friction: Vec<f64>,
+}
+
+impl PairGeometry {
+    fn new(model: &Model, a: &Analysis) -> Self {
+        let specs = model.pairs();
+        let m = specs.len();
+        let mut point_node: Vec<usize> = specs.iter().map(|p| p.b.0).collect();
+        let mut point_pair: Vec<usize> = (0..m).collect();
+        let mut point_sign = vec![1.0; m];
+        let mut connectivity = Vec::new();
+        let mut offsets = Vec::with_capacity(m);
+        let mut types = Vec::with_capacity(m);
+        for (i, p) in specs.iter().enumerate() {
+            match p.a {
+                Endpoint::Ground => types.push(i64::from(VTK_VERTEX)),
+                Endpoint::Node(n) => {
+                    connectivity.push(point_node.len() as i64);
+                    point_node.push(n.0);
+                    point_pair.push(i);
+                    point_sign.push(-1.0);
+                    types.push(i64::from(VTK_LINE));
+                }
+            }
+            connectivity.push(i as i64);
+            offsets.push(connectivity.len() as i64);
+        }
+        let nodes = model.nodes();
+        let mut grid = String::from("      <Points>\n");
+        f64_array(
+            &mut grid,
+            "Points",
+            &[],
+            point_node.iter().map(|&n| {
+                let [x, y] = nodes.get(n).copied().unwrap_or([0.0; 2]);
+                [x, y, 0.0]
+            }),
+        );
+        grid.push_str("      </Points>\n      <Cells>\n");
+        int_array(&mut grid, "Int64", "connectivity", connectivity);
+        int_array(&mut grid, "Int64", "offsets", offsets);
+        int_array(&mut grid, "UInt8", "types", types);
+        grid.push_str("      </Cells>\n");
+        let c = &a.condensed;
+        let pad = |v: &[[f64; 2]]| {
+            (0..m)
+                .map(|i| v.get(i).copied().unwrap_or([0.0; 2]))
+                .collect()
+        };
+        Self {
+            m,
+            n_points: point_node.len(),
+            point_node,
+            point_pair,
+            point_sign,
+            grid,
+            normals: pad(&c.normals),
+            tangents: pad(&c.tangents),
+            friction: (0..m)
+                .map(|i| c.friction.get(i).copied().unwrap_or(0.0))
+                .collect(),
+        }
+    }
+
+    /// Force of pair `i` on its node B.
+    fn force(&self, i: usize, r: &PairResult) -> [f64; 3] {
+        let (n, t) = (self.normals[i], self.tangents[i]);
+        [
+            r.x_n * n[0] + r.x_t * t[0],
+            r.x_n * n[1] + r.x_t * t[1],
+            0.0,
+        ]
+    }
+
+    fn vtu(&self, snap: &Snapshot) -> String {
+        let mut s = header(snap.p, self.n_points, self.m);
+        let pairs = &snap.pairs[..];
+        let have = pairs.len() == self.m && snap.results.is_some();
+        if let (true, Some(r)) = (have, snap.results.as_deref()) {
+            s.push_str("      <PointData Scalars=\"state\" Vectors=\"force\">\n");
+            let disp = |n: usize| r.displacements.get(n).copied().unwrap_or([0.0; 3]);
+            f64_array(
+                &mut s,
+                "displacement",
+                &["ux", "uy", "uz"],
+                self.point_node.iter().map(|&n| {
+                    let d = disp(n);
+                    [d[0], d[1], 0.0]
+                }),
+            );
+            f64_array(
+                &mut s,
+                "force",
+                &["fx", "fy", "fz"],
+                self.point_pair
+                    .iter()
+                    .zip(&self.point_sign)
+                    .map(|(&i, &sign)| self.force(i, &pairs[i]).map(|f| sign * f)),
+            );
+            let per_point =
+                |f: fn(&PairResult) -> f64| self.point_pair.iter().map(move |&i| [f(&pairs[i])]);
+            int_array(
+                &mut s,
+                "Int32",
+                "state",
+                self.point_pair.iter().map(|&i| state_code(pairs[i].state)),
+            );
+            f64_array(&mut s, "x_n", &[], per_point(|r| r.x_n));
+            f64_array(&mut s, "x_t", &[], per_point(|r| r.x_t));
+            f64_array(&mut s, "z_n", &[], per_point(|r| r.z_n));
+            f64_array(&mut s, "z_t", &[], per_point(|r| r.z_t));
+            int_array(
+                &mut s,
+                "Int64",
+                "pair",
+                self.point_pair.iter().map(|&i| i as i64),
+            );
+            s.push_str("      </PointData>\n");
+        }
+        s.push_str(&self.grid);
+        s.push_str("      <CellData Scalars=\"state\" Vectors=\"force\">\n");
+        if have {
+            int_array(
+                &mut s,
+                "Int32",
+                "state",
+                pairs.iter().map(|r| state_code(r.state)),
+            );
+            f64_array(&mut s, "x_n", &[], pairs.iter().map(|r| [r.x_n]));
+            f64_array(&mut s, "x_t", &[], pairs.iter().map(|r| [r.x_t]));
+            f64_array(&mut s, "z_n", &[], pairs.iter().map(|r| [r.z_n]));
+            f64_array(&mut s, "z_t", &[], pairs.iter().map(|r| [r.z_t]));
+            f64_array(
+                &mut s,
+                "force",
+                &["fx", "fy", "fz"],
+                pairs.iter().enumerate().map(|(i, r)| self.force(i, r)),
+            );
+        }
+        let v3 = |v: &[f64; 2]| [v[0], v[1], 0.0];
+        f64_array(&mut s, "normal", &[], self.normals.iter().map(v3));
+        f64_array(&mut s, "tangent", &[], self.tangents.iter().map(v3));
+        f64_array(&mut s, "friction", &[], self.friction.iter().map(|&f| [f]));
+        int_array(&mut s, "Int64", "pair", 0..self.m as i64);
+        s.push_str("      </CellData>\n");
+        s.push_str(FOOTER);
+        s
+    }
+}
+
+/// 0 open, 1 stick, 2 slip+, 3 slip−.
+fn state_code(s: PairState) -> i64 {
+    match s {
+        PairState::Open => 0,
+        PairState::Stick => 1,
+        PairState::SlipPlus => 2,
+        PairState::SlipMinus => 3,
+    }
+}
+
+/// The start of an unstructured-grid file up to the opening `<Piece>`, with the load as the
+/// field `TimeValue`.
+fn header(p: f64, points: usize, cells: usize) -> String {
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n\
+         <VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
+         \x20 <UnstructuredGrid>\n\
+         \x20   <FieldData>\n\
+         \x20     <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" \
+         format=\"ascii\">",
+    );
+    num(&mut s, p);
+    let _ = write!(
+        s,
+        "</DataArray>\n    </FieldData>\n    \
+         <Piece NumberOfPoints=\"{points}\" NumberOfCells=\"{cells}\">\n"
+    );
+    s
+}
+
+const FOOTER: &str = "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+
+/// A `Float64` data array, one tuple a line; `names` are the component names (none for a
+/// scalar or for unnamed components).
+fn f64_array<const N: usize>(
+    s: &mut String,
+    name: &str,
+    names: &[&str],
+    tuples: impl Iterator<Item = [f64; N]>,
+) {
+    let _ = write!(
+        s,
+        "        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{N}\""
+    );
+    for (k, c) in names.iter().enumerate() {
+        let _ = write!(s, " ComponentName{k}=\"{c}\"");
+    }
+    s.push_str(" format=\"ascii\">\n");
+    for t in tuples {
+        s.push_str("         ");
+        for v in t {
+            s.push(' ');
+            num(s, v);
+        }
+        s.push('\n');
+    }
+    s.push_str("        </DataArray>\n");
+}
+
+/// An integer data array of VTK type `ty`, twelve values a line.
+fn int_array(s: &mut String, ty: &str, name: &str, values: impl IntoIterator<Item = i64>) {
+    let _ = write!(
+        s,
+        "        <DataArray type=\"{ty}\" Name=\"{name}\" format=\"ascii\">"
+    );
+    for (k, v) in values.into_iter().enumerate() {
+        s.push_str(if k % 12 == 0 { "\n          " } else { " " });
+        let _ = write!(s, "{v}");
+    }
+    s.push_str("\n        </DataArray>\n");
+}
+
+/// A number as plain decimals where that is short, else in exponent form; both read back to
+/// the same `f64`.
+fn num(s: &mut String, x: f64) {
+    let _ = if x == 0.0 {
+        write!(s, "0")
+    } else if (1e-4..1e15).contains(&x.abs()) {
+        write!(s, "{x}")
+    } else {
+        write!(s, "{x:e}")
+    };
 }

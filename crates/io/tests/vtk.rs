@@ -1,0 +1,656 @@
+//! The ParaView output of the bundled examples, read back with a small XML parser: counts,
+//! connectivity, data arrays, the values of the reported solution and the `.pvd` collection.
+
+// `lib.rs` does not re-export `write_vtk_for` yet: compile the module into this test.
+#[path = "../src/vtk.rs"]
+mod vtk;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use unilateral_analysis::{analyze_named, Analysis, Names};
+use unilateral_fem::{Element, Endpoint, Model};
+use unilateral_io::{read_problem, Problem};
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+fn analyse(name: &str) -> (Model, Analysis) {
+    let Problem::Structural(problem) = read_problem(&example(name)).unwrap() else {
+        panic!("{name} is not a structural model");
+    };
+    let names = Names {
+        nodes: problem.names.nodes.clone(),
+        elements: problem.names.elements.clone(),
+    };
+    let a = analyze_named(&problem.model, &problem.settings, &names).unwrap();
+    (problem.model, a)
+}
+
+// ---------------------------------------------------------------------------------------------
+// A small XML parser: elements, attributes, text, the declaration and comments.
+
+#[derive(Debug)]
+struct Xml {
+    name: String,
+    attrs: Vec<(String, String)>,
+    children: Vec<Xml>,
+    text: String,
+}
+
+impl Xml {
+    fn attr(&self, key: &str) -> Option<&str> {
+        self.attrs
+            .iter()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
+    }
+    fn children<'a>(&'a self, name: &'a str) -> impl Iterator<Item = &'a Xml> + 'a {
+        self.children.iter().filter(move |c| c.name == name)
+    }
+    /// The only child called `name`.
+    fn child(&self, name: &str) -> &Xml {
+        let v: Vec<&Xml> = self.children.iter().filter(|c| c.name == name).collect();
+        assert_eq!(v.len(), 1, "<{}> has {} <{name}>", self.name, v.len());
+        v[0]
+    }
+}
+
+struct Parser<'a> {
+    s: &'a str,
+    i: usize,
+}
+
+impl<'a> Parser<'a> {
+    fn rest(&self) -> &'a str {
+        &self.s[self.i..]
+    }
+    fn skip_ws(&mut self) {
+        let r = self.rest();
+        self.i += r.len() - r.trim_start().len();
+    }
+    fn skip_until(&mut self, end: &str) -> Result<(), String> {
+        let k = self
+            .rest()
+            .find(end)
+            .ok_or(format!("unterminated, expected {end}"))?;
+        self.i += k + end.len();
+        Ok(())
+    }
+    /// Whitespace, declarations and comments.
+    fn skip_misc(&mut self) -> Result<(), String> {
+        loop {
+            self.skip_ws();
+            if self.rest().starts_with("<?") {
+                self.skip_until("?>")?;
+            } else if self.rest().starts_with("<!--") {
+                self.skip_until("-->")?;
+            } else {
+                return Ok(());
+            }
+        }
+    }
+    fn name(&mut self) -> Result<String, String> {
+        let r = self.rest();
+        let n = r
+            .find(|c: char| !(c.is_alphanumeric() || "_-:.".contains(c)))
+            .unwrap_or(r.len());
+        if n == 0 {
+            return Err(format!("expected a name at byte {}", self.i));
+        }
+        let name = r[..n].to_string();
+        self.i += n;
+        Ok(name)
+    }
+    fn expect(&mut self, t: &str) -> Result<(), String> {
+        if self.rest().starts_with(t) {
+            self.i += t.len();
+            Ok(())
+        } else {
+            Err(format!("expected {t:?} at byte {}", self.i))
+        }
+    }
+    fn element(&mut self) -> Result<Xml, String> {
+        self.expect("<")?;
+        let name = self.name()?;
+        let mut e = Xml {
+            name,
+            attrs: Vec::new(),
+            children: Vec::new(),
+            text: String::new(),
+        };
+        loop {
+            self.skip_ws();
+            if self.rest().starts_with("/>") {
+                self.i += 2;
+                return Ok(e);
+            }
+            if self.rest().starts_with('>') {
+                self.i += 1;
+                break;
+            }
+            let key = self.name()?;
+            self.skip_ws();
+            self.expect("=")?;
+            self.skip_ws();
+            let q = if self.rest().starts_with('"') {
+                "\""
+            } else {
+                "'"
+            };
+            self.expect(q)?;
+            let k = self.rest().find(q).ok_or("unterminated attribute")?;
+            let value = &self.rest()[..k];
+            if value.contains('<') {
+                return Err(format!("'<' in attribute {key}"));
+            }
+            if e.attrs.iter().any(|(k, _)| *k == key) {
+                return Err(format!("repeated attribute {key}"));
+            }
+            e.attrs.push((key, unescape(value)?));
+            self.i += k + 1;
+        }
+        loop {
+            if self.rest().starts_with("</") {
+                self.i += 2;
+                let end = self.name()?;
+                if end != e.name {
+                    return Err(format!("</{end}> closes <{}>", e.name));
+                }
+                self.skip_ws();
+                self.expect(">")?;
+                return Ok(e);
+            } else if self.rest().starts_with("<!--") {
+                self.skip_until("-->")?;
+            } else if self.rest().starts_with('<') {
+                e.children.push(self.element()?);
+            } else {
+                let k = self.rest().find('<').ok_or("unterminated element")?;
+                e.text.push_str(&unescape(&self.rest()[..k])?);
+                self.i += k;
+            }
+        }
+    }
+}
+
+fn unescape(s: &str) -> Result<String, String> {
+    let mut out = String::new();
+    let mut rest = s;
+    while let Some(k) = rest.find('&') {
+        out.push_str(&rest[..k]);
+        let end = rest[k..].find(';').ok_or("bad entity")? + k;
+        out.push(match &rest[k + 1..end] {
+            "lt" => '<',
+            "gt" => '>',
+            "amp" => '&',
+            "quot" => '"',
+            "apos" => '\'',
+            e => return Err(format!("unknown entity &{e};")),
+        });
+        rest = &rest[end + 1..];
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
+fn parse_xml(text: &str) -> Xml {
+    let mut p = Parser { s: text, i: 0 };
+    p.skip_misc().unwrap();
+    let root = p.element().unwrap_or_else(|e| panic!("{e}"));
+    p.skip_misc().unwrap();
+    assert_eq!(p.i, text.len(), "text after the root element");
+    root
+}
+
+// ---------------------------------------------------------------------------------------------
+// An unstructured grid read back.
+
+#[derive(Debug)]
+struct Array {
+    ty: String,
+    comps: usize,
+    values: Vec<f64>,
+}
+
+impl Array {
+    fn tuple(&self, i: usize) -> &[f64] {
+        &self.values[i * self.comps..(i + 1) * self.comps]
+    }
+}
+
+#[derive(Debug)]
+struct Grid {
+    time: f64,
+    points: Vec<[f64; 3]>,
+    connectivity: Vec<usize>,
+    offsets: Vec<usize>,
+    types: Vec<u8>,
+    point_data: BTreeMap<String, Array>,
+    cell_data: BTreeMap<String, Array>,
+}
+
+impl Grid {
+    fn cell(&self, c: usize) -> &[usize] {
+        let start = if c == 0 { 0 } else { self.offsets[c - 1] };
+        &self.connectivity[start..self.offsets[c]]
+    }
+    fn point(&self, name: &str, comps: usize) -> &Array {
+        let a = self
+            .point_data
+            .get(name)
+            .unwrap_or_else(|| panic!("no point array {name}"));
+        assert_eq!(a.comps, comps, "{name}");
+        a
+    }
+    fn cell_array(&self, name: &str, comps: usize) -> &Array {
+        let a = self
+            .cell_data
+            .get(name)
+            .unwrap_or_else(|| panic!("no cell array {name}"));
+        assert_eq!(a.comps, comps, "{name}");
+        a
+    }
+}
+
+fn array(e: &Xml) -> (String, Array) {
+    assert_eq!(e.name, "DataArray");
+    assert_eq!(e.attr("format"), Some("ascii"));
+    let name = e.attr("Name").expect("a named array").to_string();
+    let ty = e.attr("type").unwrap().to_string();
+    let comps: usize = e
+        .attr("NumberOfComponents")
+        .map_or(1, |c| c.parse().unwrap());
+    let values: Vec<f64> = e
+        .text
+        .split_whitespace()
+        .map(|v| {
+            v.parse::<f64>()
+                .unwrap_or_else(|_| panic!("{name}: bad number {v:?}"))
+        })
+        .collect();
+    assert!(comps >= 1);
+    assert_eq!(values.len() % comps, 0, "{name}: partial tuple");
+    assert!(
+        values.iter().all(|v| v.is_finite()),
+        "{name}: non-finite value"
+    );
+    match ty.as_str() {
+        "Float64" => {}
+        "Int32" | "Int64" | "UInt8" => {
+            assert!(values.iter().all(|v| v.fract() == 0.0), "{name}: integers");
+            if ty == "UInt8" {
+                assert!(values.iter().all(|&v| (0.0..=255.0).contains(&v)));
+            }
+        }
+        _ => panic!("{name}: unexpected type {ty}"),
+    }
+    for (k, _) in &e.attrs {
+        assert!(
+            [
+                "type",
+                "Name",
+                "NumberOfComponents",
+                "NumberOfTuples",
+                "format"
+            ]
+            .contains(&k.as_str())
+                || k.starts_with("ComponentName"),
+            "{name}: unexpected attribute {k}"
+        );
+    }
+    (name, Array { ty, comps, values })
+}
+
+fn data(piece: &Xml, section: &str, tuples: usize) -> BTreeMap<String, Array> {
+    let mut out = BTreeMap::new();
+    for sec in piece.children(section) {
+        for e in &sec.children {
+            let (name, a) = array(e);
+            assert_eq!(
+                a.values.len(),
+                tuples * a.comps,
+                "{section} array {name}: wrong number of tuples"
+            );
+            for key in ["Scalars", "Vectors"] {
+                if let Some(n) = sec.attr(key) {
+                    assert!(
+                        sec.children.iter().any(|c| c.attr("Name") == Some(n)),
+                        "{section} names a missing {key} array {n}"
+                    );
+                }
+            }
+            assert!(out.insert(name.clone(), a).is_none(), "repeated {name}");
+        }
+    }
+    out
+}
+
+/// Reads a `.vtu` file and checks its structure.
+fn read_grid(path: &Path) -> Grid {
+    let text = std::fs::read_to_string(path).unwrap();
+    let root = parse_xml(&text);
+    assert_eq!(root.name, "VTKFile");
+    assert_eq!(root.attr("type"), Some("UnstructuredGrid"));
+    let ug = root.child("UnstructuredGrid");
+    let field = ug.child("FieldData");
+    let (tname, t) = array(&field.children[0]);
+    assert_eq!(tname, "TimeValue");
+    assert_eq!(t.values.len(), 1);
+    let piece = ug.child("Piece");
+    let np: usize = piece.attr("NumberOfPoints").unwrap().parse().unwrap();
+    let nc: usize = piece.attr("NumberOfCells").unwrap().parse().unwrap();
+    let (_, pts) = array(piece.child("Points").child("DataArray"));
+    assert_eq!(pts.comps, 3);
+    assert_eq!(pts.values.len(), 3 * np);
+    let points: Vec<[f64; 3]> = pts.values.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    assert!(points.iter().all(|p| p[2] == 0.0));
+    let cells = piece.child("Cells");
+    let mut arrays: BTreeMap<String, Array> = cells.children.iter().map(array).collect();
+    assert_eq!(arrays.len(), 3);
+    let ints = |a: Array| a.values.iter().map(|&v| v as usize).collect::<Vec<_>>();
+    let connectivity = ints(arrays.remove("connectivity").unwrap());
+    let offsets = ints(arrays.remove("offsets").unwrap());
+    let types_a = arrays.remove("types").unwrap();
+    assert_eq!(types_a.ty, "UInt8");
+    let types: Vec<u8> = types_a.values.iter().map(|&v| v as u8).collect();
+    assert_eq!(offsets.len(), nc);
+    assert_eq!(types.len(), nc);
+    assert!(
+        connectivity.iter().all(|&c| c < np),
+        "connectivity in range"
+    );
+    let mut prev = 0;
+    for (c, (&o, &ty)) in offsets.iter().zip(&types).enumerate() {
+        let size = match ty {
+            1 => 1,
+            3 => 2,
+            9 => 4,
+            _ => panic!("cell type {ty}"),
+        };
+        assert_eq!(o, prev + size, "cell {c}: offset");
+        prev = o;
+    }
+    assert_eq!(prev, connectivity.len());
+    Grid {
+        time: t.values[0],
+        points,
+        connectivity,
+        offsets,
+        types,
+        point_data: data(piece, "PointData", np),
+        cell_data: data(piece, "CellData", nc),
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+fn close(a: f64, b: f64, scale: f64) -> bool {
+    (a - b).abs() <= 1e-12 * scale.max(a.abs()).max(b.abs()).max(f64::MIN_POSITIVE)
+}
+
+fn check_mesh(g: &Grid, model: &Model) {
+    assert_eq!(g.points.len(), model.nodes().len());
+    for (p, n) in g.points.iter().zip(model.nodes()) {
+        assert_eq!([p[0], p[1]], *n);
+    }
+    assert_eq!(g.types.len(), model.elements().len());
+    let kind = g.cell_array("kind", 1);
+    let element = g.cell_array("element", 1);
+    let material = g.cell_array("material", 1);
+    for (c, e) in model.elements().iter().enumerate() {
+        let (nodes, ty, k): (Vec<usize>, u8, f64) = match e {
+            Element::Frame { nodes, .. } => (nodes.iter().map(|n| n.0).collect(), 3, 1.0),
+            Element::Bar { nodes, .. } => (nodes.iter().map(|n| n.0).collect(), 3, 2.0),
+            Element::Plane { nodes, .. } => (nodes.iter().map(|n| n.0).collect(), 9, 3.0),
+        };
+        assert_eq!(g.cell(c), nodes, "cell {c}");
+        assert_eq!(g.types[c], ty);
+        assert_eq!(kind.values[c], k);
+        assert_eq!(element.values[c], c as f64);
+        assert!(material.values[c] >= 0.0 && material.values[c] < model.elements().len() as f64);
+    }
+    // The same section or material gives the same number, a different one another.
+    for (i, a) in model.elements().iter().enumerate() {
+        for (j, b) in model.elements().iter().enumerate().take(i) {
+            let same = match (a, b) {
+                (Element::Plane { material: x, .. }, Element::Plane { material: y, .. }) => {
+                    x == y
+                        && matches!((a, b), (Element::Plane { analysis: p, formulation: f, .. }, Element::Plane { analysis: q, formulation: h, .. }) if p == q && f == h)
+                }
+                (
+                    Element::Frame { section: x, .. } | Element::Bar { section: x, .. },
+                    Element::Frame { section: y, .. } | Element::Bar { section: y, .. },
+                ) => x == y,
+                _ => false,
+            };
+            assert_eq!(same, material.values[i] == material.values[j], "{i} {j}");
+        }
+    }
+    for name in [
+        "stress",
+        "szz",
+        "von_mises",
+        "axial_force",
+        "max_abs_moment",
+        "max_abs_shear",
+    ] {
+        assert!(g.cell_data.contains_key(name), "{name}");
+    }
+    g.point("displacement", 3);
+    g.point("rotation", 1);
+    g.point("nodal_stress", 3);
+    g.point("nodal_von_mises", 1);
+    g.cell_array("stress", 3);
+    g.cell_array("von_mises", 1);
+    let disp = g.point("displacement", 3);
+    assert!((0..g.points.len()).all(|i| disp.tuple(i)[2] == 0.0));
+}
+
+fn check_pairs(g: &Grid, model: &Model, a: &Analysis) {
+    let m = model.pairs().len();
+    assert_eq!(g.types.len(), m);
+    let node_pairs = model
+        .pairs()
+        .iter()
+        .filter(|p| matches!(p.a, Endpoint::Node(_)))
+        .count();
+    assert_eq!(g.points.len(), m + node_pairs);
+    let xy = |n: usize| {
+        let [x, y] = model.nodes()[n];
+        [x, y, 0.0]
+    };
+    for (i, p) in model.pairs().iter().enumerate() {
+        let cell = g.cell(i);
+        assert_eq!(*cell.last().unwrap(), i, "pair {i}: B is point {i}");
+        assert_eq!(g.points[i], xy(p.b.0));
+        match p.a {
+            Endpoint::Ground => assert_eq!(g.types[i], 1),
+            Endpoint::Node(n) => {
+                assert_eq!(g.types[i], 3);
+                assert!(cell[0] >= m);
+                assert_eq!(g.points[cell[0]], xy(n.0));
+            }
+        }
+    }
+    let state = g.cell_array("state", 1);
+    assert!(state.values.iter().all(|&s| (0.0..=3.0).contains(&s)));
+    assert_eq!(state.ty, "Int32");
+    let (x_n, x_t) = (g.cell_array("x_n", 1), g.cell_array("x_t", 1));
+    g.cell_array("z_n", 1);
+    g.cell_array("z_t", 1);
+    let force = g.cell_array("force", 3);
+    let (normal, tangent) = (g.cell_array("normal", 3), g.cell_array("tangent", 3));
+    let scale = x_n
+        .values
+        .iter()
+        .chain(&x_t.values)
+        .fold(0.0f64, |s, v| s.max(v.abs()));
+    for i in 0..m {
+        let [n, t] = [a.condensed.normals[i], a.condensed.tangents[i]];
+        assert_eq!(&normal.tuple(i)[..2], &n[..]);
+        assert_eq!(&tangent.tuple(i)[..2], &t[..]);
+        for k in 0..2 {
+            let f = x_n.values[i] * n[k] + x_t.values[i] * t[k];
+            assert!(close(force.tuple(i)[k], f, scale), "pair {i}");
+        }
+        assert_eq!(force.tuple(i)[2], 0.0);
+    }
+    // Point data: the pair's force on B, its opposite on A.
+    let pf = g.point("force", 3);
+    let pp = g.point("pair", 1);
+    let ps = g.point("state", 1);
+    for (k, &pair) in pp.values.iter().enumerate() {
+        let i = pair as usize;
+        let sign = if k < m { 1.0 } else { -1.0 };
+        assert_eq!(k < m, k == i);
+        assert_eq!(ps.values[k], state.values[i]);
+        for c in 0..3 {
+            assert_eq!(pf.tuple(k)[c], sign * force.tuple(i)[c]);
+        }
+    }
+    g.point("displacement", 3);
+}
+
+/// The reported solution, read back, against the analysis.
+fn check_final(mesh: &Grid, pairs: &Grid, a: &Analysis) {
+    let r = a.results.as_ref().unwrap();
+    let disp = mesh.point("displacement", 3);
+    let rot = mesh.point("rotation", 1);
+    for (i, d) in r.displacements.iter().enumerate() {
+        assert_eq!(&disp.tuple(i)[..2], &d[..2]);
+        assert_eq!(rot.values[i], d[2]);
+    }
+    let stress = mesh.cell_array("stress", 3);
+    let vm = mesh.cell_array("von_mises", 1);
+    for pl in &r.planes {
+        let e = pl.element.0;
+        let scale = pl
+            .stress
+            .iter()
+            .flatten()
+            .fold(0.0f64, |s, v| s.max(v.abs()));
+        for c in 0..3 {
+            let avg = pl.stress.iter().map(|s| s[c]).sum::<f64>() / 4.0;
+            assert!(close(stress.tuple(e)[c], avg, scale));
+        }
+        assert!(vm.values[e] >= 0.0 && vm.values[e] <= 2.0 * scale);
+    }
+    let axial = mesh.cell_array("axial_force", 1);
+    let moment = mesh.cell_array("max_abs_moment", 1);
+    for l in &r.lines {
+        let e = l.element.0;
+        let nmax = l.diagram.iter().fold(0.0f64, |s, p| s.max(p.n.abs()));
+        let mmax = l.diagram.iter().fold(0.0f64, |s, p| s.max(p.m.abs()));
+        assert_eq!(axial.values[e].abs(), nmax);
+        assert!(l.diagram.iter().any(|p| p.n == axial.values[e]));
+        assert_eq!(moment.values[e], mmax);
+        assert_eq!(stress.tuple(e), &[0.0; 3]);
+    }
+    for (i, p) in a.solution.pairs.iter().enumerate() {
+        assert_eq!(pairs.cell_array("x_n", 1).values[i], p.x_n);
+        assert_eq!(pairs.cell_array("x_t", 1).values[i], p.x_t);
+        assert_eq!(pairs.cell_array("z_n", 1).values[i], p.z_n);
+        assert_eq!(pairs.cell_array("z_t", 1).values[i], p.z_t);
+        let code = match p.state {
+            unilateral_analysis::PairState::Open => 0.0,
+            unilateral_analysis::PairState::Stick => 1.0,
+            unilateral_analysis::PairState::SlipPlus => 2.0,
+            unilateral_analysis::PairState::SlipMinus => 3.0,
+        };
+        assert_eq!(pairs.cell_array("state", 1).values[i], code);
+    }
+}
+
+fn round_trip(name: &str) -> usize {
+    let (model, a) = analyse(name);
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("vtk");
+    let files = vtk::write_vtk_for(&model, &a, &out).unwrap();
+    let pvd = files.last().unwrap();
+    assert_eq!(pvd, &out.join(vtk::PVD_FILE));
+    for f in &files {
+        assert!(f.is_file(), "{}", f.display());
+    }
+    let mut on_disk: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    on_disk.sort();
+    let mut listed = files.clone();
+    listed.sort();
+    assert_eq!(on_disk, listed, "the files returned are the files written");
+
+    let root = parse_xml(&std::fs::read_to_string(pvd).unwrap());
+    assert_eq!(root.name, "VTKFile");
+    assert_eq!(root.attr("type"), Some("Collection"));
+    let sets: Vec<&Xml> = root.child("Collection").children("DataSet").collect();
+    assert_eq!(sets.len(), files.len() - 1, "every file in the collection");
+    assert_eq!(sets.len() % 2, 0, "a mesh and a pairs file per step");
+    let mut steps: Vec<f64> = Vec::new();
+    let mut last = None;
+    for (k, pair) in sets.chunks(2).enumerate() {
+        let t: f64 = pair[0].attr("timestep").unwrap().parse().unwrap();
+        assert_eq!(pair[1].attr("timestep").unwrap().parse::<f64>().unwrap(), t);
+        assert_eq!(pair[0].attr("part"), Some("0"));
+        assert_eq!(pair[1].attr("part"), Some("1"));
+        let (mf, pf) = (pair[0].attr("file").unwrap(), pair[1].attr("file").unwrap());
+        assert_eq!(mf, format!("mesh_{k:03}.vtu"));
+        assert_eq!(pf, format!("pairs_{k:03}.vtu"));
+        assert_eq!(&files[2 * k], &out.join(mf));
+        assert_eq!(&files[2 * k + 1], &out.join(pf));
+        if let Some(&prev) = steps.last() {
+            assert!(t > prev, "timesteps increase: {prev} then {t}");
+        }
+        steps.push(t);
+        let mesh = read_grid(&out.join(mf));
+        let pairs = read_grid(&out.join(pf));
+        assert_eq!(mesh.time, t);
+        assert_eq!(pairs.time, t);
+        check_mesh(&mesh, &model);
+        check_pairs(&pairs, &model, &a);
+        last = Some((mesh, pairs));
+    }
+    assert_eq!(steps.last().copied(), a.p(), "the reported load last");
+    assert!(steps.iter().all(|&p| p >= 0.0));
+    let (mesh, pairs) = last.unwrap();
+    check_final(&mesh, &pairs, &a);
+    steps.len()
+}
+
+#[test]
+fn example1_beam() {
+    let (_, a) = analyse("example1-beam.toml");
+    let n = round_trip("example1-beam.toml");
+    // the start, the events below the reported load, the reported solution
+    assert!(n >= 2, "{n} snapshots");
+    assert!(n <= a.solution.steps.len() + 2);
+}
+
+#[test]
+fn example2_cantilever() {
+    let n = round_trip("example2-cantilever.toml");
+    assert!(n >= 2, "{n} snapshots");
+}
+
+#[test]
+fn example3_sheet_pile() {
+    let (_, a) = analyse("example3-sheet-pile.toml");
+    let n = round_trip("example3-sheet-pile.toml");
+    // 39 events on the way to the ray: most of them recover.
+    assert!(n > a.solution.steps.len() / 2, "{n} snapshots");
+}
+
+#[test]
+fn refuses_another_model_and_needs_the_model() {
+    let (_, a) = analyse("example1-beam.toml");
+    let (other, _) = analyse("example2-cantilever.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let e = vtk::write_vtk_for(&other, &a, dir.path()).unwrap_err();
+    assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput, "{e}");
+    let e = vtk::write_vtk(&a, dir.path()).unwrap_err();
+    assert_eq!(e.kind(), std::io::ErrorKind::Unsupported);
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
+}
