@@ -219,7 +219,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         report_files(unilateral_io::write_structural_csv(&a, &dir), &dir)?;
                     }
                     if let Some(dir) = vtk {
-                        report_files(unilateral_io::write_vtk(&a, &dir), &dir)?;
+                        report_files(unilateral_io::write_vtk_for(&problem.model, &a, &dir), &dir)?;
                     }
                     if let Some(dir) = report {
                         let options = unilateral_report::ReportOptions {

@@ -620,3 +620,20 @@ fn report_writes_pictures_and_a_self_contained_html() {
     assert_eq!(contact.run().code, 0);
     assert!(contact.path("r2/report.html").is_file());
 }
+
+#[test]
+fn vtk_writes_a_collection_over_the_load_path() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example2-cantilever.toml"))
+        .arg("--vtk")
+        .arg("vtk");
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let pvd = std::fs::read_to_string(cmd.path("vtk/unilateral.pvd")).unwrap();
+    let steps = pvd.matches("<DataSet").count();
+    assert!(
+        steps >= 2 * 17,
+        "start, 16 events, the reported load: {steps} data sets"
+    );
+    assert!(cmd.path("vtk/mesh_000.vtu").is_file() && cmd.path("vtk/pairs_000.vtu").is_file());
+}

@@ -26,14 +26,10 @@
 //!   `pairs_NNN.vtu` as part 1 (no pairs files when the model has no pairs), `timestep` = the
 //!   load parameter `p`.
 //!
-//! The snapshots are the start of the path (`p = 0`) and the loads of the events of the path
-//! below the reported load (when the results there can be recovered), sorted by `p` without
-//! repeats, and the reported solution last. Each `.vtu` also carries its load as the field
+//! The snapshots are the start of the path (`p = 0`), the loads of all events of the traced
+//! path (when the results there can be recovered, also beyond the target) and the reported
+//! solution, sorted by `p` without repeats. Each `.vtu` also carries its load as the field
 //! `TimeValue`.
-
-// `lib.rs` re-exports only `write_vtk` so far; until it also re-exports `write_vtk_for` and
-// `PVD_FILE`, the library itself does not use them.
-#![allow(dead_code)]
 
 use std::borrow::Cow;
 use std::collections::HashMap;
@@ -54,19 +50,6 @@ const VTK_VERTEX: u8 = 1;
 const VTK_LINE: u8 = 3;
 /// VTK cell type of a 4-node quadrilateral.
 const VTK_QUAD: u8 = 9;
-
-/// Writes the model and its results as VTK XML files into `dir`; returns the files written.
-///
-/// The node coordinates are not reachable from an [`Analysis`]: this always fails with
-/// [`io::ErrorKind::Unsupported`]. Use [`write_vtk_for`] with the analysed model.
-pub fn write_vtk(analysis: &Analysis, dir: &Path) -> io::Result<Vec<PathBuf>> {
-    let _ = (analysis, dir);
-    Err(io::Error::new(
-        io::ErrorKind::Unsupported,
-        "the VTK output needs the model's node coordinates, which the analysis does not keep \
-         within reach (use write_vtk_for with the model)",
-    ))
-}
 
 /// Writes the mesh, the contact pairs and their results along the load path as VTK XML files
 /// into `dir` (created if missing), with a `.pvd` collection ([`PVD_FILE`]) for ParaView;
@@ -181,15 +164,15 @@ struct Snapshot<'a> {
     results: Option<Cow<'a, Results>>,
 }
 
-/// The start, the events below the reported load (where recoverable) and the reported
-/// solution, sorted by load without repeats.
+/// The start, every event of the path (where recoverable) and the reported solution, sorted
+/// by load without repeats.
 fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
     let same = |x: f64, y: f64| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0);
-    let last = a.p().zip(a.results.as_ref());
+    let reported = a.p().zip(a.results.as_ref());
     let mut loads: Vec<f64> = std::iter::once(0.0)
         .chain(a.event_loads())
         .filter(|p| p.is_finite())
-        .filter(|&p| last.is_none_or(|(end, _)| p < end && !same(p, end)))
+        .filter(|&p| reported.is_none_or(|(end, _)| !same(p, end)))
         .collect();
     loads.sort_by(f64::total_cmp);
     loads.dedup_by(|x, y| same(*x, *y));
@@ -204,12 +187,17 @@ fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
             })
         })
         .collect();
-    if let Some((p, r)) = last {
-        out.push(Snapshot {
-            p,
-            pairs: Cow::Borrowed(&a.solution.pairs),
-            results: Some(Cow::Borrowed(r)),
-        });
+    // The reported solution takes its place in load order (events beyond the target follow it).
+    if let Some((p, r)) = reported {
+        let at = out.partition_point(|s| s.p < p);
+        out.insert(
+            at,
+            Snapshot {
+                p,
+                pairs: Cow::Borrowed(&a.solution.pairs),
+                results: Some(Cow::Borrowed(r)),
+            },
+        );
     }
     out
 }

@@ -1,6 +1,5 @@
 //! Small typed readers for model files: ids, references, points, flags and `[solve]`.
 
-
 use crate::error::{InputError, InputErrorKind, Pos};
 use crate::reader::{Doc, Table};
 use crate::tree::{did_you_mean, Node, Value};
