@@ -27,6 +27,60 @@ enum TraceArg {
     End,
 }
 
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum StressArg {
+    /// The von Mises equivalent stress.
+    Vm,
+    /// σxx.
+    Sxx,
+    /// σyy.
+    Syy,
+}
+
+/// Options of `--report`.
+#[derive(clap::Args, Debug, Clone)]
+struct ReportArgs {
+    /// Chart only these pairs (names, comma-separated; default: all).
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    report_pairs: Option<Vec<String>>,
+    /// Draw the bending moment diagrams of frame members in the structure picture.
+    #[arg(long)]
+    moments: bool,
+    /// The stress that colours plane elements.
+    #[arg(long, value_enum, default_value = "vm")]
+    stress: StressArg,
+}
+
+impl ReportArgs {
+    /// Every name given to `--report-pairs` must be a pair of the problem.
+    fn check(&self, pairs: &[unilateral_contact::PairResult]) -> Result<(), Failure> {
+        for name in self.report_pairs.iter().flatten() {
+            if !pairs.iter().any(|p| &p.name == name) {
+                let known: Vec<&str> = pairs.iter().take(12).map(|p| p.name.as_str()).collect();
+                return Err(Failure::Input(format!(
+                    "--report-pairs: no pair named '{name}'; the pairs are {}{}",
+                    known.join(", "),
+                    if pairs.len() > 12 { ", …" } else { "" }
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    fn options(&self, title: Option<String>) -> unilateral_report::ReportOptions {
+        unilateral_report::ReportOptions {
+            pairs: self.report_pairs.clone(),
+            moments: self.moments,
+            stress: match self.stress {
+                StressArg::Vm => unilateral_report::StressComponent::VonMises,
+                StressArg::Sxx => unilateral_report::StressComponent::Sxx,
+                StressArg::Syy => unilateral_report::StressComponent::Syy,
+            },
+            title,
+        }
+    }
+}
+
 #[derive(Subcommand, Debug)]
 enum Command {
     /// Follow the load path of a problem file and report the solution.
@@ -55,6 +109,8 @@ enum Command {
         /// (structural models).
         #[arg(long, value_name = "DIR")]
         vtk: Option<PathBuf>,
+        #[command(flatten)]
+        report_args: ReportArgs,
     },
     /// Print the Lemke tableaux of the path, step by step, as in the paper's Tables 1-3.
     Tableau {
@@ -127,6 +183,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             csv,
             report,
             vtk,
+            report_args,
         } => {
             let problem =
                 unilateral_io::read_problem(&file).map_err(|e| Failure::Input(e.to_string()))?;
@@ -162,10 +219,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         ));
                     }
                     if let Some(dir) = report {
+                        report_args.check(&sol.pairs)?;
                         let files = unilateral_report::write_path_report(
                             &sol,
                             &dir,
-                            &unilateral_report::ReportOptions::default(),
+                            &report_args.options(None),
                         )
                         .map_err(|e| Failure::Input(e.to_string()))?;
                         report_files(Ok(files), &dir)?;
@@ -222,10 +280,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         report_files(unilateral_io::write_vtk_for(&problem.model, &a, &dir), &dir)?;
                     }
                     if let Some(dir) = report {
-                        let options = unilateral_report::ReportOptions {
-                            title: problem.title.clone(),
-                            ..Default::default()
-                        };
+                        report_args.check(&a.solution.pairs)?;
+                        let options = report_args.options(problem.title.clone());
                         let files =
                             unilateral_report::write_report_for(&problem.model, &a, &dir, &options)
                                 .map_err(|e| Failure::Input(e.to_string()))?;

@@ -55,6 +55,11 @@ impl TestCommand {
         self
     }
 
+    fn args(mut self, more: &[&str]) -> Self {
+        self.args.extend(more.iter().map(|s| s.to_string()));
+        self
+    }
+
     fn run(&self) -> Output {
         let out = Command::new(env!("CARGO_BIN_EXE_unilateral"))
             .args(&self.args)
@@ -619,6 +624,28 @@ fn report_writes_pictures_and_a_self_contained_html() {
         .arg("r2");
     assert_eq!(contact.run().code, 0);
     assert!(contact.path("r2/report.html").is_file());
+    let picked = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .args(&[
+            "--report",
+            "r",
+            "--report-pairs",
+            "1,3",
+            "--moments",
+            "--stress",
+            "sxx",
+        ]);
+    assert_eq!(picked.run().code, 0);
+    let unknown = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .args(&["--report", "r", "--report-pairs", "nosuch"])
+        .run();
+    assert_eq!(unknown.code, 2);
+    assert!(
+        unknown.stderr.contains("no pair named 'nosuch'"),
+        "{}",
+        unknown.stderr
+    );
 }
 
 #[test]
