@@ -630,7 +630,7 @@ fn report_writes_pictures_and_a_self_contained_html() {
             "--report",
             "r",
             "--report-pairs",
-            "1,3",
+            "support.1,support.3",
             "--moments",
             "--stress",
             "sxx",
