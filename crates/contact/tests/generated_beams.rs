@@ -24,7 +24,15 @@ fn lcp_at(lcp: &ContactLcp, p: f64) -> Lcp {
 
 #[test]
 fn paths_to_the_end_verify_and_never_end_in_a_false_mechanism() {
-    for (m, seed) in [(20, 1), (40, 2), (60, 3), (100, 7), (100, 11), (150, 5), (400, 7)] {
+    for (m, seed) in [
+        (20, 1),
+        (40, 2),
+        (60, 3),
+        (100, 7),
+        (100, 11),
+        (150, 5),
+        (400, 7),
+    ] {
         let zone = beam_on_supports(m, seed);
         let sol = solve(
             &zone,
