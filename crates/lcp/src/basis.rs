@@ -124,6 +124,27 @@ impl Basis {
         self.scatter(&ys, &tmp, n)
     }
 
+    /// `(B⁻¹ v)` at the given slots only: the kernel solve `O(k²)`, then `O(k)` per slack row.
+    pub fn values_at(&self, cols: &Columns, v: &[f64], slots: &[usize]) -> Vec<f64> {
+        let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r]).collect();
+        let ys = self.kernel_solve(&vr);
+        slots
+            .iter()
+            .map(|&slot| {
+                let var = self.slot_var[slot];
+                if var < self.n {
+                    let mut x = v[var];
+                    for (&c, &y) in self.s_cols.iter().zip(&ys) {
+                        x -= cols.entry(var, c) * y;
+                    }
+                    x
+                } else {
+                    ys[self.s_pos[var]]
+                }
+            })
+            .collect()
+    }
+
     /// `α = B⁻¹ A[:, col]`, indexed by slot.
     pub fn ftran(&self, cols: &Columns, col: usize) -> Vec<f64> {
         self.ftran_checked(cols, col).0
@@ -276,8 +297,7 @@ impl Basis {
                     .collect();
                 let sigma = alpha[slot];
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                let vt = self.kinv.row_times(&v);
-                self.kinv.border(&ut, &vt, sigma);
+                self.kinv.border(&ut, &v, sigma);
                 self.s_pos[entering] = self.s_cols.len();
                 self.s_cols.push(entering);
                 self.r_pos[r] = self.r_rows.len();
@@ -318,9 +338,7 @@ impl Basis {
                 let r = leaving;
                 let w: Vec<f64> = self.kinv.col(b).to_vec();
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                let vt = self.kinv.row_times(&v);
-                let vw = dot(&v, &w);
-                self.kinv.replace_row(b, &w, &vt, vw);
+                self.kinv.replace_row(b, &w, &v);
                 self.r_rows[b] = r;
                 self.r_pos[r] = b;
                 self.r_pos[entering] = NONE;

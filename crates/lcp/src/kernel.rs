@@ -7,8 +7,10 @@ pub(crate) struct KernelInverse {
     k: usize,
     ld: usize,
     data: Vec<f64>,
-    /// `max |G|`, computed on demand and cached until the next change (`NaN`: not known).
-    gmax: std::cell::Cell<f64>,
+    /// A scale of `|G|` for tolerances: `max |G|` at the last `assign`, raised by the new row
+    /// and column of every `border` (the other updates change entries by round-off-sized
+    /// corrections relative to this scale, or shrink the matrix).
+    gmax: f64,
 }
 
 #[inline]
@@ -40,38 +42,31 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 impl KernelInverse {
-    /// The largest entry of `G` in magnitude (`O(k²)` after a change, then cached).
+    /// A scale of the entries of `G` (see the field), `O(1)`.
     pub fn max_entry(&self) -> f64 {
-        let g = self.gmax.get();
-        if !g.is_nan() {
-            return g;
-        }
-        let g = (0..self.k).fold(0.0f64, |m, b| {
-            self.col(b).iter().fold(m, |m, v| m.max(v.abs()))
-        });
-        self.gmax.set(g);
-        g
-    }
-
-    fn changed(&self) {
-        self.gmax.set(f64::NAN);
+        self.gmax
     }
 
     /// Replaces the content by the `k × k` matrix `f(a, b)`.
     pub fn assign(&mut self, k: usize, f: impl Fn(usize, usize) -> f64) {
         self.k = k;
         self.ld = k.max(self.ld).max(8);
-        self.data = vec![0.0; self.ld * self.ld];
-        self.changed();
+        // Entries beyond `k` are never read: keep the buffer when it is large enough.
+        if self.data.len() < self.ld * self.ld {
+            self.data = vec![0.0; self.ld * self.ld];
+        }
+        let mut gmax = 0.0f64;
         for b in 0..k {
             for a in 0..k {
-                self.data[b * self.ld + a] = f(a, b);
+                let v = f(a, b);
+                gmax = gmax.max(v.abs());
+                self.data[b * self.ld + a] = v;
             }
         }
+        self.gmax = gmax;
     }
 
     pub fn clear(&mut self) {
-        self.changed();
         self.k = 0;
     }
 
@@ -102,11 +97,6 @@ impl KernelInverse {
         y
     }
 
-    /// `vᵀ G`.
-    pub fn row_times(&self, v: &[f64]) -> Vec<f64> {
-        (0..self.k).map(|b| dot(v, self.col(b))).collect()
-    }
-
     fn grow(&mut self, k: usize) {
         if k <= self.ld {
             return;
@@ -120,31 +110,35 @@ impl KernelInverse {
         self.data = data;
     }
 
-    /// Borders `K` with a column `u` and a row `v` (corner `δ`), given `ũ = G u` and
-    /// `ṽᵀ = vᵀ G` and `σ = δ − vᵀ ũ`.
-    pub fn border(&mut self, ut: &[f64], vt: &[f64], sigma: f64) {
+    /// Borders `K` with a column `u` and a row `v` (corner `δ`), given `ũ = G u`, the row `v`
+    /// itself and `σ = δ − vᵀ ũ`. `ṽᵀ = vᵀ G` is formed column by column in the same pass that
+    /// updates the column, so `G` is read once.
+    pub fn border(&mut self, ut: &[f64], v: &[f64], sigma: f64) {
         let k = self.k;
         self.grow(k + 1);
         let ld = self.ld;
         let f: Vec<f64> = ut.iter().map(|u| u / sigma).collect();
-        for (b, &vb) in vt.iter().enumerate().take(k) {
+        let mut new_row = 0.0f64;
+        for b in 0..k {
             let col = &mut self.data[b * ld..b * ld + k + 1];
+            let vb = dot(v, &col[..k]);
             axpy(&mut col[..k], vb, &f);
             col[k] = -vb / sigma;
+            new_row = new_row.max(col[k].abs());
         }
         let col = &mut self.data[k * ld..k * ld + k + 1];
         for (c, fa) in col.iter_mut().zip(&f) {
             *c = -fa;
         }
         col[k] = 1.0 / sigma;
-        self.changed();
+        let new_col = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        self.gmax = self.gmax.max(new_col).max(new_row);
         self.k = k + 1;
     }
 
     /// Removes row `a` and column `b` of `K` (a pivot on `G[a, b]`); the last row and column
     /// move into the freed places.
     pub fn remove(&mut self, a: usize, b: usize) {
-        self.changed();
         let k = self.k;
         let piv = self.get(a, b);
         let mut f: Vec<f64> = self.col(b).iter().map(|g| g / piv).collect();
@@ -170,7 +164,6 @@ impl KernelInverse {
 
     /// Replaces column `a` of `K` (row `a` of `G`) given `ũ = G u` for the new column.
     pub fn replace_column(&mut self, a: usize, ut: &[f64]) {
-        self.changed();
         let piv = ut[a];
         for c in 0..self.k {
             let ra = self.get(a, c) / piv;
@@ -182,10 +175,12 @@ impl KernelInverse {
         }
     }
 
-    /// Replaces row `b` of `K` by `v`, given `w = G e_b`, `ṽᵀ = vᵀ G` and `vᵀ w`.
-    pub fn replace_row(&mut self, b: usize, w: &[f64], vt: &[f64], vw: f64) {
-        self.changed();
-        for (c, &vc) in vt.iter().enumerate().take(self.k) {
+    /// Replaces row `b` of `K` by `v`, given `w = G e_b` (a copy); `ṽᵀ = vᵀ G` is formed column by
+    /// column in the pass that updates it.
+    pub fn replace_row(&mut self, b: usize, w: &[f64], v: &[f64]) {
+        let vw = dot(v, w);
+        for c in 0..self.k {
+            let vc = dot(v, self.col(c));
             let corr = (vc - if c == b { 1.0 } else { 0.0 }) / vw;
             if corr != 0.0 {
                 axpy(self.col_mut(c), -corr, w);

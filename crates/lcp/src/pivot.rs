@@ -242,18 +242,24 @@ impl<'a> Pivoter<'a> {
         Some((pick, val(pick) / alpha[pick]))
     }
 
-    /// Whether another candidate comes within `1e-7` (relative) of the minimum ratio at `slot`:
-    /// a tie that drift of the updated basic values could misjudge.
-    fn near_tie(&self, alpha: &[f64], slot: usize) -> bool {
+    /// The candidates within `1e-7` (relative) of the minimum ratio at `slot`, `slot` included,
+    /// when there is more than one: a tie that drift of the updated basic values could misjudge.
+    fn near_ties(&self, alpha: &[f64], slot: usize) -> Vec<usize> {
         let val = |i: usize| self.beta[i].max(0.0);
         let rmin = val(slot) / alpha[slot];
         let thr = self.tol.pivot * max_abs(alpha);
         let zero = self.zero_value();
-        (0..alpha.len()).any(|i| {
-            i != slot
-                && alpha[i] > thr
-                && val(i) - rmin * alpha[i] <= 1e-7 * (val(i) + rmin * alpha[i]) + zero
-        })
+        let close: Vec<usize> = (0..alpha.len())
+            .filter(|&i| {
+                alpha[i] > thr
+                    && val(i) - rmin * alpha[i] <= 1e-7 * (val(i) + rmin * alpha[i]) + zero
+            })
+            .collect();
+        if close.len() > 1 {
+            close
+        } else {
+            Vec::new()
+        }
     }
 
     /// Lemke's first step: the driver enters at the row that makes the basis feasible, the
@@ -322,6 +328,14 @@ impl<'a> Pivoter<'a> {
         self.since_values = 0;
     }
 
+    /// The basic values of some slots recomputed from the data (`O(k²)` plus `O(k)` a slot).
+    fn refresh_slots(&mut self, slots: &[usize]) {
+        let fresh = self.basis.values_at(self.cols, &self.cols.h, slots);
+        for (&s, v) in slots.iter().zip(fresh) {
+            self.beta[s] = v;
+        }
+    }
+
     /// Fresh factorisation of the kernel and recomputation of the basic values from the data.
     pub fn refactor(&mut self) -> Result<(), SingularBasis> {
         self.basis.refactor(self.cols)?;
@@ -377,10 +391,17 @@ impl<'a> Pivoter<'a> {
                 alpha = self.basis.ftran(self.cols, entering);
                 step = self.ratio_test(&alpha);
             } else if let Some((slot, _)) = step {
-                let tiny = alpha[slot] < 1e-6 * max_abs(&alpha);
-                if (tiny || self.near_tie(&alpha, slot)) && self.since_values > 0 {
-                    self.refresh_values();
-                    step = self.ratio_test(&alpha);
+                if self.since_values > 0 {
+                    if alpha[slot] < 1e-6 * max_abs(&alpha) {
+                        self.refresh_values();
+                        step = self.ratio_test(&alpha);
+                    } else {
+                        let close = self.near_ties(&alpha, slot);
+                        if !close.is_empty() {
+                            self.refresh_slots(&close);
+                            step = self.ratio_test(&alpha);
+                        }
+                    }
                 }
             }
             let amax = max_abs(&alpha);
