@@ -13,6 +13,9 @@ pub(crate) struct KernelInverse {
     gmax: f64,
 }
 
+/// Kernel order from which the `O(k²)` passes use both cores.
+const PARALLEL_K: usize = 384;
+
 #[inline]
 pub(crate) fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
     let n = y.len().min(x.len());
@@ -88,12 +91,26 @@ impl KernelInverse {
 
     /// `y = G v`.
     pub fn solve(&self, v: &[f64]) -> Vec<f64> {
-        let mut y = vec![0.0; self.k];
-        for (b, &vb) in v.iter().enumerate().take(self.k) {
-            if vb != 0.0 {
-                axpy(&mut y, vb, self.col(b));
+        let k = self.k;
+        let sum = |range: std::ops::Range<usize>| {
+            let mut y = vec![0.0; k];
+            for b in range {
+                if v[b] != 0.0 {
+                    axpy(&mut y, v[b], self.col(b));
+                }
             }
+            y
+        };
+        if k < PARALLEL_K {
+            return sum(0..k);
         }
+        // Two halves of the columns on the two cores, then one addition.
+        let half = k / 2;
+        let (mut y, y2) = std::thread::scope(|sc| {
+            let other = sc.spawn(|| sum(half..k));
+            (sum(0..half), other.join().expect("kernel solve thread"))
+        });
+        axpy(&mut y, 1.0, &y2);
         y
     }
 
@@ -118,14 +135,28 @@ impl KernelInverse {
         self.grow(k + 1);
         let ld = self.ld;
         let f: Vec<f64> = ut.iter().map(|u| u / sigma).collect();
-        let mut new_row = 0.0f64;
-        for b in 0..k {
-            let col = &mut self.data[b * ld..b * ld + k + 1];
-            let vb = dot(v, &col[..k]);
-            axpy(&mut col[..k], vb, &f);
-            col[k] = -vb / sigma;
-            new_row = new_row.max(col[k].abs());
-        }
+        // Columns are independent: update them in two halves on the two cores.
+        let update = |cols: &mut [f64]| -> f64 {
+            let mut new_row = 0.0f64;
+            for col in cols.chunks_mut(ld) {
+                let col = &mut col[..k + 1];
+                let vb = dot(v, &col[..k]);
+                axpy(&mut col[..k], vb, &f);
+                col[k] = -vb / sigma;
+                new_row = new_row.max(col[k].abs());
+            }
+            new_row
+        };
+        let old = &mut self.data[..k * ld];
+        let new_row = if k < PARALLEL_K {
+            update(old)
+        } else {
+            let (a, b) = old.split_at_mut((k / 2) * ld);
+            std::thread::scope(|sc| {
+                let other = sc.spawn(|| update(b));
+                update(a).max(other.join().expect("kernel update thread"))
+            })
+        };
         let col = &mut self.data[k * ld..k * ld + k + 1];
         for (c, fa) in col.iter_mut().zip(&f) {
             *c = -fa;
