@@ -5,7 +5,7 @@ use crate::basis::Basis;
 use crate::lemke::{lemke_run, solve_lcp, LemkeOutcome};
 use crate::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
 use crate::prepare::{check_matrix, check_vector, Prepared};
-use crate::{Lcp, LcpError, LcpStatus, ParametricLcp, Residual, Settings, Var, ACCEPT_RESIDUAL};
+use crate::{Lcp, LcpError, LcpStatus, ParametricLcp, Residual, Settings, Var};
 
 /// How far the path is followed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -621,7 +621,7 @@ fn remove_tightening(
     let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
     if beta.iter().all(|&b| b >= -1e-12 * hmax) {
         let (x, z) = prep.unscale(&slots, &clamp(&beta));
-        return verified(prep, q, x, z, 0);
+        return nonnegative(x, z, 0);
     }
     if c0 <= 0.0 {
         return None;
@@ -662,7 +662,7 @@ fn remove_tightening(
     let basis = Basis::from_slots(&cols, final_slots.clone()).ok()?;
     let beta = basis.solve(&cols, &cols.h);
     let (x, z) = prep.unscale(&final_slots, &clamp(&beta));
-    verified(prep, q, x, z, piv.pivots)
+    nonnegative(x, z, piv.pivots)
 }
 
 fn clamp(beta: &[f64]) -> Vec<f64> {
@@ -678,14 +678,8 @@ fn clamp(beta: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-fn verified(
-    prep: &Prepared,
-    q: &[f64],
-    x: Vec<f64>,
-    z: Vec<f64>,
-    pivots: usize,
-) -> Option<(Vec<f64>, Vec<f64>, usize)> {
-    let _ = (prep, q);
+/// The point if it satisfies the sign conditions (the residuals are computed by the caller).
+fn nonnegative(x: Vec<f64>, z: Vec<f64>, pivots: usize) -> Option<(Vec<f64>, Vec<f64>, usize)> {
     if x.iter().chain(&z).any(|&v| v < 0.0) {
         return None;
     }
@@ -715,9 +709,4 @@ pub fn solution_at(
             .then_some(path.records.len())
     });
     Ok(seg.and_then(|j| solution_on_segment(problem, &prep, path, j, p, c0, &cov, settings)))
-}
-
-#[allow(dead_code)]
-pub(crate) fn accept(r: &Residual) -> bool {
-    r.max() <= ACCEPT_RESIDUAL
 }
