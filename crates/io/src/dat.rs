@@ -6,7 +6,7 @@ use faer::Mat;
 use unilateral_lcp::Lcp;
 
 use crate::error::{InputError, InputErrorKind, Pos};
-use crate::text::read_text;
+use crate::text::{read_text, words as line_words, Word};
 
 /// A 2D frictional contact problem in Siconos' "local" form: find contact forces `r` and
 /// relative velocities `u = W r + q` satisfying Coulomb's law per contact with friction `mu`.
@@ -28,43 +28,12 @@ impl Fc2dProblem {
     }
 }
 
-struct Word<'a> {
-    text: &'a str,
-    pos: Pos,
-}
-
+/// Every word of the file, line by line.
 fn words(text: &str) -> Vec<Word<'_>> {
-    let mut out = Vec::new();
-    for (l, line) in text.lines().enumerate() {
-        let mut start: Option<(usize, usize)> = None;
-        let mut col = 0;
-        for (i, c) in line.char_indices() {
-            col += 1;
-            if c.is_whitespace() {
-                if let Some((s, sc)) = start.take() {
-                    out.push(Word {
-                        text: &line[s..i],
-                        pos: Pos {
-                            line: l + 1,
-                            col: sc,
-                        },
-                    });
-                }
-            } else if start.is_none() {
-                start = Some((i, col));
-            }
-        }
-        if let Some((s, sc)) = start {
-            out.push(Word {
-                text: &line[s..],
-                pos: Pos {
-                    line: l + 1,
-                    col: sc,
-                },
-            });
-        }
-    }
-    out
+    text.lines()
+        .enumerate()
+        .flat_map(|(l, line)| line_words(line, l + 1))
+        .collect()
 }
 
 /// A cursor over the words of a `.dat` file.

@@ -7,7 +7,7 @@ use std::path::Path;
 use faer::Mat;
 
 use crate::error::{InputError, InputErrorKind, Pos};
-use crate::text::read_text;
+use crate::text::{read_text, words, Word};
 
 /// Largest dense matrix built from a Matrix Market file (rows × columns).
 pub(crate) const MAX_DENSE_ENTRIES: usize = 1 << 26;
@@ -38,44 +38,6 @@ pub(crate) fn read_mtx(path: &Path) -> Result<MtxMatrix, InputError> {
 enum Format {
     Coordinate,
     Array,
-}
-
-/// A whitespace-separated word and where it starts.
-struct Word<'a> {
-    text: &'a str,
-    pos: Pos,
-}
-
-fn words(line: &str, line_no: usize) -> Vec<Word<'_>> {
-    let mut out = Vec::new();
-    let mut start: Option<(usize, usize)> = None; // (byte, char column)
-    let mut col = 0;
-    for (i, c) in line.char_indices() {
-        col += 1;
-        if c.is_whitespace() {
-            if let Some((s, sc)) = start.take() {
-                out.push(Word {
-                    text: &line[s..i],
-                    pos: Pos {
-                        line: line_no,
-                        col: sc,
-                    },
-                });
-            }
-        } else if start.is_none() {
-            start = Some((i, col));
-        }
-    }
-    if let Some((s, sc)) = start {
-        out.push(Word {
-            text: &line[s..],
-            pos: Pos {
-                line: line_no,
-                col: sc,
-            },
-        });
-    }
-    out
 }
 
 pub(crate) fn parse_mtx(path: &Path, text: &str) -> Result<MtxMatrix, InputError> {

@@ -109,3 +109,42 @@ impl<'a> LineIndex<'a> {
         }
     }
 }
+
+/// A whitespace-separated word and where it starts.
+pub(crate) struct Word<'a> {
+    pub text: &'a str,
+    pub pos: Pos,
+}
+
+/// The words of one line (`line_no` is 1-based), with their columns counted in characters.
+pub(crate) fn words(line: &str, line_no: usize) -> Vec<Word<'_>> {
+    let mut out = Vec::new();
+    let mut start: Option<(usize, usize)> = None; // (byte, char column)
+    let mut col = 0;
+    for (i, c) in line.char_indices() {
+        col += 1;
+        if c.is_whitespace() {
+            if let Some((s, sc)) = start.take() {
+                out.push(Word {
+                    text: &line[s..i],
+                    pos: Pos {
+                        line: line_no,
+                        col: sc,
+                    },
+                });
+            }
+        } else if start.is_none() {
+            start = Some((i, col));
+        }
+    }
+    if let Some((s, sc)) = start {
+        out.push(Word {
+            text: &line[s..],
+            pos: Pos {
+                line: line_no,
+                col: sc,
+            },
+        });
+    }
+    out
+}
