@@ -183,6 +183,11 @@ impl<'d> Builder<'d> {
         self.doc.err(pos, key, kind, msg)
     }
 
+    /// An `Invalid` error located at a name or reference read from the file.
+    fn invalid_at(&self, r: &Ref, msg: String) -> InputError {
+        self.err(r.pos, &r.key, InputErrorKind::Invalid, msg)
+    }
+
     fn line_of(pos: Option<Pos>) -> String {
         pos.map(|p| format!(" (line {})", p.line))
             .unwrap_or_default()
@@ -216,12 +221,9 @@ impl<'d> Builder<'d> {
                 m = m.with_alpha(a);
             }
             if self.materials.insert(name.name.clone(), m).is_some() {
-                return Err(self.err(
-                    name.pos,
-                    &name.key,
-                    InputErrorKind::Invalid,
-                    format!("duplicate material name `{}`", name.name),
-                ));
+                return Err(
+                    self.invalid_at(&name, format!("duplicate material name `{}`", name.name))
+                );
             }
         }
         Ok(())
@@ -258,12 +260,9 @@ impl<'d> Builder<'d> {
                 },
             );
             if prev.is_some() {
-                return Err(self.err(
-                    name.pos,
-                    &name.key,
-                    InputErrorKind::Invalid,
-                    format!("duplicate section name `{}`", name.name),
-                ));
+                return Err(
+                    self.invalid_at(&name, format!("duplicate section name `{}`", name.name))
+                );
             }
         }
         Ok(())
@@ -279,11 +278,7 @@ impl<'d> Builder<'d> {
             return Err(self.unknown(&r, "section", self.sections.keys()));
         };
         if frame && !s.has_inertia {
-            return Err(self.err(
-                r.pos,
-                &r.key,
-                InputErrorKind::Invalid,
-                format!(
+            return Err(self.invalid_at(&r, format!(
                     "section `{}` has no moment of inertia I, which frame elements need (give I, or use bars)",
                     r.name
                 ),
@@ -315,12 +310,7 @@ impl<'d> Builder<'d> {
             Some(k) => format!(" (did you mean `{k}`?)"),
             None => String::new(),
         };
-        self.err(
-            r.pos,
-            &r.key,
-            InputErrorKind::Invalid,
-            format!("unknown {what} `{}`{hint}", r.name),
-        )
+        self.invalid_at(&r, format!("unknown {what} `{}`{hint}", r.name))
     }
 
     fn plane_options(&self, t: &Table) -> Result<(PlaneAnalysis, PlaneFormulation), InputError> {
@@ -457,10 +447,8 @@ impl<'d> Builder<'d> {
             &t.child("name"),
         )?;
         if self.element_sets.contains_key(&r.name) || self.element_index.contains_key(&r.name) {
-            return Err(self.err(
-                r.pos,
-                &r.key,
-                InputErrorKind::Invalid,
+            return Err(self.invalid_at(
+                &r,
                 format!(
                     "duplicate name `{}`: a block, member or element of that name already exists",
                     r.name
@@ -531,11 +519,7 @@ impl<'d> Builder<'d> {
                 let oy = rect[3].min(r[3]) - rect[1].max(r[1]);
                 let scale = w.min(h).min(r[2] - r[0]).min(r[3] - r[1]);
                 if ox > 1e-9 * scale && oy > 1e-9 * scale {
-                    return Err(self.err(
-                        name.pos,
-                        &name.key,
-                        InputErrorKind::Invalid,
-                        format!(
+                    return Err(self.invalid_at(&name, format!(
                             "block `{}` overlaps block `{other}`{}: separate bodies must not overlap (blocks may touch along an edge)",
                             name.name,
                             Self::line_of(*p)
@@ -735,10 +719,8 @@ impl<'d> Builder<'d> {
                 },
             };
             if self.element_sets.contains_key(&name.name) {
-                return Err(self.err(
-                    name.pos,
-                    &name.key,
-                    InputErrorKind::Invalid,
+                return Err(self.invalid_at(
+                    &name,
                     format!(
                         "duplicate id `{}`: a block or member of that name already exists",
                         name.name
@@ -923,10 +905,8 @@ impl<'d> Builder<'d> {
     fn one_proto(&self, r: &Ref) -> Result<usize, InputError> {
         let v = self.resolve(r)?;
         if v.len() != 1 {
-            return Err(self.err(
-                r.pos,
-                &r.key,
-                InputErrorKind::Invalid,
+            return Err(self.invalid_at(
+                &r,
                 format!(
                     "`{}` is a set of {} nodes, but one node is needed here",
                     r.name,
@@ -979,10 +959,8 @@ impl<'d> Builder<'d> {
             }
             if !any {
                 let r = &targets[0];
-                return Err(self.err(
-                    r.pos,
-                    &r.key,
-                    InputErrorKind::Invalid,
+                return Err(self.invalid_at(
+                    &r,
                     "`connect_to` found no coincident nodes to merge with".to_string(),
                 ));
             }
@@ -1155,11 +1133,7 @@ impl<'d> Builder<'d> {
                 },
                 (None, true) => SpringKind::Rotational { stiffness: k },
                 _ => {
-                    return Err(self.err(
-                        t.pos,
-                        &t.key,
-                        InputErrorKind::Invalid,
-                        format!(
+                    return Err(self.err(t.pos, &t.key, InputErrorKind::Invalid, format!(
                             "{} needs either `direction = [dx, dy]` (a translational spring) or `rotational = true`",
                             t.name()
                         ),
@@ -1356,11 +1330,7 @@ impl Builder<'_> {
                 vec2(self.doc, b, &t.child("end"))?,
             ),
             _ => {
-                return Err(self.err(
-                    t.pos,
-                    &t.key,
-                    InputErrorKind::Invalid,
-                    format!(
+                return Err(self.err(t.pos, &t.key, InputErrorKind::Invalid, format!(
                         "{} needs either `q = [q1, q2]` (uniform) or both `start` and `end` (linearly varying)",
                         t.name()
                     ),
