@@ -310,7 +310,7 @@ impl<'d> Builder<'d> {
             Some(k) => format!(" (did you mean `{k}`?)"),
             None => String::new(),
         };
-        self.invalid_at(&r, format!("unknown {what} `{}`{hint}", r.name))
+        self.invalid_at(r, format!("unknown {what} `{}`{hint}", r.name))
     }
 
     fn plane_options(&self, t: &Table) -> Result<(PlaneAnalysis, PlaneFormulation), InputError> {
