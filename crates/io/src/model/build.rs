@@ -906,7 +906,7 @@ impl<'d> Builder<'d> {
         let v = self.resolve(r)?;
         if v.len() != 1 {
             return Err(self.invalid_at(
-                &r,
+                r,
                 format!(
                     "`{}` is a set of {} nodes, but one node is needed here",
                     r.name,
@@ -960,7 +960,7 @@ impl<'d> Builder<'d> {
             if !any {
                 let r = &targets[0];
                 return Err(self.invalid_at(
-                    &r,
+                    r,
                     "`connect_to` found no coincident nodes to merge with".to_string(),
                 ));
             }
