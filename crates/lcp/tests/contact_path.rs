@@ -131,28 +131,12 @@ fn trace(c: &Contact, direction: &[f64]) -> (ParametricLcp, PathOptions, Setting
 /// The engine's events equal the oracle's exact ones on the tightened problem.
 fn assert_same_events(name: &str, path: &LoadPath, c: &Contact, direction: &[f64]) {
     let exact = oracle::parametric_path(&c.m, direction, &c.d, None, Some(&c.order));
-    let e: Vec<_> = path
-        .steps
-        .iter()
-        .map(|s| (oracle_var(s.entering), oracle_var(s.leaving), s.p))
-        .collect();
-    let o: Vec<_> = exact
-        .steps
-        .iter()
-        .map(|s| (s.entering, s.leaving, s.p_f64()))
-        .collect();
-    let same = e.len() == o.len()
-        && e.iter().zip(&o).all(|(a, b)| {
-            a.0 == b.0 && a.1 == b.1 && (a.2 - b.2).abs() <= 1e-9 * b.2.abs().max(1.0)
-        });
-    assert!(
-        same && same_status(path.status, exact.status),
-        "{name}: events differ\n  engine {:?} {e:?}\n  oracle {:?} {o:?}\n  M = {:?}\n  d = {:?}",
-        path.status,
-        exact.status,
-        c.m,
-        c.d
-    );
+    if let Err(diff) = same_events(path, &exact) {
+        panic!(
+            "{name}: events differ\n  {diff}\n  M = {:?}\n  d = {:?}",
+            c.m, c.d
+        );
+    }
 }
 
 #[derive(Default, Debug)]

@@ -357,26 +357,9 @@ fn check_path_against_oracle(
     };
     let path = follow_path(&problem, &opts, &settings).unwrap();
     let exact = oracle::parametric_path(m, q0, d, None, order.as_deref());
-    let engine_steps: Vec<_> = path
-        .steps
-        .iter()
-        .map(|s| (oracle_var(s.entering), oracle_var(s.leaving), s.p))
-        .collect();
-    let exact_steps: Vec<_> = exact
-        .steps
-        .iter()
-        .map(|s| (s.entering, s.leaving, s.p_f64()))
-        .collect();
-    let same = engine_steps.len() == exact_steps.len()
-        && engine_steps.iter().zip(&exact_steps).all(|(e, o)| {
-            e.0 == o.0 && e.1 == o.1 && (e.2 - o.2).abs() <= 1e-9 * o.2.abs().max(1.0)
-        });
-    assert!(
-        same && same_status(path.status, exact.status),
-        "{name}:\n  engine {:?} {engine_steps:?}\n  oracle {:?} {exact_steps:?}",
-        path.status,
-        exact.status
-    );
+    if let Err(diff) = same_events(&path, &exact) {
+        panic!("{name}:\n  {diff}");
+    }
     let sols = oracle::enumerate_parametric(m, q0, d, target);
     if let Some(sol) = &path.solution {
         check_path_point(m, q0, d, sol, TOL).unwrap_or_else(|e| panic!("{name}: {e}"));

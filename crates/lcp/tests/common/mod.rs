@@ -163,3 +163,30 @@ pub fn oracle_path_nondegenerate(path: &oracle::Path, n: usize) -> bool {
         zeros == n + 1
     })
 }
+
+/// The engine's path has the oracle's steps (entering, leaving, `p` to 1e-9 relative) and
+/// status; otherwise both lists, for the failure message.
+pub fn same_events(path: &unilateral_lcp::LoadPath, exact: &oracle::Path) -> Result<(), String> {
+    let e: Vec<_> = path
+        .steps
+        .iter()
+        .map(|s| (oracle_var(s.entering), oracle_var(s.leaving), s.p))
+        .collect();
+    let o: Vec<_> = exact
+        .steps
+        .iter()
+        .map(|s| (s.entering, s.leaving, s.p_f64()))
+        .collect();
+    let same = e.len() == o.len()
+        && e.iter().zip(&o).all(|(a, b)| {
+            a.0 == b.0 && a.1 == b.1 && (a.2 - b.2).abs() <= 1e-9 * b.2.abs().max(1.0)
+        });
+    if same && same_status(path.status, exact.status) {
+        Ok(())
+    } else {
+        Err(format!(
+            "engine {:?} {e:?}\n  oracle {:?} {o:?}",
+            path.status, exact.status
+        ))
+    }
+}
