@@ -3,7 +3,11 @@
 // Literals are written exactly as the .dat files print them, so they can be found there.
 #![allow(clippy::excessive_precision)]
 
+mod common;
+
 use std::path::{Path, PathBuf};
+
+use common::shared;
 
 use faer::Mat;
 use unilateral_contact::{ContactZone, Trace};
@@ -13,24 +17,6 @@ fn good(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/data/good")
         .join(name)
-}
-
-/// `shared/data/` lies beside the repository (as in CI); `None` when it is not there.
-fn shared(sub: &str) -> Option<PathBuf> {
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let candidates = [
-        std::env::var_os("UNILATERAL_SHARED_DATA").map(PathBuf::from),
-        Some(repo.join("../shared/data")),
-        Some(repo.join("shared/data")),
-    ];
-    let dir = candidates
-        .into_iter()
-        .flatten()
-        .find(|d| d.join(sub).is_dir());
-    if dir.is_none() {
-        eprintln!("shared/data/{sub} not found beside the repository: skipped");
-    }
-    dir.map(|d| d.join(sub))
 }
 
 fn mat(rows: &[&[f64]]) -> Mat<f64> {

@@ -51,34 +51,15 @@
 //! `W` of this file is singular (its columns 2 and 4, the tangential directions of the two
 //! contacts, are identical), so no contact stiffness matrix exists; the test asserts that.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::PathBuf;
+
+use common::shared;
 
 use faer::Mat;
 use unilateral_io::{read_fc2d, read_lcp};
 use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings, Strategy};
-
-/// `shared/data/<sub>` beside the repository (as in CI and `readers.rs`); `None` (skip) when
-/// missing, a failure when the environment variable `CI` is set.
-fn shared(sub: &str) -> Option<PathBuf> {
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let candidates = [
-        std::env::var_os("UNILATERAL_SHARED_DATA").map(PathBuf::from),
-        Some(repo.join("../shared/data")),
-        Some(repo.join("shared/data")),
-    ];
-    let dir = candidates
-        .into_iter()
-        .flatten()
-        .find(|d| d.join(sub).is_dir());
-    if dir.is_none() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "shared/data/{sub} not found beside the repository, and CI is set"
-        );
-        eprintln!("shared/data/{sub} not found beside the repository: skipped");
-    }
-    dir.map(|d| d.join(sub))
-}
 
 /// Expected outcome of each file: status, strategy (as `Strategy`'s `Debug`), pivots.
 const EXPECTED: &[(&str, LcpStatus, &str, usize)] = &[
