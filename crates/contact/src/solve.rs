@@ -216,7 +216,6 @@ pub struct ContactSolution {
     pub(crate) options: PathOptions,
     pub(crate) engine: Settings,
     pub(crate) names: Vec<String>,
-    pub(crate) friction: Vec<f64>,
 }
 
 fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
@@ -378,7 +377,6 @@ pub fn solve(
         options,
         engine,
         names,
-        friction: zone.friction.clone(),
     };
     if let Some(sol) = solution {
         out.set_point(&sol);
@@ -410,7 +408,7 @@ impl ContactSolution {
         self.p = Some(sol.p);
         self.residual = Some(sol.residual);
         self.tightening_pivots = sol.tightening_pivots;
-        self.pairs = pair_results(&sol.x, &sol.z, &self.names, &self.friction);
+        self.pairs = pair_results(&sol.x, &sol.z, &self.names);
     }
 
     /// The solution without tightening at another load `p` on the traced path (`None` when `p`
@@ -424,10 +422,7 @@ impl ContactSolution {
             p,
         )
         .ok()??;
-        Some((
-            pair_results(&pt.x, &pt.z, &self.names, &self.friction),
-            pt.residual,
-        ))
+        Some((pair_results(&pt.x, &pt.z, &self.names), pt.residual))
     }
 
     /// The tableaux of the path in the paper's layout (at most `max_steps` steps).
@@ -437,7 +432,7 @@ impl ContactSolution {
 }
 
 /// Pair results from the LCP's `x` and `z`.
-pub fn pair_results(x: &[f64], z: &[f64], names: &[String], friction: &[f64]) -> Vec<PairResult> {
+pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
     let m = names.len();
     let xmax = x.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     let zmax = z.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -457,7 +452,6 @@ pub fn pair_results(x: &[f64], z: &[f64], names: &[String], friction: &[f64]) ->
             } else {
                 PairState::Stick
             };
-            let _ = friction;
             // Round-off of the friction rows of an open pair is not a force.
             let x_t = if state == PairState::Open && x_t.abs() <= tx {
                 0.0
