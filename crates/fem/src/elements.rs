@@ -205,27 +205,26 @@ fn to_global_mat(k: &[f64], n: usize, c: f64, s: f64) -> Vec<f64> {
             t[(o + 2) * n + o + 2] = 1.0;
         }
     }
-    let mut kt = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..n {
-            let mut acc = 0.0;
-            for m in 0..n {
-                acc += k[i * n + m] * t[m * n + j];
+    // Tᵀ (k T): two products of small row-major matrices, `a` read transposed or not.
+    let product = |a: &[f64], a_transposed: bool, b: &[f64]| -> Vec<f64> {
+        let mut out = vec![0.0; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                out[i * n + j] = (0..n)
+                    .map(|m| {
+                        let aim = if a_transposed {
+                            a[m * n + i]
+                        } else {
+                            a[i * n + m]
+                        };
+                        aim * b[m * n + j]
+                    })
+                    .sum();
             }
-            kt[i * n + j] = acc;
         }
-    }
-    let mut g = vec![0.0; n * n];
-    for i in 0..n {
-        for j in 0..n {
-            let mut acc = 0.0;
-            for m in 0..n {
-                acc += t[m * n + i] * kt[m * n + j];
-            }
-            g[i * n + j] = acc;
-        }
-    }
-    g
+        out
+    };
+    product(&t, true, &product(k, false, &t))
 }
 
 /// Local stiffness of a frame or bar after releases (6 × 6 or 4 × 4), with (L, c, s).
