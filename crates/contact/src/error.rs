@@ -49,6 +49,11 @@ pub enum ContactError {
         pair: usize,
         value: f64,
     },
+    /// The data are finite but their combination is not representable: the formulation's
+    /// products (friction times stiffness) or the answer's forces and displacements leave the
+    /// floating-point range (about `1.8e308`).
+    #[error("{0}")]
+    OutOfRange(String),
     /// Settings out of range.
     #[error("invalid solve setting: {0}")]
     Settings(String),

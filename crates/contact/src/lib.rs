@@ -12,6 +12,7 @@ pub mod generate;
 mod lcp;
 mod settings;
 mod solve;
+mod units;
 mod zone;
 
 pub use error::ContactError;

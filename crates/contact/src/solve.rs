@@ -8,6 +8,7 @@ use unilateral_lcp::{
 };
 
 use crate::lcp::ContactLcp;
+use crate::units::Units;
 use crate::{ContactError, ContactZone, SolveSettings, Trace};
 
 /// The state of a contact pair in a solution.
@@ -213,9 +214,14 @@ pub struct ContactSolution {
     pub lcp: ContactLcp,
     /// The engine's load path.
     pub path: LoadPath,
+    /// The path options in the user's units (for the tableaux of `lcp`).
     pub(crate) options: PathOptions,
     pub(crate) engine: Settings,
     pub(crate) names: Vec<String>,
+    /// The normalised problem that was solved, its options, and the scales (see `units`).
+    pub(crate) normalised: ContactLcp,
+    pub(crate) normalised_options: PathOptions,
+    pub(crate) units: Units,
 }
 
 fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
@@ -223,6 +229,9 @@ fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
         pivot_tolerance: s.pivot_tolerance,
         max_pivots: s.max_pivots,
         lexicographic_order: Some(lcp.lexicographic_order.clone()),
+        // The start at p = 0 follows a tightening down; without one given, in the direction
+        // that keeps friction consistent (`max(1, f)` on the tangential rows).
+        covering: Some(lcp.tightening_direction.clone()),
         ..Settings::default()
     }
 }
@@ -254,29 +263,62 @@ pub fn solve(
 ) -> Result<ContactSolution, ContactError> {
     zone.validate()?;
     settings.validate()?;
+    // The LCP in the user's units: shown in tableaux and labels.
     let lcp = ContactLcp::build(zone);
+    let follow = match settings.trace {
+        Trace::Target => Follow::ToTarget,
+        Trace::End => Follow::ToEnd,
+    };
     let options = PathOptions {
         target: settings.target,
-        follow: match settings.trace {
-            Trace::Target => Follow::ToTarget,
-            Trace::End => Follow::ToEnd,
-        },
+        follow,
         tightening: lcp.tightening(settings.tightening),
     };
-    let engine = engine_settings(&lcp, settings);
-    let path = follow_path(&lcp.problem, &options, &engine)
+    // The LCP that is solved: normalised by powers of two (module `units`), so that neither the
+    // states nor the events depend on the units of the data.
+    let units = Units::of(zone, settings.tightening);
+    let normalised = ContactLcp::build(&units.normalise(zone));
+    let nm = &normalised.problem;
+    for j in 0..nm.m.ncols() {
+        for i in 0..nm.m.nrows() {
+            if !nm.m[(i, j)].is_finite() {
+                let pair = i % zone.pairs();
+                return Err(ContactError::OutOfRange(format!(
+                    "friction of pair {} ({}) times the contact stiffness exceeds the \
+                     floating-point range",
+                    zone.pair_names[pair], zone.friction[pair]
+                )));
+            }
+        }
+    }
+    if let Some(i) = nm.q0.iter().chain(&nm.d).position(|v| !v.is_finite()) {
+        let pair = i % zone.pairs();
+        return Err(ContactError::OutOfRange(format!(
+            "friction of pair {} ({}) times its loads exceeds the floating-point range",
+            zone.pair_names[pair], zone.friction[pair]
+        )));
+    }
+    let normalised_options = PathOptions {
+        target: settings.target,
+        follow,
+        tightening: normalised.tightening(units.to_force(settings.tightening)),
+    };
+    let engine = engine_settings(&normalised, settings);
+    let mut path = follow_path(&normalised.problem, &normalised_options, &engine)
         .map_err(|e| ContactError::Settings(e.to_string()))?;
     let m = lcp.pairs;
     let names = zone.pair_names.clone();
-    // Which pairs are open, followed along the path, to mark friction events of open pairs.
+    // Which pairs are open, followed along the path, to read friction events of open pairs.
     let mut open = vec![false; m];
     if let Some(start) = path.breakpoints.first() {
+        let zmax = start.z.iter().fold(1.0f64, |a, &(_, v)| a.max(v.abs()));
         for &(i, v) in &start.z {
-            if i < m && v > 0.0 {
+            if i < m && v > 1e-9 * zmax {
                 open[i] = true;
             }
         }
     }
+    let tightened = settings.tightening > 0.0;
     let steps: Vec<LoadStep> = path
         .steps
         .iter()
@@ -289,6 +331,13 @@ pub fn solve(
                     _ => e.while_open = open[e.pair],
                 }
             }
+            // A friction part of an open pair changing is no physical event: no force is
+            // transmitted. With a tightening it spends the sideways capacity that the
+            // tightening lends an open pair, and is listed as such; without one it is only the
+            // pivoting's bookkeeping, and is not listed at all.
+            if !tightened {
+                events.retain(|e| !e.while_open);
+            }
             LoadStep {
                 index: s.index,
                 p: s.p,
@@ -299,6 +348,23 @@ pub fn solve(
             }
         })
         .collect();
+    // Back to the user's units: the traced z, the mechanism's force rates; the solution is
+    // read below from the normalised point.
+    let normalised_solution = path.solution.clone();
+    for b in &mut path.breakpoints {
+        for (_, v) in &mut b.z {
+            *v = units.from_displacement(*v);
+        }
+    }
+    if let Some(mm) = &mut path.mechanism {
+        for v in &mut mm.dx {
+            *v = units.from_stiffness(*v);
+        }
+    }
+    if let Some(sol) = &mut path.solution {
+        sol.x.iter_mut().for_each(|v| *v = units.from_force(*v));
+        sol.z.iter_mut().for_each(|v| *v = units.from_displacement(*v));
+    }
     let outcome = match path.status {
         PathStatus::TargetReached => Outcome::TargetReached,
         PathStatus::Ray => Outcome::Ray {
@@ -345,10 +411,13 @@ pub fn solve(
                 .into(),
         );
     }
-    let solution = path.solution.clone();
+    let solution = normalised_solution;
     if let Some(p_art) = path.artificial_mechanism {
         notes.push(format!(
-            "the path traced with the artificial tightening c = {} ended in a mechanism at              p = {p_art:.6}; that limit belongs to the tightening, not to the structure: the real              problem has a verified solution at the target, found by a fresh solve there (the              events between p = {p_art:.6} and the target are not traced)",
+            "the path traced with the artificial tightening c = {} ended in a mechanism at \
+             p = {p_art:.6}; that limit belongs to the tightening, not to the structure: the real \
+             problem has a verified solution at the target, found by a fresh solve there (the \
+             events between p = {p_art:.6} and the target are not traced)",
             settings.tightening
         ));
     } else if let Some(sol) = &solution {
@@ -377,9 +446,12 @@ pub fn solve(
         options,
         engine,
         names,
+        normalised,
+        normalised_options,
+        units,
     };
     if let Some(sol) = solution {
-        out.set_point(&sol);
+        out.set_point(&sol)?;
     }
     Ok(out)
 }
@@ -404,25 +476,45 @@ fn events_of(leaving: Var, m: usize, names: &[String]) -> Vec<Event> {
 }
 
 impl ContactSolution {
-    fn set_point(&mut self, sol: &PathPoint) {
+    /// Reads the normalised point `sol` as pair results in the user's units.
+    fn set_point(&mut self, sol: &PathPoint) -> Result<(), ContactError> {
+        self.pairs = self.read_point(sol)?;
         self.p = Some(sol.p);
         self.residual = Some(sol.residual);
         self.tightening_pivots = sol.tightening_pivots;
-        self.pairs = pair_results(&sol.x, &sol.z, &self.names);
+        Ok(())
+    }
+
+    fn read_point(&self, sol: &PathPoint) -> Result<Vec<PairResult>, ContactError> {
+        let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, 1.0, 1.0);
+        for r in &mut pairs {
+            r.x_n = self.units.from_force(r.x_n);
+            r.x_t = self.units.from_force(r.x_t);
+            r.z_n = self.units.from_displacement(r.z_n);
+            r.z_t = self.units.from_displacement(r.z_t);
+            if ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()) {
+                return Err(ContactError::OutOfRange(format!(
+                    "the forces and displacements of pair {} at p = {} exceed the \
+                     floating-point range (about 1.8e308): express the model in other units",
+                    r.name, sol.p
+                )));
+            }
+        }
+        Ok(pairs)
     }
 
     /// The solution without tightening at another load `p` on the traced path (`None` when `p`
     /// is not on it).
     pub fn at(&self, p: f64) -> Option<(Vec<PairResult>, Residual)> {
         let pt = solution_at(
-            &self.lcp.problem,
-            &self.options,
+            &self.normalised.problem,
+            &self.normalised_options,
             &self.engine,
             &self.path,
             p,
         )
         .ok()??;
-        Some((pair_results(&pt.x, &pt.z, &self.names), pt.residual))
+        Some((self.read_point(&pt).ok()?, pt.residual))
     }
 
     /// The tableaux of the path in the paper's layout (at most `max_steps` steps).
@@ -432,10 +524,26 @@ impl ContactSolution {
 }
 
 /// Pair results from the LCP's `x` and `z`.
+///
+/// Round-off is judged relative to the largest force and displacement of the solution itself;
+/// [`solve`] judges it relative to the scale of the data as well.
 pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
+    pair_results_scaled(x, z, names, 0.0, 0.0)
+}
+
+/// Pair results with round-off judged relative to `max(‖x‖∞, force_scale)` for forces and
+/// `max(‖z‖∞, displacement_scale)` for displacements: a normal force of `4e-16` in a zone whose
+/// loads are of order one is round-off of zero, and the pair is open (touching), not stuck.
+fn pair_results_scaled(
+    x: &[f64],
+    z: &[f64],
+    names: &[String],
+    force_scale: f64,
+    displacement_scale: f64,
+) -> Vec<PairResult> {
     let m = names.len();
-    let xmax = x.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    let zmax = z.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let xmax = x.iter().fold(force_scale, |a, b| a.max(b.abs()));
+    let zmax = z.iter().fold(displacement_scale, |a, b| a.max(b.abs()));
     let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
     (0..m)
         .map(|i| {

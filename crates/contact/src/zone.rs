@@ -107,6 +107,7 @@ impl ContactZone {
                 }
             }
         }
+        let zone_scale = self.stiffness_scale();
         for (name, mat) in [("Rnn", &self.rnn), ("Rtt", &self.rtt)] {
             let scale = max_abs(mat);
             for j in 0..m {
@@ -124,7 +125,7 @@ impl ContactZone {
                 }
             }
             for i in 0..m {
-                if mat[(i, i)] < -1e-12 * scale {
+                if mat[(i, i)] < -roundoff_of_zero(zone_scale, m) {
                     return Err(ContactError::NegativeDiagonal {
                         name,
                         pair: i + 1,
@@ -179,6 +180,29 @@ impl ContactZone {
         }
         Ok(())
     }
+}
+
+impl ContactZone {
+    /// The largest entry of the four stiffness blocks: the scale against which round-off of the
+    /// stiffness is measured.
+    pub(crate) fn stiffness_scale(&self) -> f64 {
+        [&self.rnn, &self.rnt, &self.rtn, &self.rtt]
+            .iter()
+            .map(|m| max_abs(m))
+            .fold(0.0f64, f64::max)
+    }
+}
+
+/// How far below zero a diagonal entry of `Rnn` or `Rtt` may lie and still be round-off of a
+/// zero stiffness (a support that the rest of the structure does not hold in that direction,
+/// e.g. a statically determinate one). The contact stiffness is a condensed (Schur complement)
+/// stiffness: its entries carry round-off of the order `ε·κ·‖K‖` of the structure's own
+/// stiffness, far above `ε·‖R‖` when the structure is finely meshed. `1e-10·m` of the zone's
+/// largest stiffness admits that round-off for condition numbers up to about `1e5` per pair,
+/// while any negative stiffness that a user writes is many orders larger. It is relative to the
+/// zone's scale (all four blocks), never absolute, so it means the same in every unit system.
+pub(crate) fn roundoff_of_zero(scale: f64, m: usize) -> f64 {
+    1e-10 * m as f64 * scale
 }
 
 pub(crate) fn max_abs(mat: &Mat<f64>) -> f64 {

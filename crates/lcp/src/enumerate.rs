@@ -4,11 +4,15 @@ use faer::linalg::solvers::Solve;
 use faer::Mat;
 
 use crate::lemke::lcp_w;
-use crate::{Residual, ACCEPT_RESIDUAL};
+use crate::Residual;
 
 /// All `2^n` complementary bases in order of growing support; the first whose solution verifies
-/// is returned as `(z, w)`. Bases with a numerically singular `M[S, S]` are skipped.
-pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+/// is returned as `(z, w, S)` with `S` the basic `z` indices. Bases with a numerically singular
+/// `M[S, S]` are skipped.
+pub(crate) fn enumerate_first(
+    m: &Mat<f64>,
+    q: &[f64],
+) -> Option<(Vec<f64>, Vec<f64>, Vec<usize>)> {
     let n = q.len();
     assert!(n <= 24, "enumeration is for small problems");
     let mut subsets: Vec<u32> = (0..(1u32 << n)).collect();
@@ -48,8 +52,8 @@ pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<
         for &i in &idx {
             w[i] = 0.0;
         }
-        if Residual::of(m, q, &w, &z).max() <= ACCEPT_RESIDUAL {
-            return Some((z, w));
+        if Residual::of(m, q, &w, &z).accepts(&w, &z) {
+            return Some((z, w, idx));
         }
     }
     None

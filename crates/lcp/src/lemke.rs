@@ -5,9 +5,9 @@ use faer::Mat;
 use crate::basis::Basis;
 use crate::columns::Columns;
 use crate::enumerate::enumerate_first;
-use crate::pivot::{Ending, Pivoter, Tolerances};
+use crate::pivot::{max_abs, Ending, Pivoter, Tolerances};
 use crate::prepare::{check_matrix, check_vector, Prepared};
-use crate::{Lcp, LcpError, Residual, Settings, ACCEPT_RESIDUAL};
+use crate::{Lcp, LcpError, Residual, Settings};
 
 /// How a standard LCP solve ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -19,6 +19,10 @@ pub enum LcpStatus {
     Ray,
     /// The pivot cap was reached.
     IterationLimit,
+    /// A complementary basis was found but no point of it could be verified from the data
+    /// (its numbers overflow the floating-point range or its residuals are too large): an
+    /// internal failure of the engine, never a claim that no solution exists.
+    NumericalFailure,
 }
 
 impl LcpStatus {
@@ -28,6 +32,7 @@ impl LcpStatus {
             LcpStatus::Solved => "solved",
             LcpStatus::Ray => "ray",
             LcpStatus::IterationLimit => "iteration_limit",
+            LcpStatus::NumericalFailure => "numerical_failure",
         }
     }
 }
@@ -78,7 +83,7 @@ pub struct LcpSolution {
 /// lexicographic ratio test. A secondary ray of Lemke's method does not prove that no solution
 /// exists, so before answering [`LcpStatus::Ray`] other covering vectors are tried and, for
 /// `n ≤ 16`, all complementary bases are enumerated. A solution is reported only with residuals
-/// verified from the original data (at most [`ACCEPT_RESIDUAL`]).
+/// verified from the original data (at most [`crate::ACCEPT_RESIDUAL`], every number finite).
 ///
 /// ```
 /// use faer::mat;
@@ -121,12 +126,13 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
     let qmean = lcp.q.iter().map(|v| v.abs()).sum::<f64>() / n as f64;
     coverings.push((
         "|q|",
-        lcp.q.iter().map(|v| v.abs() + qmean.max(1e-300)).collect(),
+        lcp.q.iter().map(|v| v.abs() + qmean).collect(),
     ));
     let mut attempts = Vec::new();
     let mut pivots = 0;
     let mut last_status = LcpStatus::Ray;
     let mut last_strategy = Strategy::Lemke { covering: "ones" };
+    let mut unverified = false;
     for (name, cov) in &coverings {
         let run = lemke_run(&prep, &lcp.q, cov, settings);
         pivots += run.pivots;
@@ -135,7 +141,7 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
             LemkeOutcome::Solved(slots, beta) => {
                 let (w, z) = prep.unscale(&slots, &beta);
                 let residual = Residual::of(&lcp.m, &lcp.q, &w, &z);
-                if residual.max() <= ACCEPT_RESIDUAL {
+                if residual.accepts(&w, &z) {
                     attempts.push(format!(
                         "Lemke, covering '{name}': solved in {} pivots",
                         run.pivots
@@ -149,9 +155,16 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
                     });
                 }
                 attempts.push(format!(
-                    "Lemke, covering '{name}': basis found but its residual {:.1e} is too large",
-                    residual.max()
+                    "Lemke, covering '{name}': basis found but its point does not verify \
+                     (residual {:.1e}{})",
+                    residual.max(),
+                    if w.iter().chain(&z).all(|v| v.is_finite()) {
+                        ""
+                    } else {
+                        ", numbers beyond the floating-point range"
+                    }
                 ));
+                unverified = true;
             }
             LemkeOutcome::Ray => {
                 attempts.push(format!(
@@ -176,8 +189,9 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
         }
     }
     if n <= 16 {
-        if let Some((z, w)) = enumerate_first(&lcp.m, &lcp.q) {
+        if let Some((z, w, _)) = enumerate_first(&lcp.m, &lcp.q) {
             let residual = Residual::of(&lcp.m, &lcp.q, &w, &z);
+            debug_assert!(residual.accepts(&w, &z));
             attempts.push("enumeration of complementary bases: solved".into());
             return Ok(LcpSolution {
                 status: LcpStatus::Solved,
@@ -190,6 +204,11 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
         attempts.push("enumeration of complementary bases: no solution".into());
         last_status = LcpStatus::Ray;
         last_strategy = Strategy::Enumeration;
+    }
+    if unverified && last_status == LcpStatus::Ray {
+        // A basis was found whose point could not be verified: that is the engine's failure,
+        // not evidence that the problem has no solution.
+        last_status = LcpStatus::NumericalFailure;
     }
     Ok(LcpSolution {
         status: last_status,
@@ -260,8 +279,9 @@ pub(crate) fn lemke_run(prep: &Prepared, q: &[f64], cov: &[f64], settings: &Sett
             }
         }
         // A ray with the artificial variable already at zero is a solution, not a ray.
+        // Judged relative to the data it meets: the driver's contribution `z0·g` against `h`.
         Ending::Ray { .. }
-            if piv.driver_value() <= 1e-12 * cols.h.iter().fold(1.0f64, |a, b| a.max(b.abs())) =>
+            if piv.driver_value() * max_abs(&cols.g) <= 1e-12 * max_abs(&cols.h) =>
         {
             LemkeOutcome::Solved(piv.basis.slot_var.clone(), piv.beta.clone())
         }

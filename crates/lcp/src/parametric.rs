@@ -2,6 +2,7 @@
 //! (`formulation.md` §4), and the removal of the artificial tightening.
 
 use crate::basis::Basis;
+use crate::enumerate::enumerate_first;
 use crate::lemke::{lemke_run, solve_lcp, LemkeOutcome};
 use crate::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
 use crate::prepare::{check_matrix, check_vector, Prepared};
@@ -327,37 +328,30 @@ pub fn follow_path(
     let driver = cols.driver();
 
     // The scheme at p = 0.
-    let hmax = max_abs(&cols.h).max(f64::MIN_POSITIVE);
-    let mut start_pivots = 0;
-    let start_basis = if cols.h.iter().all(|&v| v >= -1e-13 * hmax) {
-        Basis::slack(n)
-    } else {
-        let run = lemke_run(&prep, &h, &vec![1.0; n], settings);
-        start_pivots = run.pivots;
-        let slots = match run.outcome {
-            LemkeOutcome::Solved(slots, _) => Some(slots),
-            _ => None,
-        };
-        match slots.map(|s| Basis::from_slots(&cols, s)) {
-            Some(Ok(b)) => b,
-            _ => {
-                return Ok(LoadPath {
-                    status: PathStatus::NoSolutionAtStart,
-                    steps: vec![],
-                    breakpoints: vec![],
-                    p_max: 0.0,
-                    p_limit: None,
-                    mechanism: None,
-                    last_entering: None,
-                    solution: None,
-                    start_pivots,
-                    refactorizations: 0,
-                    artificial_mechanism: None,
-                    start_slots: (0..n).collect(),
-                    records: vec![],
-                    target_segment: None,
-                })
-            }
+    let phase1_dir = match (&options.tightening, &settings.covering) {
+        (Some(t), _) => t.direction.clone(),
+        (None, Some(c)) => c.clone(),
+        (None, None) => vec![1.0; n],
+    };
+    let (start_basis, start_pivots) = match start_basis(&prep, problem, &h, &phase1_dir, settings) {
+        (Some(b), pivots) => (b, pivots),
+        (None, start_pivots) => {
+            return Ok(LoadPath {
+                status: PathStatus::NoSolutionAtStart,
+                steps: vec![],
+                breakpoints: vec![],
+                p_max: 0.0,
+                p_limit: None,
+                mechanism: None,
+                last_entering: None,
+                solution: None,
+                start_pivots,
+                refactorizations: 0,
+                artificial_mechanism: None,
+                start_slots: (0..n).collect(),
+                records: vec![],
+                target_segment: None,
+            })
         }
     };
     let start_slots = start_basis.slot_var.clone();
@@ -482,9 +476,118 @@ pub fn follow_path(
         }
     }
     if let Some((seg, p)) = report {
+        // Only verified, finite points are reported (`solution_on_segment`); none at all when
+        // the real problem (without tightening) has no solution there.
         path.solution = solution_on_segment(problem, &prep, &path, seg, p, c0, &cov, settings);
     }
     Ok(path)
+}
+
+/// The complementary basis of the problem at `p = 0`, `x = h + M z` (`h = q0 + c·e`), and the
+/// pivots spent finding it.
+///
+/// 1. `h ≥ 0`: the slack basis.
+/// 2. Otherwise the tightening is followed down: from `h + t₀·e` with `t₀` twice the least
+///    amount that makes it non-negative (a start with every row strictly positive where `h` is
+///    not) the tightening is driven back to zero by complementary pivots with the problem's own
+///    lexicographic order, exactly as the parametric path itself moves. `e` is the tightening's
+///    direction (for friction `max(1, f)` on the tangential rows). Lemke's method with the
+///    covering vector `e` would be the same path but starting on the degenerate vertex where
+///    the first rows reach zero all at once; with `f > 1` and gaps the rows `x_n`, `x_t±` of
+///    an open pair reach zero together there, and its arbitrary first pivot could enter a
+///    friction part opposite a basic one — a ray (`M` has the null direction `z_t+ = z_t-`),
+///    reported as "no solution at the start" although the pair simply sits open.
+/// 3. Then Lemke's method with covering ones and, for `n ≤ 16`, enumeration of all bases.
+///
+/// A basis is taken only if its values, recomputed from the data, are feasible.
+fn start_basis(
+    prep: &Prepared,
+    problem: &ParametricLcp,
+    h: &[f64],
+    dir: &[f64],
+    settings: &Settings,
+) -> (Option<Basis>, usize) {
+    let n = prep.n;
+    let cols = prep.columns(h, &problem.d);
+    let hmax = max_abs(&cols.h).max(f64::MIN_POSITIVE);
+    if cols.h.iter().all(|&v| v >= -1e-13 * hmax) {
+        return (Some(Basis::slack(n)), 0);
+    }
+    let feasible = |slots: Vec<usize>| -> Option<Basis> {
+        let b = Basis::from_slots(&cols, slots).ok()?;
+        let beta = b.solve(&cols, &cols.h);
+        let scale = hmax.max(max_abs(&beta));
+        let ok = beta.iter().all(|&v| v.is_finite() && v >= -1e-12 * scale);
+        ok.then_some(b)
+    };
+    let mut pivots = 0;
+    // 2. Down the tightening.
+    let t_min = h
+        .iter()
+        .zip(dir)
+        .filter(|(&hi, _)| hi < 0.0)
+        .map(|(&hi, &di)| if di > 0.0 { -hi / di } else { f64::INFINITY })
+        .fold(0.0f64, f64::max);
+    if t_min.is_finite() && t_min > 0.0 {
+        let t0 = 2.0 * t_min;
+        let h0: Vec<f64> = h.iter().zip(dir).map(|(a, e)| a + t0 * e).collect();
+        let g: Vec<f64> = dir.iter().map(|e| -e).collect();
+        let cols_t = prep.columns(&h0, &g);
+        let tol = Tolerances {
+            pivot: settings.pivot_tol(),
+            value: 1e-13,
+        };
+        let mut piv = Pivoter::new(
+            &cols_t,
+            Basis::slack(n),
+            tol,
+            settings.priority(n),
+            settings.refactor_interval,
+        );
+        let mut records = Vec::new();
+        let mut crossed = None;
+        let (ending, entering) = piv.run(
+            2 * n,
+            Some((t0, true)),
+            settings.cap(n),
+            &mut records,
+            &mut crossed,
+        );
+        pivots += piv.pivots;
+        if let Ending::TargetReached = ending {
+            let mut slots = piv.basis.slot_var.clone();
+            if let Some(ds) = slots.iter().position(|&v| v == 2 * n) {
+                slots[ds] = entering;
+            }
+            if let Some(b) = feasible(slots) {
+                return (Some(b), pivots);
+            }
+        }
+    }
+    // 3. Lemke's method, then enumeration.
+    let run = lemke_run(prep, h, &vec![1.0; n], settings);
+    pivots += run.pivots;
+    if let LemkeOutcome::Solved(slots, _) = run.outcome {
+        if let Some(b) = feasible(slots) {
+            return (Some(b), pivots);
+        }
+    }
+    if n <= 16 {
+        let lcp = Lcp {
+            m: problem.m.clone(),
+            q: h.to_vec(),
+        };
+        if let Some((_, _, idx)) = enumerate_first(&lcp.m, &lcp.q) {
+            let mut slots: Vec<usize> = (0..n).collect();
+            for i in idx {
+                slots[i] = n + i;
+            }
+            if let Some(b) = feasible(slots) {
+                return (Some(b), pivots);
+            }
+        }
+    }
+    (None, pivots)
 }
 
 /// The last segment whose traced loads contain `p` and along which `p` moves.
@@ -562,6 +665,9 @@ fn solution_on_segment(
     match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
         Some((x, z, pivots)) => {
             let residual = Residual::of(&problem.m, &q_real, &x, &z);
+            if !residual.accepts(&x, &z) {
+                return fresh_solution(problem, p, settings);
+            }
             Some(PathPoint {
                 p,
                 x,

@@ -5,7 +5,7 @@
 //! the engine's tests can compare against answers that carry no round-off at all: every zero test
 //! here is exact.
 //!
-//! Notation (see `shared/spec/formulation.md`, §3–§5):
+//! Notation (see `docs/formulation.md`, §3–§5):
 //!
 //! * the standard LCP: find `z ≥ 0`, `w = M z + q ≥ 0` with `wᵀz = 0`;
 //! * the parametric LCP: `x = q0 + p·d + M z`, `x ≥ 0`, `z ≥ 0`, `xᵀz = 0`, load parameter `p ≥ 0`.
@@ -17,7 +17,7 @@
 //!   sets (n ≤ 12), also for the parametric problem at a given `p` ([`enumerate_parametric`]);
 //! * [`lemke()`]: Lemke's method with a covering vector on a full rational tableau with the
 //!   lexicographic ratio test;
-//! * [`parametric_path`]: the parametric Lemke method of formulation.md §4 on a full rational
+//! * [`parametric_path`]: the parametric Lemke method of `docs/formulation.md` §4 on a full rational
 //!   tableau `[E | −M | −d | q0]`, with the events (steps), the final status, the breakpoint
 //!   solutions and [`Path::solution_at`] to evaluate the piecewise-linear path at any `p`.
 //!

@@ -1,0 +1,185 @@
+//! Normalisation of a contact zone by a force scale and a stiffness scale.
+//!
+//! The answer of a contact problem may not depend on the units the engineer types (N and m,
+//! kN and mm, MN and m). The zone's numbers carry two independent units: forces (`R_c`, `R_v`,
+//! the tightening `c`, and the LCP's `x`) and displacements (gaps, the LCP's `z`); stiffness is
+//! force over displacement. The solve therefore divides
+//!
+//! * every stiffness by `S = 2^k_s`, a power of two near the largest entry of the four blocks,
+//! * every force by `F = 2^k_f`, a power of two near the largest force the data produce (the
+//!   loads, the tightening and the gap forces `R·η`),
+//! * every displacement by `F/S`,
+//!
+//! so that the LCP the engine sees has stiffness and loads of order one, whatever the units. The
+//! scales are exact powers of two, taken from the binary exponents: a change of units by `2^j`
+//! changes the normalised data by nothing at all (not one bit), and any other change of units
+//! changes them by one rounding per number — which is how the same states and events come out
+//! for `W = 1e-150` and `W = 1e150`. Forces and displacements that would be out of range in the
+//! user's units (`1e308 · 2`) are formed only at the very end, where they are checked.
+//!
+//! The exponents of products (`R·η`) are added as integers, never multiplied as numbers, so no
+//! scale overflows or underflows on the way.
+
+use faer::Mat;
+
+use crate::zone::{max_abs, roundoff_of_zero};
+use crate::{ContactLoad, ContactZone};
+
+/// The binary exponent `e` of `x` with `2^e ≤ |x| < 2^(e+1)` (`None` for zero or non-finite).
+pub(crate) fn exponent(x: f64) -> Option<i32> {
+    if x == 0.0 || !x.is_finite() {
+        return None;
+    }
+    let bits = x.abs().to_bits();
+    let biased = (bits >> 52) as i32;
+    if biased > 0 {
+        return Some(biased - 1023);
+    }
+    let mant = bits & ((1u64 << 52) - 1);
+    Some(-1074 + (63 - mant.leading_zeros() as i32))
+}
+
+/// `x · 2^k`, exact unless the result leaves the normal range.
+pub(crate) fn ldexp(mut x: f64, mut k: i32) -> f64 {
+    let step = |k: i32| f64::from_bits(((k + 1023) as u64) << 52);
+    while k > 1000 {
+        x *= step(1000);
+        k -= 1000;
+    }
+    while k < -1000 {
+        x *= step(-1000);
+        k += 1000;
+    }
+    x * step(k)
+}
+
+fn max_exp<'a>(v: impl IntoIterator<Item = &'a f64>) -> Option<i32> {
+    v.into_iter().filter_map(|&x| exponent(x)).max()
+}
+
+/// The scales of a zone: forces `2^force`, stiffness `2^stiffness`, displacements
+/// `2^(force − stiffness)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Units {
+    pub force: i32,
+    pub stiffness: i32,
+}
+
+impl Units {
+    /// The scales of `zone` solved with tightening `c` (a force).
+    pub fn of(zone: &ContactZone, c: f64) -> Self {
+        let m = zone.pairs();
+        let mat_exp = |mat: &Mat<f64>| exponent(max_abs(mat));
+        let stiffness = [&zone.rnn, &zone.rnt, &zone.rtn, &zone.rtt]
+            .iter()
+            .filter_map(|mm| mat_exp(mm))
+            .max()
+            .unwrap_or(0);
+        let loads = [
+            &zone.constant.normal,
+            &zone.constant.tangential,
+            &zone.variable.normal,
+            &zone.variable.tangential,
+        ];
+        let mut force = loads.iter().filter_map(|v| max_exp(v.iter())).max();
+        force = force.max(exponent(c));
+        // The gap forces R·η: exponent of the column's largest stiffness plus the gap's, plus
+        // one for the rounding up of both mantissas.
+        for j in 0..m {
+            if let Some(eg) = exponent(zone.gap[j]) {
+                let col = (0..m)
+                    .flat_map(|i| [zone.rnn[(i, j)], zone.rtn[(i, j)]])
+                    .fold(0.0f64, |a, b| a.max(b.abs()));
+                if let Some(ec) = exponent(col) {
+                    force = force.max(Some(ec + eg + 1));
+                }
+            }
+        }
+        Self {
+            force: force.unwrap_or(stiffness),
+            stiffness,
+        }
+    }
+
+    fn displacement(&self) -> i32 {
+        self.force - self.stiffness
+    }
+
+    /// A force in the user's units → normalised.
+    pub fn to_force(&self, f: f64) -> f64 {
+        ldexp(f, -self.force)
+    }
+
+    /// A normalised force → the user's units.
+    pub fn from_force(&self, f: f64) -> f64 {
+        ldexp(f, self.force)
+    }
+
+    /// A normalised displacement → the user's units.
+    pub fn from_displacement(&self, z: f64) -> f64 {
+        ldexp(z, self.displacement())
+    }
+
+    /// A normalised stiffness → the user's units.
+    pub fn from_stiffness(&self, k: f64) -> f64 {
+        ldexp(k, self.stiffness)
+    }
+
+    /// The normalised zone. Diagonal entries of `Rnn` and `Rtt` that lie below zero only by
+    /// round-off of the zone's scale (see [`roundoff_of_zero`]) are set to zero.
+    pub fn normalise(&self, zone: &ContactZone) -> ContactZone {
+        let m = zone.pairs();
+        let scale = zone.stiffness_scale();
+        let stiff = |mat: &Mat<f64>, clamp: bool| {
+            Mat::<f64>::from_fn(m, m, |i, j| {
+                let v = mat[(i, j)];
+                if clamp && i == j && v < 0.0 && v >= -roundoff_of_zero(scale, m) {
+                    0.0
+                } else {
+                    ldexp(v, -self.stiffness)
+                }
+            })
+        };
+        let forces = |v: &[f64]| v.iter().map(|&x| self.to_force(x)).collect::<Vec<_>>();
+        let load = |l: &ContactLoad| ContactLoad {
+            normal: forces(&l.normal),
+            tangential: forces(&l.tangential),
+        };
+        ContactZone {
+            rnn: stiff(&zone.rnn, true),
+            rnt: stiff(&zone.rnt, false),
+            rtn: stiff(&zone.rtn, false),
+            rtt: stiff(&zone.rtt, true),
+            friction: zone.friction.clone(),
+            gap: zone
+                .gap
+                .iter()
+                .map(|&g| ldexp(g, -self.displacement()))
+                .collect(),
+            constant: load(&zone.constant),
+            variable: load(&zone.variable),
+            pair_names: zone.pair_names.clone(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Reference: the IEEE 754 binary64 layout (2^e exactly, subnormals down to 2^-1074).
+    #[test]
+    fn exponents_and_powers_of_two_are_exact() {
+        for e in [-1074, -1060, -1022, -1, 0, 1, 52, 1023] {
+            let x = ldexp(1.0, e);
+            assert_eq!(exponent(x), Some(e), "2^{e}");
+            if e > -1074 {
+                assert_eq!(exponent(x * 1.5), Some(e), "1.5 · 2^{e}");
+            }
+            assert_eq!(ldexp(x, -e), 1.0, "2^{e} · 2^{}", -e);
+        }
+        assert_eq!(exponent(0.0), None);
+        assert_eq!(exponent(f64::NAN), None);
+        assert_eq!(exponent(-3.0), Some(1));
+    }
+}
