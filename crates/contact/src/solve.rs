@@ -577,3 +577,38 @@ fn pair_results_scaled(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Reference: the definition of the states (formulation: open ⇔ no compression). A normal
+    // force of 4e-16 in a zone whose forces are of order one is round-off of zero: the pair
+    // touches without force (open/grazing), it does not stick.
+    #[test]
+    fn round_off_compression_is_open_not_stick() {
+        let names = vec!["1".to_string()];
+        let x = [4e-16, 0.0, 0.0];
+        let z = [0.0; 3];
+        assert_eq!(
+            pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
+            PairState::Open
+        );
+        // A real compression of the zone's scale sticks.
+        let x = [0.5, 0.2, 0.2];
+        assert_eq!(
+            pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
+            PairState::Stick
+        );
+    }
+
+    // Reference: the source of the note, whose continuation lines must not leave runs of
+    // spaces mid-sentence.
+    #[test]
+    fn notes_have_no_runs_of_spaces() {
+        let src = include_str!("solve.rs");
+        let start = src.find("ended in a mechanism at").unwrap();
+        let note = &src[start..start + 400];
+        assert!(note.contains("at \\\n"), "continuation backslash lost: {note}");
+    }
+}

@@ -1,0 +1,267 @@
+//! The failing contact zones, each against a hand calculation or the exact oracle:
+//! the answer may not depend on the units, a round-off-negative stiffness of a determinate
+//! support is no error, f > 1 with gaps starts, hostile magnitudes give finite numbers or a
+//! clear error, and open pairs make no friction events without a tightening.
+
+use faer::{mat, Mat};
+use unilateral_contact::{
+    solve, ContactError, ContactLcp, ContactZone, EventKind, Outcome, PairState, SolveSettings,
+    Trace,
+};
+use unilateral_oracle as oracle;
+
+/// The two-node frame slider: one frame element (EA = 2e9, L = 1) whose two nodes rest on
+/// frictional ground pairs (normal vertical, tangential horizontal), pressed by `W` at each node
+/// and pulled horizontally at node 2 by `H·p`, `H = W/12`, `f = 0.5` at both pairs.
+///
+/// Contact zone by hand: the element is free to rotate at both nodes, so the vertical relative
+/// displacement of its ends meets no stiffness (`Rnn = 0`); axially `Rtt = EA/L·[[1, −1], [−1, 1]]`.
+/// In the bonded structure every link is rigid, so `W` goes to each normal link and `H·p` to the
+/// tangential link of node 2. Hand analysis: pair 2 slips when `H·p = f·W` (p = 6); the bar then
+/// passes `H·p − f·W` to pair 1, which slips when it reaches `f·W` (p = 12), and nothing holds the
+/// slider any more: a mechanism at `p_lim = 12`.
+fn slider(w: f64) -> ContactZone {
+    let ea = 2e9;
+    let mut zone = ContactZone::new(
+        Mat::zeros(2, 2),
+        mat![[ea, -ea], [-ea, ea]],
+    );
+    zone.friction = vec![0.5; 2];
+    zone.constant.normal = vec![w, w];
+    zone.variable.tangential = vec![0.0, w / 12.0];
+    zone
+}
+
+fn end_settings(target: f64) -> SolveSettings {
+    SolveSettings {
+        target,
+        trace: Trace::End,
+        ..SolveSettings::default()
+    }
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs())
+}
+
+#[test]
+fn the_slider_gives_the_hand_answer_for_every_w() {
+    // Reference: the hand analysis in `slider` (p = 6, 12; p_lim = 12), for W over 300 decades
+    // including values that are not powers of two.
+    for w in [
+        1e-150, 3.7e-100, 1e-20, 1e-3, 0.01, 0.1, 1.0, 7.3, 1e5, 1e20, 1e25, 4.1e60, 1e150,
+    ] {
+        let sol = solve(&slider(w), &end_settings(20.0)).unwrap();
+        let events: Vec<(usize, f64)> = sol
+            .steps
+            .iter()
+            .flat_map(|s| s.events.iter().map(move |e| (e.pair, s.p)))
+            .collect();
+        assert_eq!(events.len(), 2, "W = {w}: {:?}", sol.steps);
+        assert_eq!(events[0].0, 1, "W = {w}: pair 2 slips first");
+        assert!(close(events[0].1, 6.0, 1e-12), "W = {w}: {:?}", events);
+        assert_eq!(events[1].0, 0, "W = {w}: then pair 1");
+        assert!(close(events[1].1, 12.0, 1e-12), "W = {w}: {:?}", events);
+        for s in &sol.steps {
+            for e in &s.events {
+                assert!(
+                    matches!(
+                        e.kind,
+                        EventKind::StartsSlippingPlus | EventKind::StartsSlippingMinus
+                    ),
+                    "W = {w}: {e}"
+                );
+            }
+        }
+        let Outcome::Mechanism { p_limit, .. } = sol.outcome else {
+            panic!("W = {w}: {:?}", sol.outcome);
+        };
+        assert!(close(p_limit, 12.0, 1e-12), "W = {w}: p_lim = {p_limit}");
+        // At p_lim both pairs carry W and the friction force f·W = W/2.
+        assert_eq!(sol.pairs.len(), 2, "W = {w}: a solution at p_lim");
+        for r in &sol.pairs {
+            assert!(close(r.x_n, w, 1e-12), "W = {w}: {r:?}");
+            assert!(close(r.x_t.abs(), w / 2.0, 1e-9), "W = {w}: {r:?}");
+            assert!(r.z_n.is_finite() && r.z_t.is_finite());
+        }
+        assert!(sol.residual.unwrap().max() <= 1e-9);
+    }
+}
+
+/// One pair, `Rnn = Rtt = 1`, `f = 1.01`, gap 0.1, tightening 0.05, no load. Hand answer: nothing
+/// presses the pair, so it sits open with its whole gap: `z_n = 0.1`, `x_n = x_t = 0`.
+#[test]
+fn f_above_one_with_a_gap_starts() {
+    let mut zone = ContactZone::new(mat![[1.0]], mat![[1.0]]);
+    zone.friction = vec![1.01];
+    zone.gap = vec![0.1];
+    let settings = SolveSettings {
+        tightening: 0.05,
+        ..SolveSettings::default()
+    };
+    let sol = solve(&zone, &settings).unwrap();
+    assert_ne!(sol.outcome, Outcome::NoSolutionAtStart);
+    let r = &sol.pairs[0];
+    assert_eq!(r.state, PairState::Open);
+    assert!((r.z_n - 0.1).abs() <= 1e-12 && r.x_n.abs() <= 1e-12 && r.x_t.abs() <= 1e-12);
+}
+
+/// A beam pinned at one end on a frictional bearing at the other, heated: the bearing is
+/// statically determinate vertically, so its normal contact stiffness is zero; the finite-element
+/// condensation delivers it as −5.96e-8 next to an axial stiffness of 2.1e8. The constant load
+/// presses the bearing with N = 1000, heating pushes it sideways by T·p = 1680·p, f = 0.5.
+/// Hand answer: it slips when T·p = f·N, p = 500/1680 = 0.297619…
+#[test]
+fn a_round_off_negative_stiffness_of_a_determinate_support_is_zero() {
+    let mut zone = ContactZone::new(mat![[-5.96e-8]], mat![[2.1e8]]);
+    zone.friction = vec![0.5];
+    zone.constant.normal = vec![1000.0];
+    zone.variable.tangential = vec![1680.0];
+    let sol = solve(&zone, &end_settings(1.0)).unwrap();
+    let first = &sol.steps[0];
+    assert!(close(first.p, 500.0 / 1680.0, 1e-12), "{:?}", sol.steps);
+    assert!(matches!(
+        first.events[0].kind,
+        EventKind::StartsSlippingPlus | EventKind::StartsSlippingMinus
+    ));
+    // A genuinely negative stiffness the user wrote keeps a clear message.
+    let mut bad = ContactZone::new(mat![[-1.0]], mat![[1.0]]);
+    bad.constant.normal = vec![1.0];
+    let e = solve(&bad, &SolveSettings::default()).unwrap_err();
+    assert!(matches!(e, ContactError::NegativeDiagonal { name: "Rnn", pair: 1, .. }));
+    assert!(e.to_string().contains("Rnn") && e.to_string().contains("pair 1"), "{e}");
+}
+
+/// Every number of a solution is finite, or the solve says clearly what is out of range.
+#[test]
+fn extreme_magnitudes_give_finite_numbers_or_a_clear_error() {
+    for (k, load) in [(1e308, 1e308), (1e308, -1e308), (1e-308, 1e308), (1.0, 1e-308)] {
+        let mut zone = ContactZone::new(mat![[k, -k], [-k, k]], mat![[k, 0.0], [0.0, k]]);
+        zone.friction = vec![0.3, 0.4];
+        zone.constant.normal = vec![load, load];
+        zone.variable.normal = vec![-load, load];
+        zone.variable.tangential = vec![load, -load];
+        zone.gap = vec![0.0, 1e-300];
+        match solve(&zone, &end_settings(1.0)) {
+            Ok(sol) => {
+                for r in &sol.pairs {
+                    for v in [r.x_n, r.x_t, r.z_n, r.z_t] {
+                        assert!(v.is_finite(), "k = {k}, load = {load}: {r:?}");
+                    }
+                }
+                for s in &sol.steps {
+                    assert!(s.p.is_finite());
+                }
+                if let Some(res) = sol.residual {
+                    assert!(res.max() <= 1e-9, "k = {k}, load = {load}: {res:?}");
+                }
+            }
+            Err(e) => assert!(
+                matches!(e, ContactError::OutOfRange(_)),
+                "k = {k}, load = {load}: {e}"
+            ),
+        }
+    }
+}
+
+/// The oracle's exact enumeration at p = 0 of the tightened problem: does a solution exist?
+fn start_has_solution(zone: &ContactZone, c: f64) -> bool {
+    let lcp = ContactLcp::build(zone);
+    let n = lcp.problem.q0.len();
+    let m: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| lcp.problem.m[(i, j)]).collect())
+        .collect();
+    let q: Vec<f64> = (0..n)
+        .map(|i| lcp.problem.q0[i] + c * lcp.tightening_direction[i])
+        .collect();
+    oracle::has_solution(&m, &q)
+}
+
+mod campaign {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A symmetric PSD `2m × 2m` stiffness `B Bᵀ` (small integers / 4), split into the blocks.
+    pub fn zone_from(m: usize, b: &[i32], friction: &[f64], gaps: &[f64], loads: &[i32]) -> ContactZone {
+        let k = 2 * m;
+        let bm = |i: usize, j: usize| b[i * k + j] as f64 / 4.0;
+        let r = Mat::<f64>::from_fn(k, k, |i, j| (0..k).map(|l| bm(i, l) * bm(j, l)).sum());
+        let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| r[(r0 + i, c0 + j)]);
+        let mut zone = ContactZone::new(block(0, 0), block(m, m));
+        zone.rnt = block(0, m);
+        zone.rtn = block(m, 0);
+        zone.friction = friction[..m].to_vec();
+        zone.gap = gaps[..m].to_vec();
+        let l = |i: usize| loads[i] as f64 / 8.0;
+        zone.constant.normal = (0..m).map(l).collect();
+        zone.constant.tangential = (0..m).map(|i| l(m + i)).collect();
+        zone.variable.normal = (0..m).map(|i| l(2 * m + i)).collect();
+        zone.variable.tangential = (0..m).map(|i| l(3 * m + i)).collect();
+        zone
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+        /// Random small zones with f > 1, gaps and a small tightening (the 5 %): when the
+        /// oracle's exact enumeration finds a solution at p = 0, so must the solve.
+        #[test]
+        fn a_solvable_start_is_found(
+            m in 1usize..=2,
+            b in prop::collection::vec(-2i32..=2, 16),
+            friction in prop::collection::vec(1.0f64..3.0, 2),
+            gaps in prop::collection::vec(0.0f64..0.3, 2),
+            loads in prop::collection::vec(-8i32..=8, 8),
+            c in 0.0f64..0.1,
+            no_constant in any::<bool>(),
+        ) {
+            let mut loads = loads;
+            if no_constant {
+                loads[..2 * m].iter_mut().for_each(|v| *v = 0);
+            }
+            let zone = zone_from(m, &b, &friction, &gaps, &loads);
+            let settings = SolveSettings { tightening: c, ..SolveSettings::default() };
+            let sol = solve(&zone, &settings).unwrap();
+            if start_has_solution(&zone, c) {
+                prop_assert_ne!(sol.outcome, Outcome::NoSolutionAtStart);
+            }
+        }
+    }
+}
+
+/// A block on the ground: `m` pairs under a rigid-ish block of springs, pressed by its weight,
+/// lifted at one end and pushed sideways. Without a tightening an open pair transmits nothing, so
+/// no event may be a friction event of an open pair (reference: the definition of an event — a
+/// change of what a pair transmits; formulation: an open pair has `x_n = x_t = 0`).
+#[test]
+fn open_pairs_make_no_friction_events_without_tightening() {
+    for m in [2usize, 5, 11, 101] {
+        // Pairs joined by axial springs k; each pair's normal spring stiffness s, coupled to its
+        // neighbours by bending-like terms (a PSD tridiagonal matrix).
+        let (k, s) = (4.0, 1.0);
+        let tri = |d: f64, o: f64| {
+            Mat::<f64>::from_fn(m, m, |i, j| {
+                if i == j {
+                    d + if i == 0 || i == m - 1 { 0.0 } else { d }
+                } else if i.abs_diff(j) == 1 {
+                    o
+                } else {
+                    0.0
+                }
+            })
+        };
+        let mut zone = ContactZone::new(tri(s, -s), tri(k, -k));
+        zone.friction = vec![0.4; m];
+        zone.constant.normal = vec![1.0; m];
+        zone.variable.normal = (0..m).map(|i| -3.0 * (m - i) as f64 / m as f64).collect();
+        zone.variable.tangential = (0..m).map(|i| if i == 0 { 1.0 } else { 0.0 }).collect();
+        let sol = solve(&zone, &end_settings(5.0)).unwrap();
+        for st in &sol.steps {
+            for e in &st.events {
+                assert!(!e.while_open, "m = {m}, step {}: {e}", st.index);
+            }
+        }
+        // The events that remain are physical: each pair opens at most once more than it closes.
+        assert!(sol.steps.iter().any(|s| !s.events.is_empty()), "m = {m}");
+    }
+}
