@@ -265,3 +265,44 @@ fn open_pairs_make_no_friction_events_without_tightening() {
         assert!(sol.steps.iter().any(|s| !s.events.is_empty()), "m = {m}");
     }
 }
+
+/// A random zone (found by a search of the old behaviour) whose path, without tightening, has
+/// pivots in the friction rows of open pairs (steps 1–4: pairs 1 and 3 "stick" and "slip" while
+/// open). None may be listed as an event; the answer at the target is one of the exact
+/// solutions of the oracle's enumeration.
+#[test]
+fn friction_pivots_of_open_pairs_are_not_events() {
+    let mut zone = ContactZone::new(
+        mat![[0.375, 0.0625, -0.125], [0.0625, 0.625, 0.125], [-0.125, 0.125, 0.875]],
+        mat![[0.8125, 0.0, -0.0625], [0.0, 1.125, -0.125], [-0.0625, -0.125, 0.9375]],
+    );
+    zone.rnt = mat![[0.0, 0.4375, 0.125], [0.0, 0.625, 0.0], [0.125, 0.25, -0.375]];
+    zone.rtn = mat![[0.0, 0.0, 0.125], [0.4375, 0.625, 0.25], [0.125, 0.0, -0.375]];
+    zone.friction = vec![0.5, 0.75, 0.625];
+    zone.constant.normal = vec![0.5, 0.0, -1.0];
+    zone.constant.tangential = vec![-1.0, 0.75, -0.75];
+    zone.variable.normal = vec![0.5, 1.0, -0.75];
+    zone.variable.tangential = vec![0.25, -0.25, -0.75];
+    let sol = solve(&zone, &end_settings(2.0)).unwrap();
+    let events: Vec<_> = sol.steps.iter().flat_map(|s| s.events.iter()).collect();
+    assert!(events.iter().all(|e| !e.while_open), "{events:?}");
+    // The first physical event: pair 1 closes (its gap of opening reaches zero).
+    assert_eq!(events[0].kind, EventKind::Closes, "{events:?}");
+    assert_eq!(events[0].pair, 0);
+    // The answer at p = 2 is an exact solution.
+    let lcp = ContactLcp::build(&zone);
+    let n = 9;
+    let m: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| lcp.problem.m[(i, j)]).collect())
+        .collect();
+    let sols = oracle::enumerate_parametric(&m, &lcp.problem.q0, &lcp.problem.d, 2.0);
+    let found = sols.iter().any(|s| {
+        let (x, z) = (s.w_f64(), s.z_f64());
+        sol.pairs.iter().enumerate().all(|(i, r)| {
+            (r.x_n - x[i]).abs() <= 1e-9
+                && (r.z_n - z[i]).abs() <= 1e-9
+                && (r.x_t - (x[3 + i] - x[6 + i]) / 2.0).abs() <= 1e-9
+        })
+    });
+    assert!(found, "{:?} is none of {} exact solutions", sol.pairs, sols.len());
+}
