@@ -42,8 +42,33 @@ fn close(a: f64, b: f64, scale: f64) -> bool {
     (a - b).abs() <= 1e-9 * scale
 }
 
-/// `b` (forces scaled by `f`, displacements by `u`) is `a` in other units.
-fn assert_same(a: &ContactSolution, b: &ContactSolution, f: f64, u: f64) -> Result<(), String> {
+/// The data's own force and displacement scales (the loads and gap forces; the gaps and the
+/// displacements those forces make): round-off is measured against them when the solution's
+/// numbers are all zero.
+fn data_scales(zone: &ContactZone) -> (f64, f64) {
+    let amax = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let kmax = [&zone.rnn, &zone.rnt, &zone.rtn, &zone.rtt]
+        .iter()
+        .map(|m| (0..m.nrows()).flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)].abs())).fold(0.0f64, f64::max))
+        .fold(0.0f64, f64::max);
+    let gmax = amax(&zone.gap);
+    let fmax = amax(&zone.constant.normal)
+        .max(amax(&zone.constant.tangential))
+        .max(amax(&zone.variable.normal))
+        .max(amax(&zone.variable.tangential))
+        .max(kmax * gmax);
+    (fmax, gmax.max(if kmax > 0.0 { fmax / kmax } else { 0.0 }))
+}
+
+/// `b` (forces scaled by `f`, displacements by `u`) is `a` in other units; `scales` are the
+/// data scales of `a`'s zone.
+fn assert_same(
+    a: &ContactSolution,
+    b: &ContactSolution,
+    f: f64,
+    u: f64,
+    scales: (f64, f64),
+) -> Result<(), String> {
     let (ka, pa) = outcome_kind(&a.outcome);
     let (kb, pb) = outcome_kind(&b.outcome);
     if ka != kb {
@@ -74,8 +99,8 @@ fn assert_same(a: &ContactSolution, b: &ContactSolution, f: f64, u: f64) -> Resu
     if a.pairs.len() != b.pairs.len() {
         return Err("one has a solution, the other not".into());
     }
-    let xs = a.pairs.iter().fold(0.0f64, |m, r| m.max(r.x_n.abs()).max(r.x_t.abs()));
-    let zs = a.pairs.iter().fold(0.0f64, |m, r| m.max(r.z_n.abs()).max(r.z_t.abs()));
+    let xs = a.pairs.iter().fold(scales.0, |m, r| m.max(r.x_n.abs()).max(r.x_t.abs()));
+    let zs = a.pairs.iter().fold(scales.1, |m, r| m.max(r.z_n.abs()).max(r.z_t.abs()));
     for (r, s) in a.pairs.iter().zip(&b.pairs) {
         if r.state != s.state {
             return Err(format!("pair {}: {} vs {}", r.name, r.state, s.state));
@@ -98,7 +123,7 @@ fn check(zone: &ContactZone, settings: &SolveSettings, f: f64, u: f64) -> Result
         ..settings.clone()
     };
     let b = solve(&rescaled(zone, f, u), &scaled).map_err(|e| e.to_string())?;
-    assert_same(&a, &b, f, u)
+    assert_same(&a, &b, f, u, data_scales(zone))
 }
 
 /// The paper's Example 1 in contact-zone form (examples/example1-contact-zone.toml).
@@ -140,7 +165,7 @@ fn example1_in_every_unit_system() {
             },
         )
         .unwrap();
-        assert_same(&a, &b, f, f).unwrap_or_else(|e| panic!("loads × {f}: {e}"));
+        assert_same(&a, &b, f, f, data_scales(&zone)).unwrap_or_else(|e| panic!("loads × {f}: {e}"));
     }
 }
 
@@ -149,7 +174,7 @@ fn log_factor() -> impl Strategy<Value = f64> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
 
     /// Random zones with coupling, gaps, friction per pair, constant and variable loads and
     /// sometimes a tightening.
@@ -166,7 +191,12 @@ proptest! {
     ) {
         let k = 2 * m;
         let bm = |i: usize, j: usize| b[i * 6 + j] as f64 / 4.0;
-        let r = Mat::<f64>::from_fn(k, k, |i, j| (0..k).map(|l| bm(i, l) * bm(j, l)).sum());
+        // Positive definite (B Bᵀ + I/4): with a singular R the solution is not unique (an open
+        // pair free to slide), and which of the solutions a path reaches may rightly change with
+        // one rounding; the determinate slider of `units_and_hostile` covers singular R.
+        let r = Mat::<f64>::from_fn(k, k, |i, j| {
+            (0..k).map(|l| bm(i, l) * bm(j, l)).sum::<f64>() + if i == j { 0.25 } else { 0.0 }
+        });
         let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| r[(r0 + i, c0 + j)]);
         let mut zone = ContactZone::new(block(0, 0), block(m, m));
         zone.rnt = block(0, m);
@@ -195,7 +225,7 @@ proptest! {
         lin.rtt = zone.rtt.clone();
         let a = solve(&zone, &settings).unwrap();
         let bsol = solve(&lin, &SolveSettings { tightening: c * f, ..settings.clone() }).unwrap();
-        if let Err(e) = assert_same(&a, &bsol, f, f) {
+        if let Err(e) = assert_same(&a, &bsol, f, f, data_scales(&zone)) {
             prop_assert!(false, "loads × {}: {}\n{:?}", f, e, zone);
         }
     }

@@ -220,7 +220,7 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
 }
 
 pub(crate) enum LemkeOutcome {
-    /// Final complementary basis (slot → column) and its basic values (scaled).
+    /// Final complementary basis (slot → column) and its basic values (equilibrated units).
     Solved(Vec<usize>, Vec<f64>),
     Ray,
     IterationLimit,
@@ -250,7 +250,7 @@ pub(crate) fn lemke_run(prep: &Prepared, q: &[f64], cov: &[f64], settings: &Sett
     let driver = cols.driver();
     let alpha = piv.basis.ftran(&cols, driver);
     let Some(slot) = piv.lemke_first_slot(&alpha) else {
-        let beta = piv.beta.clone();
+        let beta = cols.values(&piv.beta);
         return LemkeRun {
             outcome: LemkeOutcome::Solved(piv.basis.slot_var.clone(), beta),
             pivots: 0,
@@ -274,16 +274,18 @@ pub(crate) fn lemke_run(prep: &Prepared, q: &[f64], cov: &[f64], settings: &Sett
         Ending::DriverLeft => {
             // Fresh factorisation of the final basis from the data.
             match piv.refactor() {
-                Ok(()) => LemkeOutcome::Solved(piv.basis.slot_var.clone(), piv.beta.clone()),
+                Ok(()) => {
+                    LemkeOutcome::Solved(piv.basis.slot_var.clone(), cols.values(&piv.beta))
+                }
                 Err(_) => LemkeOutcome::Singular,
             }
         }
         // A ray with the artificial variable already at zero is a solution, not a ray.
         // Judged relative to the data it meets: the driver's contribution `z0·g` against `h`.
         Ending::Ray { .. }
-            if piv.driver_value() * max_abs(&cols.g) <= 1e-12 * max_abs(&cols.h) =>
+            if piv.driver_value_scaled() * max_abs(&cols.g) <= 1e-12 * max_abs(&cols.h) =>
         {
-            LemkeOutcome::Solved(piv.basis.slot_var.clone(), piv.beta.clone())
+            LemkeOutcome::Solved(piv.basis.slot_var.clone(), cols.values(&piv.beta))
         }
         Ending::Ray { .. } => LemkeOutcome::Ray,
         Ending::TargetReached => unreachable!("no target in Lemke's method"),

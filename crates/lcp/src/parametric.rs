@@ -362,7 +362,7 @@ pub fn follow_path(
         priority,
         settings.refactor_interval,
     );
-    let start_z = basic_z(&prep, &piv.basis.slot_var, &piv.beta);
+    let start_z = basic_z(&prep, &piv.basis.slot_var, &cols.values(&piv.beta));
     let mut records: Vec<PivotRecord> = Vec::new();
     let mut crossed = None;
     let stop = options.follow == Follow::ToTarget;
@@ -726,7 +726,7 @@ fn remove_tightening(
     let beta = basis.solve(&cols, &cols.h);
     let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
     if beta.iter().all(|&b| b >= -1e-12 * hmax) {
-        let (x, z) = prep.unscale(&slots, &clamp(&beta));
+        let (x, z) = prep.unscale(&slots, &cols.values(&clamp(&beta)));
         return nonnegative(x, z, 0);
     }
     if c0 <= 0.0 {
@@ -767,7 +767,7 @@ fn remove_tightening(
     }
     let basis = Basis::from_slots(&cols, final_slots.clone()).ok()?;
     let beta = basis.solve(&cols, &cols.h);
-    let (x, z) = prep.unscale(&final_slots, &clamp(&beta));
+    let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp(&beta)));
     nonnegative(x, z, piv.pivots)
 }
 

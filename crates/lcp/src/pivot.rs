@@ -108,9 +108,14 @@ impl<'a> Pivoter<'a> {
         self.basis.is_basic(d).then(|| self.basis.var_slot[d])
     }
 
-    /// Value of the driver now (zero when non-basic).
-    pub fn driver_value(&self) -> f64 {
+    /// Value of the driver now in the columns' units (zero when non-basic).
+    pub fn driver_value_scaled(&self) -> f64 {
         self.driver_slot().map_or(0.0, |s| self.beta[s])
+    }
+
+    /// Value of the driver now in the caller's units (zero when non-basic).
+    pub fn driver_value(&self) -> f64 {
+        self.cols.driver_real(self.driver_value_scaled())
     }
 
     /// Slots whose entry in `alpha` counts as positive.
@@ -355,7 +360,7 @@ impl<'a> Pivoter<'a> {
             .iter()
             .enumerate()
             .filter(|&(_, &v)| v >= n && v < 2 * n)
-            .map(|(s, &v)| (v - n, self.beta[s].max(0.0)))
+            .map(|(s, &v)| (v - n, self.cols.values(&[self.beta[s].max(0.0)])[0]))
             .collect();
         PivotRecord {
             entering,
@@ -366,8 +371,8 @@ impl<'a> Pivoter<'a> {
     }
 
     /// Complementary pivoting from `entering` until the driver leaves, a ray, the target, or
-    /// the pivot cap. `target = Some((t, stop))`: when the driver would pass `t`, stop there if
-    /// `stop`, otherwise note the segment index in `crossed` and go on.
+    /// the pivot cap. `target = Some((t, stop))` (in the caller's units): when the driver would
+    /// pass `t`, stop there if `stop`, otherwise note the segment index in `crossed` and go on.
     pub fn run(
         &mut self,
         mut entering: usize,
@@ -377,6 +382,7 @@ impl<'a> Pivoter<'a> {
         crossed: &mut Option<usize>,
     ) -> (Ending, usize) {
         let driver = self.cols.driver();
+        let target = target.map(|(t, stop)| (self.cols.driver_scaled(t), stop));
         loop {
             let (mut alpha, drift) = self.basis.ftran_checked(self.cols, entering);
             self.drift = drift;

@@ -67,12 +67,12 @@ impl Prepared {
 
     /// Tableau columns for `x = h + g t + M z` given in original units.
     pub fn columns(&self, h: &[f64], g: &[f64]) -> Columns {
-        Columns {
-            n: self.n,
-            m: self.m_scaled.clone(),
-            g: self.scaling.scale_rows(g),
-            h: self.scaling.scale_rows(h),
-        }
+        Columns::new(
+            self.n,
+            self.m_scaled.clone(),
+            self.scaling.scale_rows(h),
+            self.scaling.scale_rows(g),
+        )
     }
 
     /// Unscaled `(x, z)` from basic values by slot.
