@@ -301,7 +301,7 @@ pub fn solve(
     let normalised_options = PathOptions {
         target: settings.target,
         follow,
-        tightening: normalised.tightening(units.to_force(settings.tightening)),
+        tightening: normalised.tightening(units.normalised_force(settings.tightening)),
     };
     let engine = engine_settings(&normalised, settings);
     let mut path = follow_path(&normalised.problem, &normalised_options, &engine)
@@ -353,17 +353,19 @@ pub fn solve(
     let normalised_solution = path.solution.clone();
     for b in &mut path.breakpoints {
         for (_, v) in &mut b.z {
-            *v = units.from_displacement(*v);
+            *v = units.user_displacement(*v);
         }
     }
     if let Some(mm) = &mut path.mechanism {
         for v in &mut mm.dx {
-            *v = units.from_stiffness(*v);
+            *v = units.user_stiffness(*v);
         }
     }
     if let Some(sol) = &mut path.solution {
-        sol.x.iter_mut().for_each(|v| *v = units.from_force(*v));
-        sol.z.iter_mut().for_each(|v| *v = units.from_displacement(*v));
+        sol.x.iter_mut().for_each(|v| *v = units.user_force(*v));
+        sol.z
+            .iter_mut()
+            .for_each(|v| *v = units.user_displacement(*v));
     }
     let outcome = match path.status {
         PathStatus::TargetReached => Outcome::TargetReached,
@@ -488,10 +490,10 @@ impl ContactSolution {
     fn read_point(&self, sol: &PathPoint) -> Result<Vec<PairResult>, ContactError> {
         let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, 1.0, 1.0);
         for r in &mut pairs {
-            r.x_n = self.units.from_force(r.x_n);
-            r.x_t = self.units.from_force(r.x_t);
-            r.z_n = self.units.from_displacement(r.z_n);
-            r.z_t = self.units.from_displacement(r.z_t);
+            r.x_n = self.units.user_force(r.x_n);
+            r.x_t = self.units.user_force(r.x_t);
+            r.z_n = self.units.user_displacement(r.z_n);
+            r.z_t = self.units.user_displacement(r.z_t);
             if ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()) {
                 return Err(ContactError::OutOfRange(format!(
                     "the forces and displacements of pair {} at p = {} exceed the \
@@ -609,6 +611,9 @@ mod tests {
         let src = include_str!("solve.rs");
         let start = src.find("ended in a mechanism at").unwrap();
         let note = &src[start..start + 400];
-        assert!(note.contains("at \\\n"), "continuation backslash lost: {note}");
+        assert!(
+            note.contains("at \\\n"),
+            "continuation backslash lost: {note}"
+        );
     }
 }

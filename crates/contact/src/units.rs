@@ -106,22 +106,22 @@ impl Units {
     }
 
     /// A force in the user's units → normalised.
-    pub fn to_force(&self, f: f64) -> f64 {
+    pub fn normalised_force(&self, f: f64) -> f64 {
         ldexp(f, -self.force)
     }
 
     /// A normalised force → the user's units.
-    pub fn from_force(&self, f: f64) -> f64 {
+    pub fn user_force(&self, f: f64) -> f64 {
         ldexp(f, self.force)
     }
 
     /// A normalised displacement → the user's units.
-    pub fn from_displacement(&self, z: f64) -> f64 {
+    pub fn user_displacement(&self, z: f64) -> f64 {
         ldexp(z, self.displacement())
     }
 
     /// A normalised stiffness → the user's units.
-    pub fn from_stiffness(&self, k: f64) -> f64 {
+    pub fn user_stiffness(&self, k: f64) -> f64 {
         ldexp(k, self.stiffness)
     }
 
@@ -140,7 +140,11 @@ impl Units {
                 }
             })
         };
-        let forces = |v: &[f64]| v.iter().map(|&x| self.to_force(x)).collect::<Vec<_>>();
+        let forces = |v: &[f64]| {
+            v.iter()
+                .map(|&x| self.normalised_force(x))
+                .collect::<Vec<_>>()
+        };
         let load = |l: &ContactLoad| ContactLoad {
             normal: forces(&l.normal),
             tangential: forces(&l.tangential),

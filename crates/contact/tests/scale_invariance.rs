@@ -49,7 +49,11 @@ fn data_scales(zone: &ContactZone) -> (f64, f64) {
     let amax = |v: &[f64]| v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     let kmax = [&zone.rnn, &zone.rnt, &zone.rtn, &zone.rtt]
         .iter()
-        .map(|m| (0..m.nrows()).flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)].abs())).fold(0.0f64, f64::max))
+        .map(|m| {
+            (0..m.nrows())
+                .flat_map(|i| (0..m.ncols()).map(move |j| m[(i, j)].abs()))
+                .fold(0.0f64, f64::max)
+        })
         .fold(0.0f64, f64::max);
     let gmax = amax(&zone.gap);
     let fmax = amax(&zone.constant.normal)
@@ -99,8 +103,14 @@ fn assert_same(
     if a.pairs.len() != b.pairs.len() {
         return Err("one has a solution, the other not".into());
     }
-    let xs = a.pairs.iter().fold(scales.0, |m, r| m.max(r.x_n.abs()).max(r.x_t.abs()));
-    let zs = a.pairs.iter().fold(scales.1, |m, r| m.max(r.z_n.abs()).max(r.z_t.abs()));
+    let xs = a
+        .pairs
+        .iter()
+        .fold(scales.0, |m, r| m.max(r.x_n.abs()).max(r.x_t.abs()));
+    let zs = a
+        .pairs
+        .iter()
+        .fold(scales.1, |m, r| m.max(r.z_n.abs()).max(r.z_t.abs()));
     for (r, s) in a.pairs.iter().zip(&b.pairs) {
         if r.state != s.state {
             return Err(format!("pair {}: {} vs {}", r.name, r.state, s.state));
@@ -110,7 +120,10 @@ fn assert_same(
             && close(r.z_n * u, s.z_n, zs * u)
             && close(r.z_t * u, s.z_t, zs * u);
         if !ok {
-            return Err(format!("pair {}: {r:?} vs {s:?} (F = {f}, U = {u})", r.name));
+            return Err(format!(
+                "pair {}: {r:?} vs {s:?} (F = {f}, U = {u})",
+                r.name
+            ));
         }
     }
     Ok(())
@@ -129,7 +142,11 @@ fn check(zone: &ContactZone, settings: &SolveSettings, f: f64, u: f64) -> Result
 /// The paper's Example 1 in contact-zone form (examples/example1-contact-zone.toml).
 fn example1() -> (ContactZone, SolveSettings) {
     let mut zone = ContactZone::new(
-        mat![[0.1875, -0.375, 0.1875], [-0.375, 0.75, -0.375], [0.1875, -0.375, 0.1875]],
+        mat![
+            [0.1875, -0.375, 0.1875],
+            [-0.375, 0.75, -0.375],
+            [0.1875, -0.375, 0.1875]
+        ],
         mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
     );
     zone.friction = vec![0.6; 3];
@@ -165,7 +182,8 @@ fn example1_in_every_unit_system() {
             },
         )
         .unwrap();
-        assert_same(&a, &b, f, f, data_scales(&zone)).unwrap_or_else(|e| panic!("loads × {f}: {e}"));
+        assert_same(&a, &b, f, f, data_scales(&zone))
+            .unwrap_or_else(|e| panic!("loads × {f}: {e}"));
     }
 }
 

@@ -22,10 +22,7 @@ use unilateral_oracle as oracle;
 /// slider any more: a mechanism at `p_lim = 12`.
 fn slider(w: f64) -> ContactZone {
     let ea = 2e9;
-    let mut zone = ContactZone::new(
-        Mat::zeros(2, 2),
-        mat![[ea, -ea], [-ea, ea]],
-    );
+    let mut zone = ContactZone::new(Mat::zeros(2, 2), mat![[ea, -ea], [-ea, ea]]);
     zone.friction = vec![0.5; 2];
     zone.constant.normal = vec![w, w];
     zone.variable.tangential = vec![0.0, w / 12.0];
@@ -128,14 +125,29 @@ fn a_round_off_negative_stiffness_of_a_determinate_support_is_zero() {
     let mut bad = ContactZone::new(mat![[-1.0]], mat![[1.0]]);
     bad.constant.normal = vec![1.0];
     let e = solve(&bad, &SolveSettings::default()).unwrap_err();
-    assert!(matches!(e, ContactError::NegativeDiagonal { name: "Rnn", pair: 1, .. }));
-    assert!(e.to_string().contains("Rnn") && e.to_string().contains("pair 1"), "{e}");
+    assert!(matches!(
+        e,
+        ContactError::NegativeDiagonal {
+            name: "Rnn",
+            pair: 1,
+            ..
+        }
+    ));
+    assert!(
+        e.to_string().contains("Rnn") && e.to_string().contains("pair 1"),
+        "{e}"
+    );
 }
 
 /// Every number of a solution is finite, or the solve says clearly what is out of range.
 #[test]
 fn extreme_magnitudes_give_finite_numbers_or_a_clear_error() {
-    for (k, load) in [(1e308, 1e308), (1e308, -1e308), (1e-308, 1e308), (1.0, 1e-308)] {
+    for (k, load) in [
+        (1e308, 1e308),
+        (1e308, -1e308),
+        (1e-308, 1e308),
+        (1.0, 1e-308),
+    ] {
         let mut zone = ContactZone::new(mat![[k, -k], [-k, k]], mat![[k, 0.0], [0.0, k]]);
         zone.friction = vec![0.3, 0.4];
         zone.constant.normal = vec![load, load];
@@ -185,7 +197,13 @@ mod campaign {
     /// split into the blocks. Definite: a structure held by its supports, not a mechanism (with a
     /// singular `R` the exact data can have solutions only at numerically singular bases, with
     /// displacements of 1e15, which no basis method in floating point can be asked to find).
-    pub fn zone_from(m: usize, b: &[i32], friction: &[f64], gaps: &[f64], loads: &[i32]) -> ContactZone {
+    pub fn zone_from(
+        m: usize,
+        b: &[i32],
+        friction: &[f64],
+        gaps: &[f64],
+        loads: &[i32],
+    ) -> ContactZone {
         let k = 2 * m;
         let bm = |i: usize, j: usize| b[i * k + j] as f64 / 4.0;
         let r = Mat::<f64>::from_fn(k, k, |i, j| {
@@ -278,11 +296,27 @@ fn open_pairs_make_no_friction_events_without_tightening() {
 #[test]
 fn friction_pivots_of_open_pairs_are_not_events() {
     let mut zone = ContactZone::new(
-        mat![[0.375, 0.0625, -0.125], [0.0625, 0.625, 0.125], [-0.125, 0.125, 0.875]],
-        mat![[0.8125, 0.0, -0.0625], [0.0, 1.125, -0.125], [-0.0625, -0.125, 0.9375]],
+        mat![
+            [0.375, 0.0625, -0.125],
+            [0.0625, 0.625, 0.125],
+            [-0.125, 0.125, 0.875]
+        ],
+        mat![
+            [0.8125, 0.0, -0.0625],
+            [0.0, 1.125, -0.125],
+            [-0.0625, -0.125, 0.9375]
+        ],
     );
-    zone.rnt = mat![[0.0, 0.4375, 0.125], [0.0, 0.625, 0.0], [0.125, 0.25, -0.375]];
-    zone.rtn = mat![[0.0, 0.0, 0.125], [0.4375, 0.625, 0.25], [0.125, 0.0, -0.375]];
+    zone.rnt = mat![
+        [0.0, 0.4375, 0.125],
+        [0.0, 0.625, 0.0],
+        [0.125, 0.25, -0.375]
+    ];
+    zone.rtn = mat![
+        [0.0, 0.0, 0.125],
+        [0.4375, 0.625, 0.25],
+        [0.125, 0.0, -0.375]
+    ];
     zone.friction = vec![0.5, 0.75, 0.625];
     zone.constant.normal = vec![0.5, 0.0, -1.0];
     zone.constant.tangential = vec![-1.0, 0.75, -0.75];
@@ -309,5 +343,10 @@ fn friction_pivots_of_open_pairs_are_not_events() {
                 && (r.x_t - (x[3 + i] - x[6 + i]) / 2.0).abs() <= 1e-9
         })
     });
-    assert!(found, "{:?} is none of {} exact solutions", sol.pairs, sols.len());
+    assert!(
+        found,
+        "{:?} is none of {} exact solutions",
+        sol.pairs,
+        sols.len()
+    );
 }

@@ -9,10 +9,7 @@ use crate::Residual;
 /// All `2^n` complementary bases in order of growing support; the first whose solution verifies
 /// is returned as `(z, w, S)` with `S` the basic `z` indices. Bases with a numerically singular
 /// `M[S, S]` are skipped.
-pub(crate) fn enumerate_first(
-    m: &Mat<f64>,
-    q: &[f64],
-) -> Option<(Vec<f64>, Vec<f64>, Vec<usize>)> {
+pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<f64>, Vec<usize>)> {
     let n = q.len();
     assert!(n <= 24, "enumeration is for small problems");
     let mut subsets: Vec<u32> = (0..(1u32 << n)).collect();

@@ -124,10 +124,7 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
         (0..n).map(|i| 1.0 + i as f64 / n as f64).collect(),
     ));
     let qmean = lcp.q.iter().map(|v| v.abs()).sum::<f64>() / n as f64;
-    coverings.push((
-        "|q|",
-        lcp.q.iter().map(|v| v.abs() + qmean).collect(),
-    ));
+    coverings.push(("|q|", lcp.q.iter().map(|v| v.abs() + qmean).collect()));
     let mut attempts = Vec::new();
     let mut pivots = 0;
     let mut last_status = LcpStatus::Ray;
@@ -274,9 +271,7 @@ pub(crate) fn lemke_run(prep: &Prepared, q: &[f64], cov: &[f64], settings: &Sett
         Ending::DriverLeft => {
             // Fresh factorisation of the final basis from the data.
             match piv.refactor() {
-                Ok(()) => {
-                    LemkeOutcome::Solved(piv.basis.slot_var.clone(), cols.values(&piv.beta))
-                }
+                Ok(()) => LemkeOutcome::Solved(piv.basis.slot_var.clone(), cols.values(&piv.beta)),
                 Err(_) => LemkeOutcome::Singular,
             }
         }

@@ -5,7 +5,14 @@ use faer::mat;
 use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Residual, Settings};
 
 fn solve(m: f64, q: f64) -> unilateral_lcp::LcpSolution {
-    solve_lcp(&Lcp { m: mat![[m]], q: vec![q] }, &Settings::default()).unwrap()
+    solve_lcp(
+        &Lcp {
+            m: mat![[m]],
+            q: vec![q],
+        },
+        &Settings::default(),
+    )
+    .unwrap()
 }
 
 #[test]
@@ -19,12 +26,22 @@ fn a_solution_beyond_the_range_is_a_numerical_failure_not_solved() {
 #[test]
 fn tiny_and_huge_entries_give_verified_finite_solutions() {
     // References: 1×1 by hand, z = −q/m, w = 0.
-    for (m, q) in [(1e-308, -1.0), (1.0, -1e-308), (1e-308, -1e-308), (1e300, -1e-300), (3e-200, -6e100)] {
+    for (m, q) in [
+        (1e-308, -1.0),
+        (1.0, -1e-308),
+        (1e-308, -1e-308),
+        (1e300, -1e-300),
+        (3e-200, -6e100),
+    ] {
         let s = solve(m, q);
         assert_eq!(s.status, LcpStatus::Solved, "m = {m}, q = {q}: {s:?}");
         let p = s.point.unwrap();
         let z = -q / m;
-        assert!((p.z[0] - z).abs() <= 1e-12 * z, "m = {m}, q = {q}: {:?}", p.z);
+        assert!(
+            (p.z[0] - z).abs() <= 1e-12 * z,
+            "m = {m}, q = {q}: {:?}",
+            p.z
+        );
         assert!(p.w[0].is_finite() && p.w[0].abs() <= 1e-12 * q.abs());
         let r = p.residual;
         for v in [r.equation, r.feasibility, r.complementarity] {
@@ -47,7 +64,10 @@ fn residuals_of_non_finite_points_are_infinite() {
     let r = Residual::of(&m, &[-1.5e308], &[0.5e308], &[1.0, 1.0]);
     assert!(r.equation <= 1e-15 && r.feasibility == 0.0, "{r:?}");
     // (not a complementary point: w·z ≠ 0 is reported as such, finitely)
-    assert!(r.complementarity.is_finite() && r.complementarity > 0.1, "{r:?}");
+    assert!(
+        r.complementarity.is_finite() && r.complementarity > 0.1,
+        "{r:?}"
+    );
     // Tiny: complementarity of z = 1e-308 is no 0/0.
     let m = mat![[1.0]];
     let r = Residual::of(&m, &[-1e-308], &[0.0], &[1e-308]);

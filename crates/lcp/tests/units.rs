@@ -44,10 +44,20 @@ fn the_slider_in_raw_units() {
         for w in [1e-150, 3e-20, 0.01, 1.0, 1e20, 1e30, 1e150] {
             let path = follow_path(&slider(k, w), &options, &settings).unwrap();
             let ps: Vec<f64> = path.steps.iter().map(|s| s.p).collect();
-            assert_eq!(path.status, PathStatus::Mechanism, "k = {k}, W = {w}: {ps:?}");
+            assert_eq!(
+                path.status,
+                PathStatus::Mechanism,
+                "k = {k}, W = {w}: {ps:?}"
+            );
             assert_eq!(ps.len(), 2, "k = {k}, W = {w}: {ps:?}");
-            assert!((ps[0] - 6.0).abs() <= 1e-12 * 6.0, "k = {k}, W = {w}: {ps:?}");
-            assert!((ps[1] - 12.0).abs() <= 1e-12 * 12.0, "k = {k}, W = {w}: {ps:?}");
+            assert!(
+                (ps[0] - 6.0).abs() <= 1e-12 * 6.0,
+                "k = {k}, W = {w}: {ps:?}"
+            );
+            assert!(
+                (ps[1] - 12.0).abs() <= 1e-12 * 12.0,
+                "k = {k}, W = {w}: {ps:?}"
+            );
             let p_lim = path.p_limit.unwrap();
             assert!((p_lim - 12.0).abs() <= 1e-12 * 12.0, "k = {k}, W = {w}");
             let sol = path.solution.expect("a verified solution at p_lim");
