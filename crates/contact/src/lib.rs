@@ -4,6 +4,11 @@
 //! `formulation.md` §2) → the `3m` LCP of §3 ([`ContactLcp`]) → the load path of the parametric
 //! Lemke method (`unilateral-lcp`) → pair states and events ([`solve`] → [`ContactSolution`]).
 //!
+//! The zone is solved in normalised units: forces divided by a power of two near the data's
+//! largest force, stiffness by one near its largest stiffness, displacements by their ratio
+//! (the `units` module). States, events and (scaled) numbers are therefore the same in N and m,
+//! kN and mm or MN and m; results are handed back in the user's units, checked finite.
+//!
 //! Signs (`formulation.md` §1): `x_n` compression positive, `z_n` opening positive; friction is
 //! split as `x_t± = f·x_n ± x_t`, `z_t = (z_t+ − z_t-)/2`.
 

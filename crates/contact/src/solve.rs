@@ -145,7 +145,7 @@ pub enum Outcome {
     IterationLimit,
     /// No solution at `p = 0` was found.
     NoSolutionAtStart,
-    /// A numerically singular basis stopped the path.
+    /// A numerically singular basis stopped the path: an internal failure of the solver.
     NumericalFailure,
 }
 
@@ -181,7 +181,9 @@ impl Outcome {
                 "the problem has no solution at p = 0 (the constant load alone)".into()
             }
             Outcome::NumericalFailure => {
-                "a basis became numerically singular; the path stopped".into()
+                "the solver failed: a basis became numerically singular and the path stopped \
+                 (an internal failure of the program, not a fault of the model)"
+                    .into()
             }
         }
     }

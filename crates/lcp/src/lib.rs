@@ -12,8 +12,17 @@
 //! The basis is kept in revised form: only the `k × k` kernel of non-slack basic columns is
 //! inverted, so a pivot costs `O(n·k + k²)`, and the kernel is refactorised from the data
 //! (`faer` LU) periodically and whenever its accuracy degrades. Every reported solution carries
-//! its [`Residual`] computed from the original data. The data are equilibrated by powers of two,
-//! so tolerances are relative and no user tuning is needed.
+//! its [`Residual`] computed from the original data.
+//!
+//! **Units.** The answer may not depend on the units of the data. `M` is equilibrated by powers
+//! of two (rows and columns), and the right-hand side `q0` and the direction `d` are each
+//! divided by a power of two near their own largest entry, the driver rescaled to match (see
+//! the `columns` module): every tolerance then compares quantities of one kind and one size, so
+//! a `q0` of `1e-150` against an `M` of `1e9` is never read as round-off, and a change of units
+//! by `2^k` changes no bit of what the pivoting sees. A solution is reported only when every one
+//! of its numbers is finite and its residuals, formed overflow-free from the original data,
+//! verify; otherwise the status says the engine failed ([`LcpStatus::NumericalFailure`],
+//! [`PathStatus::NumericalFailure`]) — never a NaN "solved".
 
 mod basis;
 mod columns;
