@@ -54,6 +54,10 @@ pub enum ContactError {
     /// floating-point range (about `1.8e308`).
     #[error("{0}")]
     OutOfRange(String),
+    /// The engine rejected data that the contact formulation had already checked: a fault of
+    /// the program, not of the model.
+    #[error("internal failure of the solver (the program's fault, not the model's): {0}")]
+    Internal(String),
     /// Settings out of range.
     #[error("invalid solve setting: {0}")]
     Settings(String),

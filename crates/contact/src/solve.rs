@@ -307,7 +307,7 @@ pub fn solve(
     };
     let engine = engine_settings(&normalised, settings);
     let mut path = follow_path(&normalised.problem, &normalised_options, &engine)
-        .map_err(|e| ContactError::Settings(e.to_string()))?;
+        .map_err(|e| ContactError::Internal(e.to_string()))?;
     let m = lcp.pairs;
     let names = zone.pair_names.clone();
     // Which pairs are open, followed along the path, to read friction events of open pairs.
@@ -392,6 +392,9 @@ pub fn solve(
         PathStatus::NumericalFailure => Outcome::NumericalFailure,
     };
     let mut notes = Vec::new();
+    if outcome == Outcome::NoSolutionAtStart {
+        notes.extend(start_diagnosis(&lcp));
+    }
     let no_constant = zone.constant.normal.iter().all(|&v| v == 0.0)
         && zone.constant.tangential.iter().all(|&v| v == 0.0)
         && zone.gap.iter().all(|&g| g == 0.0);
@@ -458,6 +461,32 @@ pub fn solve(
         out.set_point(&sol)?;
     }
     Ok(out)
+}
+
+/// Why p = 0 may have no solution: the pairs whose normal link the constant load (with the
+/// gaps) puts in tension in the bonded structure, with those forces.
+fn start_diagnosis(lcp: &ContactLcp) -> Option<String> {
+    let m = lcp.pairs;
+    let q0 = &lcp.problem.q0;
+    let pulled: Vec<String> = (0..m)
+        .filter(|&i| q0[i] < 0.0)
+        .map(|i| format!("pair {} ({:.6e})", i + 1, q0[i]))
+        .collect();
+    if pulled.is_empty() {
+        return None;
+    }
+    let all = if pulled.len() == m {
+        "every pair: "
+    } else {
+        ""
+    };
+    Some(format!(
+        "at p = 0 the constant load (with the gaps) pulls {all}{} apart — these are the normal \
+         link forces of the bonded structure, compression positive — and no position of the \
+         structure balances it with the pairs that stay: check the sign of the constant normal \
+         loads and that the structure is held against them",
+        pulled.join(", ")
+    ))
 }
 
 fn events_of(leaving: Var, m: usize, names: &[String]) -> Vec<Event> {

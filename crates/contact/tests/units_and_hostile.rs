@@ -350,3 +350,19 @@ fn friction_pivots_of_open_pairs_are_not_events() {
         sols.len()
     );
 }
+
+/// The slider with its weight reversed: nothing holds it against the constant load, which pulls
+/// both pairs apart (normal link forces −W). Reference: by hand, `x_n = −W + 0·z_n < 0` for
+/// every `z_n`, so p = 0 has no solution; the note names both pairs and the force.
+#[test]
+fn a_constant_load_pulling_every_pair_apart_is_diagnosed() {
+    let mut zone = slider(3.0);
+    zone.constant.normal = vec![-3.0, -3.0];
+    let sol = solve(&zone, &end_settings(1.0)).unwrap();
+    assert_eq!(sol.outcome, Outcome::NoSolutionAtStart);
+    let note = sol.notes.join("\n");
+    assert!(
+        note.contains("every pair: pair 1 (-3.000000e0), pair 2 (-3.000000e0)"),
+        "{note}"
+    );
+}
