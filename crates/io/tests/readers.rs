@@ -1,4 +1,5 @@
-//! The valid fixtures of `tests/data/good/` and the Siconos test problems of `shared/data/`.
+//! The valid fixtures of `tests/data/good/` and the Siconos test problems of
+//! `tests/data/siconos/`.
 
 // Literals are written exactly as the .dat files print them, so they can be found there.
 #![allow(clippy::excessive_precision)]
@@ -7,7 +8,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::shared;
+use common::{siconos, siconos_files};
 
 use faer::Mat;
 use unilateral_contact::{ContactZone, Trace};
@@ -131,23 +132,17 @@ fn small_lcp_in_toml_json_and_dat() {
     assert_eq!(t.q, vec![-5.0, -6.0]);
     assert_mat_eq(&t.m, &j.m, "M");
     assert_eq!(t.q, j.q);
-    if let Some(dir) = shared("lcp") {
-        let d = read_lcp(&dir.join("lcp_deudeu.dat")).unwrap();
-        assert_mat_eq(&t.m, &d.m, "M");
-        assert_eq!(t.q, d.q);
-    }
+    // The same problem as Siconos' `lcp_deudeu.dat`, written by hand in TOML and JSON.
+    let d = read_lcp(&siconos("lcp").join("lcp_deudeu.dat")).unwrap();
+    assert_mat_eq(&t.m, &d.m, "M");
+    assert_eq!(t.q, d.q);
 }
 
 #[test]
 fn siconos_lcp_files() {
-    let Some(dir) = shared("lcp") else { return };
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "dat"))
-        .collect();
-    names.sort();
-    assert!(names.len() >= 10);
+    let dir = siconos("lcp");
+    let names = siconos_files("lcp");
+    assert_eq!(names.len(), 10, "{names:?}");
     for p in &names {
         let lcp = read_lcp(p).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(lcp.m.nrows(), lcp.q.len(), "{}", p.display());
@@ -219,8 +214,7 @@ fn siconos_lcp_files() {
 
 #[test]
 fn siconos_fc2d_file() {
-    let Some(dir) = shared("fc2d") else { return };
-    let p = read_fc2d(&dir.join("FC2D_SliderCrankLagrangian00000.dat")).unwrap();
+    let p = read_fc2d(&siconos("fc2d").join("FC2D_SliderCrankLagrangian00000.dat")).unwrap();
     assert_eq!(p.contacts(), 2);
     assert_eq!((p.w.nrows(), p.w.ncols()), (4, 4));
     assert_eq!(p.w[(0, 0)], 9.365610022253570150496671e+02);

@@ -1,12 +1,11 @@
-//! Every Siconos LCP test problem of `shared/data/lcp/` is read with `read_lcp` and solved with
+//! Every Siconos LCP test problem of `tests/data/siconos/lcp/` is read with `read_lcp` and solved with
 //! `solve_lcp`; the answer is checked independently of the engine (`w = Mz + q` recomputed here,
 //! signs, complementarity, and a brute-force enumeration of all complementary bases written in
-//! this file). The FC2D problem of `shared/data/fc2d/` is solved through the classical
+//! this file). The FC2D problem of `tests/data/siconos/fc2d/` is solved through the classical
 //! flexibility-form LCP and checked against the Coulomb conditions of the FC2D problem itself.
 //!
-//! `shared/data/` is found as in `readers.rs` (`UNILATERAL_SHARED_DATA`, `../shared/data`,
-//! `shared/data`). When it is missing the tests are skipped, except when the environment variable
-//! `CI` is set: then they fail.
+//! The files are part of the repository (Apache-2.0, attribution in
+//! `tests/data/siconos/README.md`); a missing or an unlisted file is a test failure, never a skip.
 //!
 //! # How each file ends, and why
 //!
@@ -53,9 +52,7 @@
 
 mod common;
 
-use std::path::PathBuf;
-
-use common::shared;
+use common::{siconos, siconos_files};
 
 use faer::Mat;
 use unilateral_io::{read_fc2d, read_lcp};
@@ -184,14 +181,8 @@ fn enumerate_all(m: &Mat<f64>, q: &[f64]) -> Vec<Vec<f64>> {
 
 #[test]
 fn every_siconos_lcp_ends_as_expected() {
-    let Some(dir) = shared("lcp") else { return };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "dat"))
-        .collect();
-    files.sort();
-    assert!(files.len() >= 10, "only {} .dat files", files.len());
+    let files = siconos_files("lcp");
+    assert_eq!(files.len(), EXPECTED.len(), "{files:?}");
     let mut failures = Vec::new();
     for path in &files {
         let stem = path.file_stem().unwrap().to_string_lossy().to_string();
@@ -260,8 +251,7 @@ fn every_siconos_lcp_ends_as_expected() {
 /// documentation): a user covering vector fails as well, and enumeration answers.
 #[test]
 fn cps_3_defeats_every_covering_vector() {
-    let Some(dir) = shared("lcp") else { return };
-    let lcp = read_lcp(&dir.join("lcp_CPS_3.dat")).unwrap();
+    let lcp = read_lcp(&siconos("lcp").join("lcp_CPS_3.dat")).unwrap();
     for cov in [vec![1.0, 2.0, 3.0, 4.0], vec![5.0, 1.0, 0.5, 2.0]] {
         let sol = solve_lcp(
             &lcp,
@@ -295,8 +285,7 @@ fn cps_3_defeats_every_covering_vector() {
 
 #[test]
 fn fc2d_slider_crank_through_the_flexibility_lcp() {
-    let Some(dir) = shared("fc2d") else { return };
-    let p = read_fc2d(&dir.join("FC2D_SliderCrankLagrangian00000.dat")).unwrap();
+    let p = read_fc2d(&siconos("fc2d").join("FC2D_SliderCrankLagrangian00000.dat")).unwrap();
     let nc = p.contacts();
     let w = &p.w;
     // W is singular: the stiffness form R = W⁻¹ of the 3m contact LCP does not exist.

@@ -2,25 +2,29 @@
 
 use std::path::{Path, PathBuf};
 
-/// `shared/data/<sub>` beside the repository (as in CI); `None` (skip) when
-/// missing, a failure when the environment variable `CI` is set.
-pub fn shared(sub: &str) -> Option<PathBuf> {
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let candidates = [
-        std::env::var_os("UNILATERAL_SHARED_DATA").map(PathBuf::from),
-        Some(repo.join("../shared/data")),
-        Some(repo.join("shared/data")),
-    ];
-    let dir = candidates
-        .into_iter()
-        .flatten()
-        .find(|d| d.join(sub).is_dir());
-    if dir.is_none() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "shared/data/{sub} not found beside the repository, and CI is set"
-        );
-        eprintln!("shared/data/{sub} not found beside the repository: skipped");
-    }
-    dir.map(|d| d.join(sub))
+/// `tests/data/siconos/<sub>` of this repository: the Siconos test problems (Apache-2.0, see
+/// `tests/data/siconos/README.md`). The data is part of the repository, so a missing directory is
+/// a test failure, never a skip.
+pub fn siconos(sub: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/siconos")
+        .join(sub);
+    assert!(
+        dir.is_dir(),
+        "{} is missing: the Siconos test data belongs to the repository",
+        dir.display()
+    );
+    dir
+}
+
+/// The `.dat` files of `tests/data/siconos/<sub>`, sorted by name.
+pub fn siconos_files(sub: &str) -> Vec<PathBuf> {
+    let dir = siconos(sub);
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "dat"))
+        .collect();
+    files.sort();
+    files
 }
