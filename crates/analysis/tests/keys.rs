@@ -141,6 +141,9 @@ fn reaction(p: &StructuralProblem, a: &Analysis, name: &str, dof: SupportDof) ->
         .value
 }
 
+/// A change of a model document.
+type Edit = Box<dyn Fn(&mut toml::Table)>;
+
 /// The events of the path as (load, pair, kind), leaving out the friction events of open pairs
 /// (they only use up the tightening's sideways capacity: no force is transmitted).
 fn events(a: &Analysis) -> Vec<(f64, String, EventKind)> {
@@ -168,8 +171,9 @@ fn solve_dense(mut k: Vec<Vec<f64>>, mut f: Vec<f64>) -> Vec<f64> {
         f.swap(c, r);
         for i in c + 1..n {
             let m = k[i][c] / k[c][c];
-            for j in c..n {
-                k[i][j] -= m * k[c][j];
+            let pivot_row = k[c].clone();
+            for (kij, kcj) in k[i][c..].iter_mut().zip(&pivot_row[c..]) {
+                *kij -= m * kcj;
             }
             f[i] -= m * f[c];
         }
@@ -379,7 +383,24 @@ fn settlement_of_a_support_rz() {
     // A clamp turning by θ = 1e-3 lifts the tip of a cantilever (L = 3, EI = 2.7e6) by θ L
     // against a stop: the prop force of a propped cantilever whose tip is held back by θ L is
     // 3 EI θ L/L³ = 3 EI θ/L² = 900. The pull 300 p on the tip opens it at p = 3.
-    let (p, a) = run("settlement-rz.toml");
+    // The clamp written as `fixed`, and as `pinned` plus `rz` in two entries (merged).
+    let pinned_and_rz = |d: &mut toml::Table| {
+        let s = entry(d, "supports", 0);
+        s.remove("fixed");
+        set(s, "pinned", true);
+        let mut rz = toml::Table::new();
+        set(&mut rz, "nodes", "beam.start");
+        set(&mut rz, "rz", true);
+        match d.get_mut("supports") {
+            Some(toml::Value::Array(a)) => a.push(rz.into()),
+            _ => unreachable!(),
+        }
+    };
+    settlement_rz(run("settlement-rz.toml"));
+    settlement_rz(run_edited(&data("settlement-rz.toml"), pinned_and_rz));
+}
+
+fn settlement_rz((p, a): (StructuralProblem, Analysis)) {
     let x = 3.0 * 2.7e6 * 1e-3 / 9.0;
     let ev = events(&a);
     assert_eq!(ev.len(), 1, "{ev:?}");
@@ -693,7 +714,7 @@ fn releases_at_the_end_of_an_element_and_the_start_of_a_member() {
     // middle load 1000 p splits in halves; C's pair gets 500 p + the 100 pressing it, and the
     // clamp at A holds the other half at 2 m: R_A = 500 p, M_A = +1000 p (counter-clockwise).
     // The same with the hinge written as a release at the start of the member instead.
-    let variants: [(&str, Box<dyn Fn(&mut toml::Table)>); 2] = [
+    let variants: [(&str, Edit); 2] = [
         ("release at the end of AB", Box::new(|_| {})),
         (
             "release at the start of the member",
@@ -707,6 +728,14 @@ fn releases_at_the_end_of_an_element_and_the_start_of_a_member() {
             }),
         ),
     ];
+    let variants = variants.into_iter().chain([(
+        "member sharing B through connect_to",
+        Box::new(|d: &mut toml::Table| {
+            let m = entry(d, "members", 0);
+            set(m, "start", toml::Value::Array(vec![2.0.into(), 0.0.into()]));
+            set(m, "connect_to", "B");
+        }) as Edit,
+    )]);
     for (what, edit) in variants {
         let (p, a) = run_edited(&data("releases.toml"), edit);
         close(pair(&a, "C").x_n, 600.0, 1000.0, what);

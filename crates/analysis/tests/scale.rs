@@ -550,9 +550,12 @@ fn compare(
     c.errors
 }
 
+/// A rewriting of a model document, with its label and how the answer must scale.
+type Case = (String, Box<dyn Fn(&mut toml::Table)>, Factors);
+
 /// Runs every model of `files` in every rescaling `cases` gives, and fails with a list of every
 /// model and rescaling that did not reproduce the reference.
-fn check(files: &[PathBuf], cases: &[(String, Box<dyn Fn(&mut toml::Table)>, Factors)]) {
+fn check(files: &[PathBuf], cases: &[Case]) {
     let mut failures = Vec::new();
     let mut runs = 0;
     for path in files {
@@ -592,8 +595,8 @@ fn check(files: &[PathBuf], cases: &[(String, Box<dyn Fn(&mut toml::Table)>, Fac
     );
 }
 
-fn unit_cases() -> Vec<(String, Box<dyn Fn(&mut toml::Table)>, Factors)> {
-    let mut v: Vec<(String, Box<dyn Fn(&mut toml::Table)>, Factors)> = Vec::new();
+fn unit_cases() -> Vec<Case> {
+    let mut v: Vec<Case> = Vec::new();
     for &x in &FACTORS {
         for (f, l) in [(x, 1.0), (1.0, x), (x, 1.0 / x)] {
             v.push((
@@ -606,11 +609,11 @@ fn unit_cases() -> Vec<(String, Box<dyn Fn(&mut toml::Table)>, Factors)> {
     v
 }
 
-fn load_cases() -> Vec<(String, Box<dyn Fn(&mut toml::Table)>, Factors)> {
+fn load_cases() -> Vec<Case> {
     FACTORS
         .iter()
         .map(|&s| {
-            let case: (String, Box<dyn Fn(&mut toml::Table)>, Factors) = (
+            let case: Case = (
                 format!("loads × {s:e}"),
                 Box::new(move |d| rescale_loads(d, s)),
                 Factors::loads(s),
