@@ -309,8 +309,30 @@ fn friction_per_contact_entry() {
     // 0.5·10; the bar passes H p − 5 to a, which slips at p = (0.2 + 0.5)·10 = 7: the bar then
     // slides (a mechanism). At the target p = 6: |x_t(b)| = 5, |x_t(a)| = 1, the bar's tension
     // 1 stretches it by 1·L/EA = 5e-10 — b's slip, a has not moved.
-    let (_, a) = run("friction-slider.toml");
-    let ev = events(&a);
+    check_slider(&run("friction-slider.toml").1);
+}
+
+#[test]
+fn a_json_model_is_the_toml_model() {
+    // The same slider written as JSON (docs/model-format.md: the same structure) gives the
+    // same hand values.
+    let text = std::fs::read_to_string(data("friction-slider.toml")).unwrap();
+    let doc: toml::Table = text.parse().unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("friction-slider.json");
+    std::fs::write(&file, serde_json::to_string_pretty(&doc).unwrap()).unwrap();
+    let Problem::Structural(p) = read_problem(&file).unwrap() else {
+        panic!("not a structural model")
+    };
+    let names = Names {
+        nodes: p.names.nodes.clone(),
+        elements: p.names.elements.clone(),
+    };
+    check_slider(&analyze_named(&p.model, &p.settings, &names).unwrap());
+}
+
+fn check_slider(a: &Analysis) {
+    let ev = events(a);
     assert_eq!(ev.len(), 2, "{ev:?}");
     assert_eq!(ev[0].1, "b");
     assert_eq!(ev[1].1, "a");
@@ -326,7 +348,7 @@ fn friction_per_contact_entry() {
     close(p_limit, 7.0, 1.0, "limit load");
 
     assert_eq!(a.p(), Some(6.0));
-    let (pa, pb) = (pair(&a, "a"), pair(&a, "b"));
+    let (pa, pb) = (pair(a, "a"), pair(a, "b"));
     close(pa.x_n, 10.0, 10.0, "x_n a");
     close(pb.x_n, 10.0, 10.0, "x_n b");
     close(pb.x_t.abs(), 5.0, 10.0, "|x_t| b = f_b W");
@@ -470,6 +492,41 @@ fn temperature_gradient_through_the_depth() {
         4.0 * x,
         "M_A",
     );
+}
+
+#[test]
+fn settlement_of_a_support_ux() {
+    // The bearing beam without its temperature: its pinned end A moves left by δ p, δ = 1e-3.
+    // Stuck, B is held: the beam is stretched by δ p, the bearing pulls with EA δ p/L = 2e5 p and
+    // slips (B following A, along −x) at p = f W L/(EA δ) = 0.625. At p = 2 B has moved by
+    // −(δ p − f W L/EA).
+    let (ea, l, f, w, d) = (2e9, 10.0, 0.25, 5e5, 1e-3);
+    let (p, a) = run_edited(&data("temperature-bearing.toml"), |doc| {
+        let v = table(doc, "loads.variable");
+        v.remove("temperature");
+        let mut s = toml::Table::new();
+        set(&mut s, "nodes", "beam.start");
+        set(&mut s, "dof", "ux");
+        set(&mut s, "value", -d);
+        set(v, "settlement", toml::Value::Array(vec![s.into()]));
+    });
+    let ev = events(&a);
+    assert_eq!(ev.len(), 1, "{ev:?}");
+    assert_eq!(
+        (ev[0].1.as_str(), ev[0].2),
+        ("bearing", EventKind::StartsSlippingMinus)
+    );
+    close(ev[0].0, f * w * l / (ea * d), 1.0, "slip load");
+    let b = pair(&a, "bearing");
+    let slide = d * 2.0 - f * w * l / ea;
+    close(b.z_t, -slide, slide, "slip");
+    close(
+        disp(&p, &a, "beam.start")[0],
+        -2.0 * d,
+        d,
+        "the settled end",
+    );
+    close(disp(&p, &a, "beam.end")[0], -slide, slide, "ux at B");
 }
 
 /// The plane strip of `plane-thermal.toml` with its analysis, formulation and thickness.
