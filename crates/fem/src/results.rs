@@ -162,14 +162,17 @@ pub struct ContactSolution {
     pub x_n: Vec<f64>,
     /// Tangential link forces.
     pub x_t: Vec<f64>,
-    /// Normal mutual displacements (opening positive).
+    /// Normal openings (opening positive) measured as the LCP measures them: from closed
+    /// contact, so `z_n = η + n·(u_B − u_A)` with `η` the pair's initial gap (`z_n = 0` is
+    /// closed, `z_n = η` is the undeformed position).
     pub z_n: Vec<f64>,
     /// Tangential mutual displacements.
     pub z_t: Vec<f64>,
 }
 
 impl ContactSolution {
-    /// The bonded solution at `p` (all `z = 0`, `x = R_c + p·R_v`).
+    /// The bonded solution at `p`: every link at its undeformed length (`n·(u_B − u_A) = 0`,
+    /// so `z_n = η`, `z_t = 0`) and `x = R_c + p·R_v`.
     pub fn bonded(c: &Condensed, p: f64) -> Self {
         let m = c.friction.len();
         Self {
@@ -180,7 +183,7 @@ impl ContactSolution {
             x_t: (0..m)
                 .map(|i| c.constant.tangential[i] + p * c.variable.tangential[i])
                 .collect(),
-            z_n: vec![0.0; m],
+            z_n: c.gap.clone(),
             z_t: vec![0.0; m],
         }
     }
@@ -345,7 +348,16 @@ impl Condensed {
             LoadGroup::Variable => p,
         };
         let (n_i, z0, p0) = (map.n_i, map.z0(), map.p0());
-        let z: Vec<f64> = sol.z_n.iter().chain(&sol.z_t).copied().collect();
+        // The link dislocations are the mutual displacements n·(u_B − u_A) = z_n − η and
+        // t·(u_B − u_A) = z_t: the LCP measures z_n from closed contact (formulation §3, the
+        // gaps enter q_c as −Rnn·η, −Rtn·η).
+        let z: Vec<f64> = sol
+            .z_n
+            .iter()
+            .zip(&self.gap)
+            .map(|(z, g)| z - g)
+            .chain(sol.z_t.iter().copied())
+            .collect();
         // free DOFs
         let mut v_i = vec![0.0; n_i];
         if let Some(llt) = &self.llt {
