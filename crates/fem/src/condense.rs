@@ -422,6 +422,12 @@ pub struct CondensationStats {
     pub condensation_s: f64,
     /// Largest `|R − Rᵀ|` before symmetrization, relative to the largest `|R|`.
     pub asymmetry: f64,
+    /// Estimate of the smallest eigenvalue of the Jacobi-scaled bonded stiffness (its inverse
+    /// estimates the condition number; 1 when no DOF is free).
+    pub smallest_eigenvalue: f64,
+    /// Entries of `R` and of the contact load vectors that were round-off of an exact zero and
+    /// were set to zero.
+    pub round_off_zeroed: usize,
 }
 
 /// Everything assembled from a model.
@@ -678,9 +684,11 @@ fn free_dofs_from_mode(map: &DofMap, mode: &[f64]) -> Vec<FreeDof> {
 }
 
 /// Factorizes the bonded stiffness; a mechanism is a typed error naming the free DOFs.
-pub(crate) fn factorize(asm: &Assembled) -> Result<Option<Llt<usize, f64>>, FemError> {
+/// Returns the factor and the estimate of the smallest eigenvalue of the Jacobi-scaled
+/// bonded stiffness (1 when there is no free DOF).
+pub(crate) fn factorize(asm: &Assembled) -> Result<(Option<Llt<usize, f64>>, f64), FemError> {
     let Some(kii) = asm.kii.as_ref() else {
-        return Ok(None);
+        return Ok((None, 1.0));
     };
     // DOFs without any stiffness
     let zero: Vec<FreeDof> = asm
@@ -716,7 +724,7 @@ pub(crate) fn factorize(asm: &Assembled) -> Result<Option<Llt<usize, f64>>, FemE
                     hint: String::new(),
                 });
             }
-            Ok(Some(llt))
+            Ok((Some(llt), lambda))
         }
         Err(_) => {
             // shifted matrix, same pattern: K + σ·diag(K)
@@ -750,23 +758,48 @@ pub(crate) struct Condensation {
     pub r: Mat<f64>,
     pub rf: [Vec<f64>; 2],
     pub asymmetry: f64,
+    /// Entries of `R` and `R_F` set to zero as round-off (see [`ROUND_OFF`]).
+    pub zeroed: usize,
 }
 
 /// Number of right-hand sides solved together.
 const CHUNK: usize = 64;
 
+/// An entry of `R = K_zz − K_zI K_II⁻¹ K_Iz` (or of `R_F`) is round-off when it is smaller
+/// than this fraction of the magnitude of the terms that formed it (`|K_zz|` plus the sum of
+/// the absolute values of the products in `K_zI·(K_II⁻¹ K_Iz)`). Such an entry has fewer
+/// correct digits than that fraction leaves: it is zero in exact arithmetic up to the
+/// accuracy of double precision (for instance the normal stiffness of a bearing on which a
+/// beam can turn freely about a pin, which the cancellation leaves as ±1e-16 of the element
+/// stiffness). The fraction grows with the condition of the bonded stiffness, whose
+/// round-off the solves carry into every term.
+pub(crate) const ROUND_OFF: f64 = 1e-12;
+
+/// The round-off fraction for a bonded stiffness whose Jacobi-scaled smallest eigenvalue is
+/// `lambda` (the solves amplify round-off by about the condition number `~1/lambda`), bounded
+/// so that no entry above a millionth of its scale is ever taken for round-off.
+fn round_off_fraction(lambda: f64) -> f64 {
+    let amplified = 64.0 * f64::EPSILON / lambda.max(f64::MIN_POSITIVE);
+    amplified.clamp(ROUND_OFF, 1e-6)
+}
+
 pub(crate) fn condense(
     asm: &Assembled,
     kzz: Mat<f64>,
     llt: Option<&Llt<usize, f64>>,
+    lambda: f64,
 ) -> Condensation {
     let n_i = asm.map.n_i;
     let nz = 2 * asm.map.m;
     let mut r = kzz;
+    // magnitude of the terms of each diagonal entry of R, and of each entry of R_F
+    let mut mag: Vec<f64> = (0..nz).map(|k| r[(k, k)].abs()).collect();
     let mut rf = [vec![0.0; nz], vec![0.0; nz]];
+    let mut rf_mag = [vec![0.0; nz], vec![0.0; nz]];
     for g in 0..2 {
         for k in 0..nz {
             rf[g][k] = -asm.b_z[g][k];
+            rf_mag[g][k] = asm.b_z[g][k].abs();
         }
     }
     if let Some(llt) = llt {
@@ -789,6 +822,9 @@ pub(crate) fn condense(
                     let xj = x.col_as_slice(j);
                     let s: f64 = col.iter().map(|&(i, v)| v * xj[i]).sum();
                     r[(row, c0 + j)] -= s;
+                    if row == c0 + j {
+                        mag[row] += col.iter().map(|&(i, v)| (v * xj[i]).abs()).sum::<f64>();
+                    }
                 }
             }
             c0 += w;
@@ -798,7 +834,9 @@ pub(crate) fn condense(
         for g in 0..2 {
             let xg = x.col_as_slice(g);
             for row in 0..nz {
-                rf[g][row] += asm.kiz[row].iter().map(|&(i, v)| v * xg[i]).sum::<f64>();
+                let col = &asm.kiz[row];
+                rf[g][row] += col.iter().map(|&(i, v)| v * xg[i]).sum::<f64>();
+                rf_mag[g][row] += col.iter().map(|&(i, v)| (v * xg[i]).abs()).sum::<f64>();
             }
         }
     }
@@ -816,10 +854,33 @@ pub(crate) fn condense(
             }
         }
     }
+    // round-off to zero: for a symmetric positive semidefinite K the terms of R_ij are
+    // bounded by √(mag_i·mag_j) (Cauchy–Schwarz in the energy product)
+    let tau = round_off_fraction(lambda);
+    let mut zeroed = 0;
+    for j in 0..nz {
+        for i in 0..nz {
+            let v = r[(i, j)];
+            if v != 0.0 && v.abs() <= tau * (mag[i] * mag[j]).sqrt() {
+                r[(i, j)] = 0.0;
+                zeroed += 1;
+            }
+        }
+    }
+    for g in 0..2 {
+        for k in 0..nz {
+            let v = rf[g][k];
+            if v != 0.0 && v.abs() <= tau * rf_mag[g][k] {
+                rf[g][k] = 0.0;
+                zeroed += 1;
+            }
+        }
+    }
     Condensation {
         r,
         rf,
         asymmetry: if maxr > 0.0 { maxd / maxr } else { 0.0 },
+        zeroed,
     }
 }
 

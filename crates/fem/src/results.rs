@@ -105,11 +105,11 @@ impl Model {
         let mut asm = asm?;
         let nnz_lower = asm.kii.as_ref().map_or(0, |k| k.compute_nnz());
         let (llt, t_fac) = timed(|| factorize(&asm));
-        let llt = llt?;
+        let (llt, lambda) = llt?;
         asm.kii = None;
         asm.kii_triplets = Vec::new();
         let kzz = std::mem::replace(&mut asm.kzz, Mat::zeros(0, 0));
-        let (c, t_con) = timed(|| condense(&asm, kzz, llt.as_ref()));
+        let (c, t_con) = timed(|| condense(&asm, kzz, llt.as_ref(), lambda));
         let m = asm.map.m;
         let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| c.r[(r0 + i, c0 + j)]);
         let clv = |g: usize| ContactLoadVector {
@@ -125,6 +125,8 @@ impl Model {
             factorization_s: t_fac,
             condensation_s: t_con,
             asymmetry: c.asymmetry,
+            smallest_eigenvalue: lambda,
+            round_off_zeroed: c.zeroed,
         };
         if c.r.col_iter().any(|col| col.iter().any(|v| !v.is_finite()))
             || c.rf.iter().flatten().any(|v| !v.is_finite())
