@@ -403,6 +403,52 @@ pub(crate) fn spring_matrix(s: &crate::model::Spring) -> ElemMat {
     }
 }
 
+/// Bytes of the dense matrices the condensation of `m` pairs with `n_i` free DOFs holds at
+/// once: `K_zz` (becoming `R`, (2m)²), its four m×m blocks, and one chunk of solves
+/// (`n_i × 64`). `None` when the count overflows.
+pub fn dense_condensation_bytes(m: usize, n_i: usize) -> Option<u64> {
+    let m = m as u64;
+    let doubles = m
+        .checked_mul(m)?
+        .checked_mul(8)?
+        .checked_add((n_i as u64).checked_mul(CHUNK as u64)?)?;
+    doubles.checked_mul(8)
+}
+
+/// The memory of this machine in bytes (`MemTotal` of `/proc/meminfo`), `None` when it is not
+/// known.
+pub fn machine_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kb.checked_mul(1024)
+}
+
+/// Refuses a need of `bytes` (`None`: beyond any count) that this machine cannot hold, before
+/// anything of that size is allocated. Where the machine's memory is unknown, the allocation
+/// itself is tried without aborting.
+pub fn check_memory(what: &str, bytes: Option<u64>) -> Result<(), FemError> {
+    let too_large = |needed: Option<u64>, available: Option<u64>| FemError::TooLarge {
+        what: what.to_string(),
+        needed,
+        available,
+    };
+    let Some(needed) = bytes else {
+        return Err(too_large(None, machine_memory()));
+    };
+    match machine_memory() {
+        Some(total) if needed > total => Err(too_large(Some(needed), Some(total))),
+        Some(_) => Ok(()),
+        None => {
+            let mut probe: Vec<u8> = Vec::new();
+            let len = usize::try_from(needed).map_err(|_| too_large(Some(needed), None))?;
+            probe
+                .try_reserve_exact(len)
+                .map_err(|_| too_large(Some(needed), None))
+        }
+    }
+}
+
 /// Timings and sizes of a condensation.
 #[derive(Debug, Clone, Default)]
 pub struct CondensationStats {
@@ -497,6 +543,10 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
         s[0].iter().any(|v| *v != 0.0),
         s[1].iter().any(|v| *v != 0.0),
     ];
+    check_memory(
+        &format!("{m} contact pairs"),
+        dense_condensation_bytes(m, n_i),
+    )?;
     let mut f_set = [vec![0.0; nphys], vec![0.0; nphys]];
     let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::new();
     let mut kiz: Vec<Row> = vec![Row::new(); nz];

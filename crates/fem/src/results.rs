@@ -308,6 +308,21 @@ impl Condensed {
         self.friction.len()
     }
 
+    /// The resultant `[Fx, Fy]` of a load group's equivalent nodal loads (the variable group
+    /// per unit `p`).
+    pub fn load_resultant(&self, group: LoadGroup) -> [f64; 2] {
+        let f = &self.asm.f_phys[match group {
+            LoadGroup::Constant => 0,
+            LoadGroup::Variable => 1,
+        }];
+        let mut r = [0.0; 2];
+        for node in f.chunks_exact(3) {
+            r[0] += node[0];
+            r[1] += node[1];
+        }
+        r
+    }
+
     /// The full contact stiffness matrix `[[Rnn, Rnt], [Rtn, Rtt]]` (2m × 2m).
     pub fn csm(&self) -> Mat<f64> {
         let m = self.pairs();
