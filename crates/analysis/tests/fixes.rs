@@ -122,8 +122,16 @@ fn gaps_close_at_the_hand_loads_and_the_results_at_p1_are_the_hand_reactions() {
 
     assert_eq!(a.solution.outcome, Outcome::TargetReached);
     let pairs = &a.solution.pairs;
-    assert!(close(pairs[0].x_n, r4, 1e-9, total), "{} vs {r4}", pairs[0].x_n);
-    assert!(close(pairs[1].x_n, r8, 1e-9, total), "{} vs {r8}", pairs[1].x_n);
+    assert!(
+        close(pairs[0].x_n, r4, 1e-9, total),
+        "{} vs {r4}",
+        pairs[0].x_n
+    );
+    assert!(
+        close(pairs[1].x_n, r8, 1e-9, total),
+        "{} vs {r8}",
+        pairs[1].x_n
+    );
     assert!(pairs[0].z_n.abs() <= 1e-9 * 0.01);
     assert!(pairs[1].z_n.abs() <= 1e-9 * 0.02);
     let r = a.results.as_ref().unwrap();
@@ -250,8 +258,12 @@ fn heated_beam_in(divisions: usize, len: f64, force: f64) -> Model {
     let nodes: Vec<_> = (0..=divisions)
         .map(|i| m.add_node(10.0 * len * i as f64 / divisions as f64, 0.0))
         .collect();
-    let sec = FrameSection::new(2.1e11 * force / (len * len), 0.01 * len * len, 1e-4 * len.powi(4))
-        .with_alpha(1.2e-5);
+    let sec = FrameSection::new(
+        2.1e11 * force / (len * len),
+        0.01 * len * len,
+        1e-4 * len.powi(4),
+    )
+    .with_alpha(1.2e-5);
     for w in nodes.windows(2) {
         let e = m.add_frame(w[0], w[1], sec);
         let q = 2.5e5 * force / len;
@@ -289,7 +301,10 @@ fn the_heated_beam_gives_the_same_answer_in_any_units() {
     for len in [1e-12, 1e-6, 1e-3, 1.0, 1e3, 1e6, 1e12] {
         for force in [1e-12, 1e-3, 1.0, 1e3, 1e12] {
             let what = format!("lengths ×{len:e}, forces ×{force:e}");
-            let a = match analyze(&heated_beam_in(8, len, force), &settings(1.0, Trace::Target)) {
+            let a = match analyze(
+                &heated_beam_in(8, len, force),
+                &settings(1.0, Trace::Target),
+            ) {
                 Ok(a) => a,
                 Err(e) => {
                     failed.push(format!("{what}: {e}"));
@@ -377,7 +392,11 @@ fn a_determinate_contact_support_gives_the_same_answer_for_every_mesh() {
         let pr = &a.solution.pairs[0];
         assert!(close(pr.x_n, 1.25e6, 1e-9, 0.0), "{div}: {}", pr.x_n);
         assert!(close(pr.x_t.abs(), 3.75e5, 1e-9, 0.0), "{div}: {}", pr.x_t);
-        assert!(close(pr.z_t, slip, 1e-9, 0.0), "{div}: {} vs {slip}", pr.z_t);
+        assert!(
+            close(pr.z_t, slip, 1e-9, 0.0),
+            "{div}: {} vs {slip}",
+            pr.z_t
+        );
     }
 }
 
@@ -422,8 +441,8 @@ fn slider(len: f64, e: f64, area: f64, inertia: f64, w: f64) -> Model {
 /// frame carries the rest to the first pair: x_t1 = H·p − f·W, which slips when it reaches
 /// f·W: p = 12, and with both pairs slipping the slider is a mechanism: p_lim = 12.
 fn check_slider(model: &Model, what: &str) {
-    let a = analyze(model, &settings(20.0, Trace::Target))
-        .unwrap_or_else(|e| panic!("{what}: {e}"));
+    let a =
+        analyze(model, &settings(20.0, Trace::Target)).unwrap_or_else(|e| panic!("{what}: {e}"));
     let loads = a.event_loads();
     assert_eq!(loads.len(), 2, "{what}: {:?}", a.solution.steps);
     assert!(close(loads[0], 6.0, 1e-9, 0.0), "{what}: {loads:?}");
@@ -470,9 +489,17 @@ fn same_zone(
     }
     for (a, b, name) in [
         (&z.constant.normal, &base.constant.normal, "constant.normal"),
-        (&z.constant.tangential, &base.constant.tangential, "constant.tangential"),
+        (
+            &z.constant.tangential,
+            &base.constant.tangential,
+            "constant.tangential",
+        ),
         (&z.variable.normal, &base.variable.normal, "variable.normal"),
-        (&z.variable.tangential, &base.variable.tangential, "variable.tangential"),
+        (
+            &z.variable.tangential,
+            &base.variable.tangential,
+            "variable.tangential",
+        ),
     ] {
         let big = b.iter().fold(0.0f64, |s, v| s.max(v.abs()));
         for i in 0..m {
@@ -491,8 +518,11 @@ fn the_slider_gives_the_same_events_for_any_load_scale() {
     // EA = 2e9 (E = 2e11, A = 0.01), I = 1e-4, L = 1; the answer is independent of W.
     // The structural side first: the condensed zone is W-independent in R and proportional
     // to W in the loads (to round-off), so any failure below is the contact engine's.
-    let base = unilateral_analysis::zone_of(&slider(1.0, 2e11, 0.01, 1e-4, 1.0).condense().unwrap());
-    let ks = [-150, -100, -50, -20, -10, -1, 0, 1, 5, 10, 20, 25, 30, 50, 100];
+    let base =
+        unilateral_analysis::zone_of(&slider(1.0, 2e11, 0.01, 1e-4, 1.0).condense().unwrap());
+    let ks = [
+        -150, -100, -50, -20, -10, -1, 0, 1, 5, 10, 20, 25, 30, 50, 100,
+    ];
     for k in ks {
         let w = 10f64.powi(k);
         let z = unilateral_analysis::zone_of(&slider(1.0, 2e11, 0.01, 1e-4, w).condense().unwrap());
@@ -517,7 +547,10 @@ fn the_slider_gives_the_same_events_for_any_load_scale() {
 fn the_slider_gives_the_same_events_in_any_units() {
     // N and m; kN and mm (lengths ×1e3, forces ×1e-3, so E ×1e-9, A ×1e6, I ×1e12); MN and m.
     check_slider(&slider(1.0, 2e11, 0.01, 1e-4, 1e3), "N, m");
-    check_slider(&slider(1e3, 2e11 * 1e-9, 0.01 * 1e6, 1e-4 * 1e12, 1.0), "kN, mm");
+    check_slider(
+        &slider(1e3, 2e11 * 1e-9, 0.01 * 1e6, 1e-4 * 1e12, 1.0),
+        "kN, mm",
+    );
     check_slider(&slider(1.0, 2e11 * 1e-6, 0.01, 1e-4, 1e-3), "MN, m");
     check_slider(&slider(1e-3, 2e11 * 1e3, 1e-8, 1e-16, 1e3), "N, km");
 }
@@ -595,7 +628,16 @@ fn a_model_with_too_many_pairs_is_refused_before_allocating() {
     let r = r.expect("no panic");
     let e = r.expect_err("refused");
     let msg = e.to_string();
-    assert!(matches!(e, AnalysisError::Model { source: FemError::TooLarge { .. }, .. }), "{msg}");
+    assert!(
+        matches!(
+            e,
+            AnalysisError::Model {
+                source: FemError::TooLarge { .. },
+                ..
+            }
+        ),
+        "{msg}"
+    );
     assert!(msg.contains("100001 contact pairs"), "{msg}");
     assert!(msg.contains("GB"), "{msg}");
     assert!(!e.is_internal());
@@ -676,7 +718,10 @@ fn internal_failures_are_told_from_bad_input() {
     ];
     for e in &internal {
         assert!(e.is_internal(), "{e}");
-        assert!(e.to_string().contains("fault") || e.to_string().contains("internal"), "{e}");
+        assert!(
+            e.to_string().contains("fault") || e.to_string().contains("internal"),
+            "{e}"
+        );
     }
     let bad_input = [
         AnalysisError::Unstable { free: vec![] },

@@ -625,9 +625,12 @@ impl Condensed {
             .collect();
         // moment scale: forces times the model's size (its extent)
         let extent = |c: usize| {
-            let (lo, hi) = model.nodes.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-                (a.0.min(p[c]), a.1.max(p[c]))
-            });
+            let (lo, hi) = model
+                .nodes
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+                    (a.0.min(p[c]), a.1.max(p[c]))
+                });
             if hi >= lo {
                 hi - lo
             } else {
