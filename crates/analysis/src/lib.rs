@@ -411,6 +411,14 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
                     "element `{}`: {property} must be positive and finite, got {value}",
                     names.element(*element)
                 ),
+                FemError::Overflow {
+                    element: Some(el),
+                    what,
+                } => format!(
+                    "element `{}`: {what} overflows double precision: the values are too large \
+                     (or the lengths too small) for the units used; choose other units",
+                    names.element(*el)
+                ),
                 FemError::BadSupport { node, reason } => {
                     format!("node `{}`: bad supports: {reason}", names.node(*node))
                 }
@@ -439,6 +447,12 @@ impl Analysis {
             .condensed
             .recover(&sol)
             .map_err(|source| AnalysisError::Recovery { p, source })?;
+        if !r.all_finite() {
+            return Err(AnalysisError::Internal {
+                what: format!("recovering the results at p = {p}"),
+                message: "a recovered displacement, force or stress is not a finite number".into(),
+            });
+        }
         let relative = r.equilibrium.relative();
         if relative.is_nan() || relative > EQUILIBRIUM_TOLERANCE {
             return Err(AnalysisError::Equilibrium { p, relative });

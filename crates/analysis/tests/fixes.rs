@@ -749,3 +749,41 @@ fn internal_failures_are_told_from_bad_input() {
     let e = analyze(&m, &SolveSettings::default()).unwrap_err();
     assert!(!e.is_internal(), "{e}");
 }
+
+#[test]
+fn values_that_overflow_are_bad_input_not_infinities() {
+    // E = 1e308 and A = 1e10 are finite, but E·A/L = 1e318 is not: the model is refused as
+    // bad input naming the element, and no infinity reaches the contact zone or the results.
+    let mut m = Model::new();
+    let a = m.add_node(0.0, 0.0);
+    let b = m.add_node(1.0, 0.0);
+    m.add_frame(a, b, FrameSection::new(1e308, 1e10, 1.0));
+    m.fix(a);
+    m.add_contact_pair(ContactPairSpec::to_ground(b, [0.0, 1.0]));
+    m.add_load(
+        LoadGroup::Variable,
+        Load::Nodal {
+            node: b,
+            fx: 0.0,
+            fy: -1.0,
+            m: 0.0,
+        },
+    );
+    let e = analyze(&m, &SolveSettings::default()).expect_err("overflow");
+    let msg = e.to_string();
+    assert!(
+        matches!(
+            e,
+            AnalysisError::Model {
+                source: FemError::Overflow { .. },
+                ..
+            }
+        ),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("element `0`") && msg.contains("stiffness"),
+        "{msg}"
+    );
+    assert!(!e.is_internal());
+}

@@ -532,6 +532,12 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
             | Load::Temperature { element, .. } => {
                 let el = &model.elements[element.0];
                 if let Some(fe) = element_load(model, el, l) {
+                    if fe.iter().any(|v| !v.is_finite()) {
+                        return Err(FemError::Overflow {
+                            element: Some(element),
+                            what: "its equivalent nodal loads".into(),
+                        });
+                    }
                     for (a, d) in element_dofs(el).into_iter().enumerate() {
                         f_phys[gi][d] += fe[a];
                     }
@@ -608,11 +614,29 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
             }
         }
     };
-    for el in &model.elements {
-        handle(&element_stiffness(model, el));
+    for (i, el) in model.elements.iter().enumerate() {
+        let em = element_stiffness(model, el);
+        if em.k.iter().any(|v| !v.is_finite()) {
+            return Err(FemError::Overflow {
+                element: Some(crate::model::ElementId(i)),
+                what: "its stiffness matrix".into(),
+            });
+        }
+        handle(&em);
     }
     for sp in &model.springs {
         handle(&spring_matrix(sp));
+    }
+    if f_phys
+        .iter()
+        .flatten()
+        .chain(f_set.iter().flatten())
+        .any(|v| !v.is_finite())
+    {
+        return Err(FemError::Overflow {
+            element: None,
+            what: "the sum of the loads at a node".into(),
+        });
     }
     for r in kiz.iter_mut() {
         *r = merge(std::mem::take(r));

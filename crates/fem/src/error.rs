@@ -200,6 +200,16 @@ pub enum FemError {
     /// A contact solution whose vectors have the wrong length or non-finite entries.
     #[error("contact solution: {0}")]
     BadSolution(String),
+    /// A value computed from finite input overflows double precision (for instance `E·A/L`
+    /// with E and A near 1e308): the numbers are out of range for the units used.
+    #[error("{}{what} overflows double precision: the values are too large (or the lengths too \
+             small) for the units used; choose other units", element.map_or(String::new(), |e| format!("{e}: ")))]
+    Overflow {
+        /// The element whose data overflow, if one.
+        element: Option<ElementId>,
+        /// What overflows.
+        what: String,
+    },
     /// The model needs more memory than the machine has (checked before allocating).
     #[error("the model is too large: {what} need {} of memory for the dense contact matrices{}; \
              reduce the number of contact pairs", gigabytes(*.needed), machine_has(*.available))]

@@ -323,6 +323,32 @@ pub struct Results {
     pub equilibrium: Equilibrium,
 }
 
+impl Results {
+    /// `true` when every reported number (displacements, reactions, link forces, internal
+    /// forces, stresses, spring forces, equilibrium check) is finite.
+    pub fn all_finite(&self) -> bool {
+        let fin = |v: &f64| v.is_finite();
+        self.p.is_finite()
+            && self.displacements.iter().flatten().all(fin)
+            && self.reactions.iter().all(|r| r.value.is_finite())
+            && self.link_forces.normal.iter().all(fin)
+            && self.link_forces.tangential.iter().all(fin)
+            && self.lines.iter().all(|l| {
+                l.end_forces.iter().all(fin)
+                    && l.diagram
+                        .iter()
+                        .all(|d| [d.s, d.n, d.q, d.m].iter().all(fin))
+            })
+            && self
+                .planes
+                .iter()
+                .all(|p| p.stress.iter().flatten().all(fin))
+            && self.nodal_stress.iter().flatten().flatten().all(fin)
+            && self.spring_forces.iter().all(fin)
+            && self.equilibrium.relative().is_finite()
+    }
+}
+
 /// Number of sections sampled along a frame.
 pub const DIAGRAM_SAMPLES: usize = 11;
 
