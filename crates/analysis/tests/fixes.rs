@@ -787,3 +787,26 @@ fn values_that_overflow_are_bad_input_not_infinities() {
     );
     assert!(!e.is_internal());
 }
+
+#[test]
+fn a_short_file_cannot_ask_for_unbounded_nodes() {
+    // Two members of 2.1 million divisions each: each is within the per-member limit of
+    // 4 million nodes, together they are not. The reader refuses the second one, naming the
+    // file and the place, before building any (a 1 MB file of such members would ask for
+    // 10¹¹ nodes).
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("many.toml");
+    let mut text = String::from("[[sections]]\nname = \"s\"\nE = 1.0\nA = 1.0\nI = 1.0\n");
+    for k in 0..2 {
+        text.push_str(&format!(
+            "[[members]]\nname = \"m{k}\"\nstart = [0.0, {k}.0]\nend = [1.0, {k}.0]\n\
+             divisions = 2100000\nsection = \"s\"\n"
+        ));
+    }
+    std::fs::write(&path, text).unwrap();
+    let e = unilateral_io::read_model(&path).expect_err("too many nodes in all");
+    let msg = e.to_string();
+    assert!(msg.contains("many.toml:"), "{msg}");
+    assert!(msg.contains("members[2].divisions"), "{msg}");
+    assert!(msg.contains("in all"), "{msg}");
+}
