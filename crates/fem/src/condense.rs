@@ -405,13 +405,14 @@ pub(crate) fn spring_matrix(s: &crate::model::Spring) -> ElemMat {
 
 /// Bytes of the dense matrices the condensation of `m` pairs with `n_i` free DOFs holds at
 /// once: `K_zz` (becoming `R`, (2m)²), its four m×m blocks, and one chunk of solves
-/// (`n_i × 64`). `None` when the count overflows.
+/// (`n_i × min(64, 2m)`). `None` when the count overflows.
 pub fn dense_condensation_bytes(m: usize, n_i: usize) -> Option<u64> {
+    let chunk = CHUNK.min(m.saturating_mul(2)) as u64;
     let m = m as u64;
     let doubles = m
         .checked_mul(m)?
         .checked_mul(8)?
-        .checked_add((n_i as u64).checked_mul(CHUNK as u64)?)?;
+        .checked_add((n_i as u64).checked_mul(chunk)?)?;
     doubles.checked_mul(8)
 }
 
