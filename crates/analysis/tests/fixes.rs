@@ -810,3 +810,35 @@ fn a_short_file_cannot_ask_for_unbounded_nodes() {
     assert!(msg.contains("members[2].divisions"), "{msg}");
     assert!(msg.contains("in all"), "{msg}");
 }
+
+#[test]
+fn the_round_off_filter_keeps_the_real_stiffness_of_a_fine_mesh() {
+    // A cantilever (L = 10, EI = 1) of N elements with a ground pair at the tip: its normal
+    // stiffness is 3EI/L³ = 0.003 whatever N (Hermite frames are exact), while the terms
+    // that form it in the condensation are of the order of the element stiffness 12EI/l³,
+    // 8N³ times larger. None of it may be taken for round-off. (The cancellation itself costs
+    // about log10(8N³) digits: 9 for N = 500, so 1e-4 is the accuracy to ask there.)
+    for n in [1, 10, 100, 500] {
+        let mut m = Model::new();
+        let nodes: Vec<_> = (0..=n)
+            .map(|i| m.add_node(10.0 * i as f64 / n as f64, 0.0))
+            .collect();
+        for w in nodes.windows(2) {
+            m.add_frame(w[0], w[1], FrameSection::new(1.0, 1e3, 1.0));
+        }
+        m.fix(nodes[0]);
+        m.add_contact_pair(ContactPairSpec::to_ground(nodes[n], [0.0, 1.0]));
+        let c = m.condense().unwrap();
+        assert!(
+            close(c.rnn[(0, 0)], 3e-3, 1e-4, 0.0),
+            "{n} elements: Rnn = {}",
+            c.rnn[(0, 0)]
+        );
+        // the axial (tangential) stiffness EA/L = 100
+        assert!(
+            close(c.rtt[(0, 0)], 100.0, 1e-6, 0.0),
+            "{n}: {}",
+            c.rtt[(0, 0)]
+        );
+    }
+}

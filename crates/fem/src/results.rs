@@ -109,7 +109,7 @@ impl Model {
         asm.kii = None;
         asm.kii_triplets = Vec::new();
         let kzz = std::mem::replace(&mut asm.kzz, Mat::zeros(0, 0));
-        let (c, t_con) = timed(|| condense(&asm, kzz, llt.as_ref(), lambda));
+        let (c, t_con) = timed(|| condense(&asm, kzz, llt.as_ref()));
         let m = asm.map.m;
         let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| c.r[(r0 + i, c0 + j)]);
         let clv = |g: usize| ContactLoadVector {
