@@ -118,12 +118,13 @@ pub enum AnalysisError {
     /// round, or a constant load with the wrong sign.
     #[error(
         "there is no equilibrium under the constant load alone (p = 0): it pulls {} apart \
-         (normal force of the pair as a rigid link: {}, a tension), and once {} the \
-         structure is held by nothing; check that each normal points from `from` into `to` \
-         (so that pressing the bodies together is compression) and the signs of the constant \
-         loads (resultant Fx = {:e}, Fy = {:e})",
+         (normal {} as rigid {}: {}, tension), and once {} nothing holds the structure; check \
+         that each normal points from `from` into `to` (pressing the bodies together is \
+         compression) and the signs of the constant loads (their resultant: Fx = {}, Fy = {})",
         plural_pairs(.pairs),
-        .forces.iter().map(|f| format!("{f:e}")).collect::<Vec<_>>().join(", "),
+        if .pairs.len() == 1 { "force" } else { "forces" },
+        if .pairs.len() == 1 { "link" } else { "links" },
+        .forces.iter().map(|f| format!("{f}")).collect::<Vec<_>>().join(", "),
         if .pairs.len() == 1 { "it opens" } else { "they open" },
         .resultant[0],
         .resultant[1]

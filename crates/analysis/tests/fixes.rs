@@ -696,6 +696,7 @@ fn a_constant_load_that_pulls_every_pair_apart_is_diagnosed() {
     );
     let e = analyze(&m, &SolveSettings::default()).expect_err("no equilibrium at p = 0");
     let msg = e.to_string();
+    println!("{msg}");
     assert!(
         matches!(e, AnalysisError::PulledApart { .. }),
         "{msg} ({e:?})"
@@ -703,6 +704,38 @@ fn a_constant_load_that_pulls_every_pair_apart_is_diagnosed() {
     assert!(msg.contains("left") && msg.contains("right"), "{msg}");
     assert!(msg.contains("constant load"), "{msg}");
     assert!(!e.is_internal(), "{msg}");
+
+    // The same reversed pair under a cantilever that its support holds: a well-defined
+    // answer, the pair simply open. Hand value: the tip deflects P·L³/(3EI) = 1e3·64/3e7
+    // downwards, which opens the reversed pair by that much.
+    let mut m = Model::new();
+    let a = m.add_node(0.0, 0.0);
+    let b = m.add_node(4.0, 0.0);
+    m.add_frame(a, b, FrameSection::new(1e7, 1.0, 1.0));
+    m.fix(a);
+    m.add_contact_pair(ContactPairSpec::to_ground(b, [0.0, -1.0]).friction(0.3));
+    m.add_load(
+        LoadGroup::Constant,
+        Load::Nodal {
+            node: b,
+            fx: 0.0,
+            fy: -1e3,
+            m: 0.0,
+        },
+    );
+    m.add_load(
+        LoadGroup::Variable,
+        Load::Nodal {
+            node: b,
+            fx: 1.0,
+            fy: 0.0,
+            m: 0.0,
+        },
+    );
+    let an = analyze(&m, &SolveSettings::default()).expect("held by its support");
+    let pr = &an.solution.pairs[0];
+    assert_eq!(pr.state, PairState::Open);
+    assert!(close(pr.z_n, 1e3 * 64.0 / 3e7, 1e-9, 0.0), "{}", pr.z_n);
 }
 
 // ---------------------------------------------------------------------------------------------
