@@ -80,8 +80,11 @@ pub enum AnalysisError {
     /// The contact zone or the settings were refused by the contact solver.
     #[error("contact problem: {0}")]
     Contact(#[from] ContactError),
-    /// Recovering the results at `p` failed.
-    #[error("recovering the results at p = {p}: {source}")]
+    /// Recovering the results at `p` failed (an internal failure).
+    #[error(
+        "internal failure (the program's fault, not the model's): recovering the results at \
+         p = {p}: {source}"
+    )]
     Recovery {
         /// The load parameter.
         p: f64,
@@ -90,12 +93,50 @@ pub enum AnalysisError {
         source: FemError,
     },
     /// The recovered results are not in equilibrium (an internal failure).
-    #[error("the results at p = {p} are out of balance (relative residual {relative:.3e})")]
+    #[error(
+        "internal failure (the program's fault, not the model's): the results at p = {p} are \
+         out of balance (relative residual {relative:.3e}, accepted {EQUILIBRIUM_TOLERANCE:e})"
+    )]
     Equilibrium {
         /// The load parameter.
         p: f64,
         /// The relative out-of-balance force.
         relative: f64,
+    },
+    /// Another failure of the program itself: data it computed from a valid model was wrong
+    /// (for instance a condensed contact stiffness the contact solver refused) or a numerical
+    /// method failed.
+    #[error("internal failure (the program's fault, not the model's): {what}: {message}")]
+    Internal {
+        /// What failed.
+        what: String,
+        /// How.
+        message: String,
+    },
+    /// The constant load alone pulls the structure off its contact pairs, and nothing else
+    /// holds it: there is no equilibrium at `p = 0`. Usually a normal typed the wrong way
+    /// round, or a constant load with the wrong sign.
+    #[error(
+        "there is no equilibrium under the constant load alone (p = 0): it pulls {} apart \
+         (normal {} as rigid {}: {}, tension), and once {} nothing holds the structure; check \
+         that each normal points from `from` into `to` (pressing the bodies together is \
+         compression) and the signs of the constant loads (their resultant: Fx = {}, Fy = {})",
+        plural_pairs(.pairs),
+        if .pairs.len() == 1 { "force" } else { "forces" },
+        if .pairs.len() == 1 { "link" } else { "links" },
+        .forces.iter().map(|f| format!("{f}")).collect::<Vec<_>>().join(", "),
+        if .pairs.len() == 1 { "it opens" } else { "they open" },
+        .resultant[0],
+        .resultant[1]
+    )]
+    PulledApart {
+        /// The pairs the constant load opens (names).
+        pairs: Vec<String>,
+        /// Their normal link forces in the bonded structure under the constant load (negative:
+        /// tension).
+        forces: Vec<f64>,
+        /// Resultant `[Fx, Fy]` of the constant load.
+        resultant: [f64; 2],
     },
     /// The requested load is not on the traced load path.
     #[error("p = {p} is not on the traced load path (it ends at {end})")]
@@ -105,6 +146,43 @@ pub enum AnalysisError {
         /// The last load of the path.
         end: String,
     },
+}
+
+fn plural_pairs(pairs: &[String]) -> String {
+    let names: Vec<String> = pairs.iter().take(12).map(|p| format!("`{p}`")).collect();
+    let more = if pairs.len() > 12 {
+        format!(" … ({} pairs in all)", pairs.len())
+    } else {
+        String::new()
+    };
+    if pairs.len() == 1 {
+        format!("pair {}", names[0])
+    } else {
+        format!("pairs {}{more}", names.join(", "))
+    }
+}
+
+impl AnalysisError {
+    /// `true` for failures that are the program's fault, not the model's: the recovery of the
+    /// results, the equilibrium check of the recovered results, a numerical failure of the
+    /// linear algebra or of the load path, contact data the program computed and the contact
+    /// solver refused ([`AnalysisError::Internal`]). `false` for everything the user can act
+    /// on in the model or the settings: an invalid or too large model, a mechanism, contact
+    /// settings out of range, no equilibrium under the constant load, a load off the path.
+    ///
+    /// A command-line front end exits with 1 for internal failures and 2 for bad input.
+    pub fn is_internal(&self) -> bool {
+        match self {
+            AnalysisError::Recovery { .. }
+            | AnalysisError::Equilibrium { .. }
+            | AnalysisError::Internal { .. } => true,
+            AnalysisError::Model { source, .. } => source.is_internal(),
+            AnalysisError::Unstable { .. }
+            | AnalysisError::Contact(_)
+            | AnalysisError::PulledApart { .. }
+            | AnalysisError::NotOnPath { .. } => false,
+        }
+    }
 }
 
 fn list(free: &[(String, DofLabel)]) -> String {
@@ -216,9 +294,29 @@ pub fn analyze_named(
     names: &Names,
 ) -> Result<Analysis, AnalysisError> {
     settings.validate()?;
+    let m = model.pairs().len();
+    unilateral_fem::check_memory(&format!("{m} contact pairs"), analysis_bytes(m))
+        .map_err(|e| fem_error(e, names))?;
     let condensed = model.condense().map_err(|e| fem_error(e, names))?;
     let zone = zone_of(&condensed);
-    let solution = unilateral_contact::solve(&zone, settings)?;
+    // The zone is computed by the program from a valid model: if the contact solver refuses
+    // it, the program is at fault, and the user never wrote the matrix it would name.
+    zone.validate().map_err(|e| AnalysisError::Internal {
+        what: "the contact zone condensed from the model was refused".into(),
+        message: e.to_string(),
+    })?;
+    let solution = unilateral_contact::solve(&zone, settings).map_err(|e| match e {
+        ContactError::Settings(_) => AnalysisError::Contact(e),
+        other => AnalysisError::Internal {
+            what: "the contact solver refused the condensed contact zone".into(),
+            message: other.to_string(),
+        },
+    })?;
+    if solution.outcome == Outcome::NoSolutionAtStart {
+        if let Some(e) = pulled_apart(&condensed) {
+            return Err(e);
+        }
+    }
     let mut a = Analysis {
         condensed,
         zone,
@@ -231,6 +329,41 @@ pub fn analyze_named(
         a.results = Some(r);
     }
     Ok(a)
+}
+
+/// Bytes of the dense matrices an analysis of `m` contact pairs holds at once (an estimate
+/// made before anything is allocated): the condensation's (2m)² stiffness and its four m×m
+/// blocks, the contact zone handed to the solver (4 m²), and the solver's 3m×3m LCP matrix
+/// with about three more of its size for the basis and its factors. `None` on overflow.
+pub fn analysis_bytes(m: usize) -> Option<u64> {
+    let fem = unilateral_fem::dense_condensation_bytes(m, 0)?;
+    let m = m as u64;
+    let solver = m.checked_mul(m)?.checked_mul(4 + 4 * 9)?.checked_mul(8)?;
+    fem.checked_add(solver)
+}
+
+/// The pairs the constant load alone pulls apart, when the path has no solution at `p = 0`:
+/// their normal force as rigid links under the constant load (`R_c − Rnn·η`) is a tension.
+fn pulled_apart(c: &Condensed) -> Option<AnalysisError> {
+    let m = c.pairs();
+    let mut pairs = Vec::new();
+    let mut forces = Vec::new();
+    for i in 0..m {
+        let x = c.constant.normal[i] - (0..m).map(|j| c.rnn[(i, j)] * c.gap[j]).sum::<f64>();
+        if x < 0.0 {
+            pairs.push(c.pair_names[i].clone());
+            forces.push(x);
+        }
+    }
+    if pairs.is_empty() {
+        return None;
+    }
+    let resultant = c.load_resultant(unilateral_fem::LoadGroup::Constant);
+    Some(AnalysisError::PulledApart {
+        pairs,
+        forces,
+        resultant,
+    })
 }
 
 /// The contact zone of a condensed model.
@@ -259,6 +392,10 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
         FemError::Unstable { free, .. } => AnalysisError::Unstable {
             free: free.iter().map(|f| (names.node(f.node), f.dof)).collect(),
         },
+        FemError::LinearAlgebra(message) => AnalysisError::Internal {
+            what: "the sparse linear algebra of the bonded structure failed".into(),
+            message: message.clone(),
+        },
         _ => {
             let message = match &e {
                 FemError::ZeroLength { element, a, b } => format!(
@@ -274,6 +411,14 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
                 } => format!(
                     "element `{}`: {property} must be positive and finite, got {value}",
                     names.element(*element)
+                ),
+                FemError::Overflow {
+                    element: Some(el),
+                    what,
+                } => format!(
+                    "element `{}`: {what} overflows double precision: the values are too large \
+                     (or the lengths too small) for the units used; choose other units",
+                    names.element(*el)
                 ),
                 FemError::BadSupport { node, reason } => {
                     format!("node `{}`: bad supports: {reason}", names.node(*node))
@@ -303,6 +448,12 @@ impl Analysis {
             .condensed
             .recover(&sol)
             .map_err(|source| AnalysisError::Recovery { p, source })?;
+        if !r.all_finite() {
+            return Err(AnalysisError::Internal {
+                what: format!("recovering the results at p = {p}"),
+                message: "a recovered displacement, force or stress is not a finite number".into(),
+            });
+        }
         let relative = r.equilibrium.relative();
         if relative.is_nan() || relative > EQUILIBRIUM_TOLERANCE {
             return Err(AnalysisError::Equilibrium { p, relative });

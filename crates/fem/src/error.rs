@@ -49,6 +49,20 @@ fn list_free(dofs: &[FreeDof]) -> String {
     s.join(", ")
 }
 
+fn gigabytes(bytes: Option<u64>) -> String {
+    match bytes {
+        Some(b) => format!("{:.1} GB", b as f64 / 1e9),
+        None => "more bytes than can be counted".to_string(),
+    }
+}
+
+fn machine_has(bytes: Option<u64>) -> String {
+    match bytes {
+        Some(b) => format!(", this machine has {:.1} GB", b as f64 / 1e9),
+        None => String::new(),
+    }
+}
+
 /// Everything that can go wrong while building, condensing or recovering a model.
 ///
 /// Ids are the 0-based indices returned by the [`Model`](crate::Model) builder.
@@ -186,7 +200,39 @@ pub enum FemError {
     /// A contact solution whose vectors have the wrong length or non-finite entries.
     #[error("contact solution: {0}")]
     BadSolution(String),
+    /// A value computed from finite input overflows double precision (for instance `E·A/L`
+    /// with E and A near 1e308): the numbers are out of range for the units used.
+    #[error("{}{what} overflows double precision: the values are too large (or the lengths too \
+             small) for the units used; choose other units", element.map_or(String::new(), |e| format!("{e}: ")))]
+    Overflow {
+        /// The element whose data overflow, if one.
+        element: Option<ElementId>,
+        /// What overflows.
+        what: String,
+    },
+    /// The model needs more memory than the machine has (checked before allocating).
+    #[error("the model is too large: {what} need {} of memory for the dense contact matrices{}; \
+             reduce the number of contact pairs", gigabytes(*.needed), machine_has(*.available))]
+    TooLarge {
+        /// What is too large, e.g. `"100001 contact pairs"`.
+        what: String,
+        /// Bytes needed (`None`: more than can be counted).
+        needed: Option<u64>,
+        /// Bytes this machine has (`None`: unknown).
+        available: Option<u64>,
+    },
     /// Failure inside the sparse linear algebra that is not a mechanism.
     #[error("sparse linear algebra failed: {0}")]
     LinearAlgebra(String),
+}
+
+impl FemError {
+    /// `true` for failures that are the program's fault rather than the model's: the sparse
+    /// linear algebra failing on a valid model ([`FemError::LinearAlgebra`]) and a contact
+    /// solution handed to the recovery that does not fit the model
+    /// ([`FemError::BadSolution`], which only the program produces). Every other variant
+    /// describes the model.
+    pub fn is_internal(&self) -> bool {
+        matches!(self, FemError::LinearAlgebra(_) | FemError::BadSolution(_))
+    }
 }

@@ -8,9 +8,10 @@
 //! reactions, internal forces and stresses ([`Results`]).
 //!
 //! Sign conventions (see `docs/fem.md`): for a pair (A, B) with unit normal `n` from A into B,
-//! the tangent is `t = (n_y, −n_x)`; `z_n = n·(u_B − u_A)` (opening positive),
-//! `z_t = t·(u_B − u_A)`; `x_n` is compression positive and acts on B along `+n`, `x_t` acts on
-//! B along `+t` (and on A along `−n`, `−t`). Equilibrium: `K u = f + Cᵀ x`.
+//! the tangent is `t = (n_y, −n_x)`; the opening is `z_n = η + n·(u_B − u_A)` with `η` the
+//! pair's initial gap (positive open, 0 closed), `z_t = t·(u_B − u_A)`; `x_n` is compression
+//! positive and acts on B along `+n`, `x_t` acts on B along `+t` (and on A along `−n`, `−t`).
+//! Equilibrium: `K u = f + Cᵀ x`.
 //!
 //! ```
 //! use unilateral_fem::{ContactPairSpec, FrameSection, Load, LoadGroup, Model};
@@ -40,7 +41,7 @@ mod error;
 mod model;
 mod results;
 
-pub use condense::CondensationStats;
+pub use condense::{check_memory, dense_condensation_bytes, machine_memory, CondensationStats};
 pub use error::{DofLabel, FemError, FreeDof};
 pub use model::{
     ContactPairSpec, Element, ElementId, Endpoint, FrameSection, Load, LoadFrame, LoadGroup, Model,

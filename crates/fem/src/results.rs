@@ -105,7 +105,7 @@ impl Model {
         let mut asm = asm?;
         let nnz_lower = asm.kii.as_ref().map_or(0, |k| k.compute_nnz());
         let (llt, t_fac) = timed(|| factorize(&asm));
-        let llt = llt?;
+        let (llt, lambda) = llt?;
         asm.kii = None;
         asm.kii_triplets = Vec::new();
         let kzz = std::mem::replace(&mut asm.kzz, Mat::zeros(0, 0));
@@ -125,6 +125,8 @@ impl Model {
             factorization_s: t_fac,
             condensation_s: t_con,
             asymmetry: c.asymmetry,
+            smallest_eigenvalue: lambda,
+            round_off_zeroed: c.zeroed,
         };
         if c.r.col_iter().any(|col| col.iter().any(|v| !v.is_finite()))
             || c.rf.iter().flatten().any(|v| !v.is_finite())
@@ -162,14 +164,17 @@ pub struct ContactSolution {
     pub x_n: Vec<f64>,
     /// Tangential link forces.
     pub x_t: Vec<f64>,
-    /// Normal mutual displacements (opening positive).
+    /// Normal openings (opening positive) measured as the LCP measures them: from closed
+    /// contact, so `z_n = η + n·(u_B − u_A)` with `η` the pair's initial gap (`z_n = 0` is
+    /// closed, `z_n = η` is the undeformed position).
     pub z_n: Vec<f64>,
     /// Tangential mutual displacements.
     pub z_t: Vec<f64>,
 }
 
 impl ContactSolution {
-    /// The bonded solution at `p` (all `z = 0`, `x = R_c + p·R_v`).
+    /// The bonded solution at `p`: every link at its undeformed length (`n·(u_B − u_A) = 0`,
+    /// so `z_n = η`, `z_t = 0`) and `x = R_c + p·R_v`.
     pub fn bonded(c: &Condensed, p: f64) -> Self {
         let m = c.friction.len();
         Self {
@@ -180,7 +185,7 @@ impl ContactSolution {
             x_t: (0..m)
                 .map(|i| c.constant.tangential[i] + p * c.variable.tangential[i])
                 .collect(),
-            z_n: vec![0.0; m],
+            z_n: c.gap.clone(),
             z_t: vec![0.0; m],
         }
     }
@@ -255,18 +260,42 @@ pub struct Equilibrium {
     /// Largest `|x − x(z)|`: difference between the given link forces and those implied by the
     /// given mutual displacements (0 for a consistent contact solution).
     pub link_force_mismatch: f64,
-    /// Force scale used by [`Equilibrium::relative`].
+    /// Force scale of the resultant: the largest applied force, reaction or contact force.
     pub scale: f64,
+    /// `free_dof_residual` relative to the forces meeting at the free DOFs: the largest
+    /// residual at a free translation over the largest magnitude of the forces (applied and
+    /// element end forces) meeting at one, and likewise for rotations with moments; the larger
+    /// of the two. Independent of the units.
+    pub free_dof_relative: f64,
+    /// `link_force_mismatch` relative to the largest link force (given or implied).
+    pub link_force_relative: f64,
+}
+
+/// `a / b`, 0 when `a = 0` (nothing to compare), infinite when only `b` is 0.
+fn ratio(a: f64, b: f64) -> f64 {
+    if a == 0.0 {
+        0.0
+    } else {
+        a / b
+    }
 }
 
 impl Equilibrium {
-    /// Largest of the residuals relative to the force scale.
+    /// Largest of the relative residuals: at the free DOFs, in the links, and of the
+    /// resultant (forces over [`Equilibrium::scale`], the moment over the scale times the
+    /// model's size). Every one is a ratio of quantities of the same units, so the check does
+    /// not depend on the units of the model. NaN when a residual is not finite.
     pub fn relative(&self) -> f64 {
-        let r = self.resultant.iter().map(|v| v.abs()).fold(
-            self.free_dof_residual.max(self.link_force_mismatch),
-            f64::max,
-        );
-        r / self.scale.max(f64::MIN_POSITIVE)
+        let res = self.resultant.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let parts = [
+            self.free_dof_relative,
+            self.link_force_relative,
+            ratio(res, self.scale),
+        ];
+        if parts.iter().any(|v| v.is_nan()) {
+            return f64::NAN;
+        }
+        parts.into_iter().fold(0.0, f64::max)
     }
 }
 
@@ -294,6 +323,32 @@ pub struct Results {
     pub equilibrium: Equilibrium,
 }
 
+impl Results {
+    /// `true` when every reported number (displacements, reactions, link forces, internal
+    /// forces, stresses, spring forces, equilibrium check) is finite.
+    pub fn all_finite(&self) -> bool {
+        let fin = |v: &f64| v.is_finite();
+        self.p.is_finite()
+            && self.displacements.iter().flatten().all(fin)
+            && self.reactions.iter().all(|r| r.value.is_finite())
+            && self.link_forces.normal.iter().all(fin)
+            && self.link_forces.tangential.iter().all(fin)
+            && self.lines.iter().all(|l| {
+                l.end_forces.iter().all(fin)
+                    && l.diagram
+                        .iter()
+                        .all(|d| [d.s, d.n, d.q, d.m].iter().all(fin))
+            })
+            && self
+                .planes
+                .iter()
+                .all(|p| p.stress.iter().flatten().all(fin))
+            && self.nodal_stress.iter().flatten().flatten().all(fin)
+            && self.spring_forces.iter().all(fin)
+            && self.equilibrium.relative().is_finite()
+    }
+}
+
 /// Number of sections sampled along a frame.
 pub const DIAGRAM_SAMPLES: usize = 11;
 
@@ -301,6 +356,21 @@ impl Condensed {
     /// Number of contact pairs.
     pub fn pairs(&self) -> usize {
         self.friction.len()
+    }
+
+    /// The resultant `[Fx, Fy]` of a load group's equivalent nodal loads (the variable group
+    /// per unit `p`).
+    pub fn load_resultant(&self, group: LoadGroup) -> [f64; 2] {
+        let f = &self.asm.f_phys[match group {
+            LoadGroup::Constant => 0,
+            LoadGroup::Variable => 1,
+        }];
+        let mut r = [0.0; 2];
+        for node in f.chunks_exact(3) {
+            r[0] += node[0];
+            r[1] += node[1];
+        }
+        r
     }
 
     /// The full contact stiffness matrix `[[Rnn, Rnt], [Rtn, Rtt]]` (2m × 2m).
@@ -345,7 +415,16 @@ impl Condensed {
             LoadGroup::Variable => p,
         };
         let (n_i, z0, p0) = (map.n_i, map.z0(), map.p0());
-        let z: Vec<f64> = sol.z_n.iter().chain(&sol.z_t).copied().collect();
+        // The link dislocations are the mutual displacements n·(u_B − u_A) = z_n − η and
+        // t·(u_B − u_A) = z_t: the LCP measures z_n from closed contact (formulation §3, the
+        // gaps enter q_c as −Rnn·η, −Rtn·η).
+        let z: Vec<f64> = sol
+            .z_n
+            .iter()
+            .zip(&self.gap)
+            .map(|(z, g)| z - g)
+            .chain(sol.z_t.iter().copied())
+            .collect();
         // free DOFs
         let mut v_i = vec![0.0; n_i];
         if let Some(llt) = &self.llt {
@@ -399,6 +478,8 @@ impl Condensed {
             .map(|d| self.asm.f_phys[0][d] + p * self.asm.f_phys[1][d])
             .collect();
         let mut r: Vec<f64> = f.iter().map(|v| -v).collect();
+        // magnitude of the forces that meet at each DOF (the scale of its residual)
+        let mut r_mag: Vec<f64> = f.iter().map(|v| v.abs()).collect();
         let mut lines = Vec::new();
         let mut planes = Vec::new();
         let mut stress_sum: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
@@ -408,7 +489,9 @@ impl Condensed {
             let n = em.dofs.len();
             let ue: Vec<f64> = em.dofs.iter().map(|&d| u[d]).collect();
             for a in 0..n {
-                r[em.dofs[a]] += (0..n).map(|b| em.k[a * n + b] * ue[b]).sum::<f64>();
+                let fa = (0..n).map(|b| em.k[a * n + b] * ue[b]).sum::<f64>();
+                r[em.dofs[a]] += fa;
+                r_mag[em.dofs[a]] += fa.abs();
             }
             match el {
                 Element::Frame { .. } | Element::Bar { .. } => {
@@ -450,7 +533,9 @@ impl Condensed {
             let em = spring_matrix(sp);
             let n = em.dofs.len();
             for a in 0..n {
-                r[em.dofs[a]] += (0..n).map(|b| em.k[a * n + b] * u[em.dofs[b]]).sum::<f64>();
+                let fa = (0..n).map(|b| em.k[a * n + b] * u[em.dofs[b]]).sum::<f64>();
+                r[em.dofs[a]] += fa;
+                r_mag[em.dofs[a]] += fa.abs();
             }
             let ua = |d: usize| match sp.a {
                 Endpoint::Ground => 0.0,
@@ -490,14 +575,18 @@ impl Condensed {
         }
         // generalized residuals
         let mut res_i = vec![0.0; n_i];
+        let mut mag_i = vec![0.0; n_i];
+        let mut mag_z = vec![0.0; 2 * m];
         let mut x_of_z = vec![0.0; 2 * m];
         let mut lambda = vec![0.0; map.n_p];
         for (d, row) in map.rows.iter().enumerate() {
             for &(g, c) in row {
                 if g < z0 {
                     res_i[g] += c * r[d];
+                    mag_i[g] += c.abs() * r_mag[d];
                 } else if g < p0 {
                     x_of_z[g - z0] += c * r[d];
+                    mag_z[g - z0] += c.abs() * r_mag[d];
                 } else {
                     lambda[g - p0] += c * r[d];
                 }
@@ -560,12 +649,36 @@ impl Condensed {
         let nodal_stress = (0..nn)
             .map(|i| (stress_cnt[i] > 0).then(|| stress_sum[i].map(|v| v / stress_cnt[i] as f64)))
             .collect();
-        // moment scale: forces times model size
-        let size = model
-            .nodes
-            .iter()
-            .fold(0.0f64, |a, p| a.max(p[0].abs()).max(p[1].abs()))
-            .max(1.0);
+        // moment scale: forces times the model's size (its extent)
+        let extent = |c: usize| {
+            let (lo, hi) = model
+                .nodes
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+                    (a.0.min(p[c]), a.1.max(p[c]))
+                });
+            if hi >= lo {
+                hi - lo
+            } else {
+                0.0
+            }
+        };
+        let size = extent(0).max(extent(1));
+        let size = if size > 0.0 { size } else { 1.0 };
+        // Relative residuals, each against forces (or moments) of its own units, so that they
+        // do not depend on the units of the model: the largest residual at a free translation
+        // over the largest force meeting at one (or the largest applied force, reaction or
+        // contact force when larger), the same for rotations against moments (and the force
+        // scale times the model's size), the link force mismatch against the largest link
+        // force.
+        let mut worst = [(0.0f64, scale), (0.0f64, scale * size)];
+        for g in 0..n_i {
+            let k = usize::from(map.free_label[g].1 == crate::error::DofLabel::Rz);
+            worst[k].0 = worst[k].0.max(res_i[g].abs());
+            worst[k].1 = worst[k].1.max(mag_i[g]);
+        }
+        let link_mag = mag_z.iter().fold(scale, |a, b| a.max(b.abs()));
+        let free_rel = ratio(worst[0].0, worst[0].1).max(ratio(worst[1].0, worst[1].1));
         Ok(Results {
             p,
             displacements,
@@ -586,6 +699,8 @@ impl Condensed {
                 resultant: [resultant[0], resultant[1], resultant[2] / size],
                 free_dof_residual: free_res,
                 link_force_mismatch: mismatch,
+                free_dof_relative: free_rel,
+                link_force_relative: ratio(mismatch, link_mag),
                 scale: scale.max(f64::MIN_POSITIVE),
             },
         })

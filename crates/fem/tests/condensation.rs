@@ -326,7 +326,9 @@ fn recovery_reproduces_the_imposed_mutual_displacements() {
         p,
         x_n: x[..m].to_vec(),
         x_t: x[m..].to_vec(),
-        z_n: z[..m].to_vec(),
+        // the LCP's z_n is the opening measured from closed contact: the gap plus the mutual
+        // displacement
+        z_n: (0..m).map(|i| z[i] + c.gap[i]).collect(),
         z_t: z[m..].to_vec(),
     };
     let res = c.recover(&sol).unwrap();

@@ -244,3 +244,42 @@ fn pair_on_a_supported_node_to_ground_is_rejected() {
         FemError::LinkPlacement { pair: 0, .. }
     ));
 }
+
+#[test]
+fn memory_needs_are_counted_without_overflow_and_refused_before_allocating() {
+    // 8 doubles per m² (K_zz as R, (2m)², and its four m×m blocks) plus n_i × min(64, 2m):
+    // m = 10, n_i = 100 → (800 + 2000)·8 bytes, by hand.
+    assert_eq!(
+        unilateral_fem::dense_condensation_bytes(10, 100),
+        Some(22_400)
+    );
+    // a count that overflows u64 is no count, and is refused
+    assert_eq!(
+        unilateral_fem::dense_condensation_bytes(usize::MAX, 0),
+        None
+    );
+    let e = unilateral_fem::check_memory("many pairs", None).unwrap_err();
+    assert!(matches!(e, FemError::TooLarge { .. }), "{e}");
+    assert!(e.to_string().contains("many pairs"), "{e}");
+    assert!(!e.is_internal());
+    // 1 EB is more than any machine this runs on has
+    let e = unilateral_fem::check_memory("a lot", Some(1 << 60)).unwrap_err();
+    assert!(e.to_string().contains("GB"), "{e}");
+    // a need of a few bytes passes
+    unilateral_fem::check_memory("a little", Some(1024)).unwrap();
+}
+
+#[test]
+fn a_stiffness_that_overflows_names_the_element() {
+    // 12·E·I/L³ with E·I = 1e300·1e10 overflows; the inputs themselves are finite.
+    let mut m = Model::new();
+    let a = m.add_node(0.0, 0.0);
+    let b = m.add_node(1.0, 0.0);
+    m.add_frame(a, b, FrameSection::new(1e300, 1.0, 1e10));
+    m.fix(a);
+    m.add_contact_pair(ContactPairSpec::to_ground(b, [0.0, 1.0]));
+    match m.condense().unwrap_err() {
+        FemError::Overflow { element, .. } => assert_eq!(element, Some(ElementId(0))),
+        e => panic!("{e}"),
+    }
+}

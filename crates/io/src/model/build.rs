@@ -40,7 +40,8 @@ const TOP_KEYS: &[&str] = &[
     "solve",
 ];
 
-/// The largest number of nodes a structured block or member may create.
+/// The largest number of nodes the structured blocks and members of a model may create, each
+/// and in all (it bounds the memory a short file can ask for).
 const MAX_GENERATED: usize = 4_000_000;
 
 /// What an element will be, before its nodes are numbered.
@@ -86,6 +87,8 @@ struct Builder<'d> {
     connects: Vec<(Vec<usize>, Vec<Ref>)>,
     parent: Vec<usize>,
     blocks: Vec<(String, [f64; 4], Option<Pos>)>,
+    /// Nodes created so far by blocks and members (bounded by [`MAX_GENERATED`] in all).
+    generated: usize,
     // after numbering
     final_of: Vec<NodeId>,
     model: Model,
@@ -125,6 +128,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         connects: Vec::new(),
         parent: Vec::new(),
         blocks: Vec::new(),
+        generated: 0,
         final_of: Vec::new(),
         model: Model::new(),
         elem_origin: Vec::new(),
@@ -139,6 +143,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
     b.materials(top)?;
     b.sections(top)?;
     b.nodes(top)?;
+    b.count_all_generated(top)?;
     b.blocks(top)?;
     b.members(top)?;
     b.explicit_elements(top)?;
@@ -181,6 +186,59 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
 impl<'d> Builder<'d> {
     fn err(&self, pos: Option<Pos>, key: &str, kind: InputErrorKind, msg: String) -> InputError {
         self.doc.err(pos, key, kind, msg)
+    }
+
+    /// Counts the nodes every block and member will create, before any is created, and
+    /// refuses a total above [`MAX_GENERATED`] at the item that passes it. Items whose counts
+    /// do not read are skipped here: the pass that builds them reports them.
+    fn count_all_generated(&mut self, top: &Table) -> Result<(), InputError> {
+        let count = |t: &Table, k: &str| {
+            t.get(k)
+                .and_then(|node| self.doc.positive_integer(node, &t.child(k)).ok())
+        };
+        let mut items: Vec<(usize, Option<Pos>, String)> = Vec::new();
+        for t in table_array(top, "blocks")? {
+            if let (Some(nx), Some(ny)) = (count(&t, "nx"), count(&t, "ny")) {
+                let n = nx.saturating_add(1).saturating_mul(ny.saturating_add(1));
+                items.push((n, t.get("nx").and_then(|x| x.pos).or(t.pos), t.child("nx")));
+            }
+        }
+        for t in table_array(top, "members")? {
+            let n = count(&t, "divisions").unwrap_or(1).saturating_add(1);
+            items.push((
+                n,
+                t.get("divisions").and_then(|x| x.pos).or(t.pos),
+                t.child("divisions"),
+            ));
+        }
+        for (n, pos, key) in items {
+            self.count_generated(n, pos, &key)?;
+        }
+        Ok(())
+    }
+
+    /// Adds `count` generated nodes to the model's total, refusing a total above
+    /// [`MAX_GENERATED`].
+    fn count_generated(
+        &mut self,
+        count: usize,
+        pos: Option<Pos>,
+        key: &str,
+    ) -> Result<(), InputError> {
+        let total = self.generated.saturating_add(count);
+        if total > MAX_GENERATED {
+            return Err(self.err(
+                pos,
+                key,
+                InputErrorKind::Value,
+                format!(
+                    "the blocks and members up to this one would create {total} nodes, too many (at most \
+                     {MAX_GENERATED} in all)"
+                ),
+            ));
+        }
+        self.generated = total;
+        Ok(())
     }
 
     /// An `Invalid` error located at a name or reference read from the file.
