@@ -206,6 +206,11 @@ fn contact_failure(
         // The solve settings and the per-pair data copied from the user's file (friction, gap)
         // are the user's, whatever the origin of the zone; so is a problem without pairs.
         E::Settings(_) | E::Negative { .. } | E::Empty => false,
+        // Numbers whose products leave double precision: the user's extreme values, whether
+        // typed in a contact-zone file or entered as a model's properties.
+        E::OutOfRange(_) => false,
+        // The engine failed on data that passed every check.
+        E::Internal(_) => true,
         // Matrices and load vectors: the user's in a contact-zone file, the program's when they
         // were condensed from a structural model.
         E::MatrixSize { .. }
@@ -228,9 +233,14 @@ fn contact_failure(
 fn analysis_failure(file: &Path, e: &unilateral_analysis::AnalysisError) -> Failure {
     use unilateral_analysis::AnalysisError as E;
     match e {
-        E::Model { .. } | E::Unstable { .. } => Failure::Input(format!("{}: {e}", file.display())),
+        E::Model { .. } if e.is_internal() => Failure::Internal(format!("{}: {e}", file.display())),
+        E::Model { .. } | E::Unstable { .. } | E::PulledApart { .. } => {
+            Failure::Input(format!("{}: {e}", file.display()))
+        }
         E::Contact(c) => contact_failure(file, c, ZoneOrigin::Condensed),
-        E::Recovery { .. } | E::Equilibrium { .. } | E::NotOnPath { .. } => {
+        // `NotOnPath` only arises where the program itself asked for a load of the path (the
+        // events of a report), so it is the program's fault here.
+        E::Recovery { .. } | E::Equilibrium { .. } | E::Internal { .. } | E::NotOnPath { .. } => {
             Failure::Internal(format!("{}: {e}", file.display()))
         }
     }
@@ -283,11 +293,16 @@ fn ending_failure(
     }
 }
 
-/// How a plain LCP solve ended: every status is an answer.
-fn lcp_status_failure(status: unilateral_lcp::LcpStatus) -> Option<Failure> {
+/// How a plain LCP solve ended: every status is an answer except a numerical failure (exit 1).
+fn lcp_status_failure(file: &Path, status: unilateral_lcp::LcpStatus) -> Option<Failure> {
     use unilateral_lcp::LcpStatus as S;
     match status {
         S::Solved | S::Ray | S::IterationLimit => None,
+        S::NumericalFailure => Some(Failure::Internal(format!(
+            "{}: the LCP engine could not produce a verified finite solution (status \
+             numerical_failure)",
+            file.display()
+        ))),
     }
 }
 
@@ -467,7 +482,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             if let Some(out) = json {
                 write_json(&out, &unilateral_io::lcp_json(&sol))?;
             }
-            lcp_status_failure(sol.status).map_or(Ok(()), Err)
+            lcp_status_failure(&file, sol.status).map_or(Ok(()), Err)
         }
         Command::Example { name, to, force } => examples::run(name.as_deref(), &to, force),
     }
@@ -621,6 +636,8 @@ mod tests {
                 value: -0.1,
             },
             ContactError::Settings("target must be > 0".into()),
+            ContactError::OutOfRange("friction × Rnn overflows".into()),
+            ContactError::Internal("a verified basis could not be found".into()),
         ]
     }
 
@@ -629,14 +646,23 @@ mod tests {
     fn always_the_users(e: &ContactError) -> bool {
         matches!(
             e,
-            ContactError::Empty | ContactError::Negative { .. } | ContactError::Settings(_)
+            ContactError::Empty
+                | ContactError::Negative { .. }
+                | ContactError::Settings(_)
+                | ContactError::OutOfRange(_)
         )
     }
 
     #[test]
     fn a_contact_zone_file_is_the_users_data() {
         for e in every_contact_error() {
-            check(contact_failure(&file(), &e, ZoneOrigin::File), 2);
+            // ... except a failure of the engine itself on data that passed every check.
+            let code = if matches!(e, ContactError::Internal(_)) {
+                1
+            } else {
+                2
+            };
+            check(contact_failure(&file(), &e, ZoneOrigin::File), code);
         }
     }
 
@@ -647,7 +673,7 @@ mod tests {
         for e in every_contact_error() {
             let code = if always_the_users(&e) { 2 } else { 1 };
             let msg = check(contact_failure(&file(), &e, ZoneOrigin::Condensed), code);
-            if code == 1 {
+            if code == 1 && !matches!(e, ContactError::Internal(_)) {
                 assert!(msg.contains("condensed from the model"), "{msg}");
             }
             let msg = check(analysis_failure(&file(), &AnalysisError::Contact(e)), code);
@@ -689,6 +715,23 @@ mod tests {
             end: "p = 1".into(),
         };
         check(analysis_failure(&file(), &off_path), 1);
+        let internal = AnalysisError::Internal {
+            what: "the contact solver refused the condensed contact zone".into(),
+            message: "Rnn is not symmetric".into(),
+        };
+        check(analysis_failure(&file(), &internal), 1);
+        let pulled = AnalysisError::PulledApart {
+            pairs: vec!["base.1".into()],
+            forces: vec![-10.0],
+            resultant: [0.0, 10.0],
+        };
+        let msg = check(analysis_failure(&file(), &pulled), 2);
+        assert!(msg.contains("base.1"), "{msg}");
+        // The CLI's classification agrees with the analysis' own.
+        for e in [model, unstable, recovery, balance, internal, pulled] {
+            let code = if e.is_internal() { 1 } else { 2 };
+            check(analysis_failure(&file(), &e), code);
+        }
     }
 
     #[test]
@@ -728,8 +771,11 @@ mod tests {
             "{msg}"
         );
         for s in [LcpStatus::Solved, LcpStatus::Ray, LcpStatus::IterationLimit] {
-            assert!(lcp_status_failure(s).is_none(), "{s:?}");
+            assert!(lcp_status_failure(&file(), s).is_none(), "{s:?}");
         }
+        let f = lcp_status_failure(&file(), LcpStatus::NumericalFailure).unwrap();
+        let msg = check(f, 1);
+        assert!(msg.contains("numerical_failure"), "{msg}");
     }
 
     #[test]

@@ -237,6 +237,7 @@ fn every_siconos_lcp_ends_as_expected() {
                 }
             }
             LcpStatus::IterationLimit => failures.push(format!("{stem}: pivot cap")),
+            LcpStatus::NumericalFailure => failures.push(format!("{stem}: numerical failure")),
         }
     }
     for (name, ..) in EXPECTED {
