@@ -18,6 +18,7 @@
 
 mod dat;
 mod error;
+mod finite;
 mod json;
 mod model;
 mod mtx;
@@ -31,6 +32,7 @@ mod zone;
 
 pub use dat::{read_fc2d, read_siconos_lcp, Fc2dProblem};
 pub use error::{InputError, InputErrorKind, Location};
+pub use finite::NonFiniteOutput;
 pub use model::*;
 pub use mtx::read_matrix_market;
 pub use output::*;
