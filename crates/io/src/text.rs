@@ -1,5 +1,6 @@
 //! Reading a file as text, and turning byte offsets into lines and columns.
 
+use std::io::Read;
 use std::path::Path;
 
 use crate::error::{InputError, InputErrorKind, Pos};
@@ -27,19 +28,34 @@ pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
             "this is a directory, not a file",
         ));
     }
-    if meta.len() > MAX_FILE_BYTES {
+    if !meta.is_file() {
+        // A device, a pipe or a socket: /dev/zero would be read for ever.
         return Err(InputError::at(
             path,
             None,
             InputErrorKind::Io,
-            format!(
-                "the file has {} bytes, more than the {} this program reads",
-                meta.len(),
-                MAX_FILE_BYTES
-            ),
+            "this is not a regular file (a device, a pipe or a socket?)",
         ));
     }
-    let bytes = std::fs::read(path).map_err(io_err)?;
+    let too_large = |len: u64| {
+        InputError::at(
+            path,
+            None,
+            InputErrorKind::Io,
+            format!("the file has {len} bytes, more than the {MAX_FILE_BYTES} this program reads"),
+        )
+    };
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(too_large(meta.len()));
+    }
+    // The file may grow after the size was looked at: read no more than the limit allows.
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes))
+        .map_err(io_err)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(too_large(bytes.len() as u64));
+    }
     decode(path, bytes)
 }
 
