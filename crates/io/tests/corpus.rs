@@ -492,3 +492,35 @@ fn a_long_one_line_array_is_read_to_its_error() {
     .unwrap();
     read_siconos_lcp(&path).unwrap();
 }
+
+/// An object of 160 000 keys: each key was compared with every earlier one to find
+/// duplicates (quadratic: over a minute). The reference is the first key, which is unknown.
+#[test]
+fn an_object_of_many_keys_is_read_to_its_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys: Vec<String> = (0..160_000).map(|i| format!("\"k{i}\": 1")).collect();
+    let path = dir.path().join("keys.json");
+    std::fs::write(
+        &path,
+        format!("{{\"contact_zone\": {{{}}}}}", keys.join(", ")),
+    )
+    .unwrap();
+    let e = read_contact_zone(&path).unwrap_err();
+    assert!(e.to_string().contains("unknown key `k0`"), "{e}");
+}
+
+/// A 1 MB unknown key: no "did you mean" search over it (it took seconds against many
+/// candidates), and the message shows its start and its length, not the megabyte.
+#[test]
+fn a_huge_unknown_key_gives_a_short_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("long.toml");
+    let key = "R".repeat(1_000_000);
+    std::fs::write(&path, format!("[contact_zone]\n{key} = 1\n")).unwrap();
+    let e = read_contact_zone(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("unknown key") && e.contains("(1000000 characters)"),
+        "{e}"
+    );
+    assert!(e.len() < 1_000, "a message of {} bytes", e.len());
+}
