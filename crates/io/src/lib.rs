@@ -15,6 +15,10 @@
 //! ```
 //!
 //! Indices in key paths and messages are 1-based, as in the paper.
+//!
+//! The writers (summaries, JSON documents, CSV tables, VTK files) never emit a non-finite
+//! number: they return a [`NonFiniteOutput`] instead, an internal failure (the program's
+//! fault, exit status 1), since the readers accept only finite data.
 
 mod dat;
 mod error;

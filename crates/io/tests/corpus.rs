@@ -6,8 +6,9 @@
 //!
 //! The reference is the readers' contract, not a value: no input makes a reader panic or
 //! hang; every refusal names the file it refuses (its `Display` starts with the path); and
-//! when a contact zone or a plain LCP is read and solved, the writers find no non-finite
-//! number to refuse (`NonFiniteOutput` is an internal failure: it must never happen).
+//! when a contact zone, a plain LCP or a small structural model is read and solved, the
+//! writers (JSON, summary, CSV, VTK) find no non-finite number to refuse (`NonFiniteOutput`
+//! is an internal failure: it must never happen).
 //!
 //! The longer, coverage-guided search is `fuzz/` (cargo-fuzz); the inputs it found that once
 //! broke a reader are kept in `tests/data/fuzz/` and read here as well.
@@ -20,7 +21,8 @@ use std::time::Duration;
 
 use unilateral_io::{
     contact_json, contact_summary, lcp_json, lcp_summary, read_contact_zone, read_fc2d, read_lcp,
-    read_matrix_market, read_problem, read_siconos_lcp, write_contact_csv, InputError, Problem,
+    read_matrix_market, read_problem, read_siconos_lcp, structural_json, structural_summary,
+    write_contact_csv, write_structural_csv, write_vtk_for, InputError, Problem,
 };
 
 fn repo() -> PathBuf {
@@ -289,7 +291,22 @@ fn check_one(reader: Reader, path: &Path, out_dir: &Path) -> Result<(), Broken> 
     match reader {
         Reader::Problem => match read_problem(path) {
             Ok(Problem::ContactZone(pb)) => zone(pb),
-            Ok(Problem::Structural(_)) => Ok(()),
+            Ok(Problem::Structural(pb)) => {
+                // Small models only: a mutant may ask for a fine mesh, and the corpus must
+                // stay quick. The bundled examples have at most a few hundred nodes.
+                if pb.model.nodes().len() > 2_000 {
+                    return Ok(());
+                }
+                let mut settings = pb.settings.clone();
+                settings.max_pivots = Some(settings.max_pivots.unwrap_or(500).min(500));
+                if let Ok(a) = unilateral_analysis::analyze(&pb.model, &settings) {
+                    structural_json(&a).map_err(|e| out(&e))?;
+                    structural_summary(&a, "t").map_err(|e| out(&e))?;
+                    write_structural_csv(&a, out_dir).map_err(|e| out(&e))?;
+                    write_vtk_for(&pb.model, &a, out_dir).map_err(|e| out(&e))?;
+                }
+                Ok(())
+            }
             Err(e) => refused(e),
         },
         Reader::Zone => match read_contact_zone(path) {
