@@ -1,11 +1,12 @@
 //! A small JSON parser (RFC 8259) that keeps the position of every key and value, so that
 //! errors about a value can name its line and column.
 
+use std::collections::HashSet;
 use std::path::Path;
 
 use crate::error::{InputError, InputErrorKind, Pos};
 use crate::text::LineIndex;
-use crate::tree::{Entry, Node, Value};
+use crate::tree::{short, Entry, Node, Value};
 
 /// Deeper nesting than this is refused (no problem file needs more than 4 levels).
 const MAX_DEPTH: usize = 64;
@@ -93,7 +94,10 @@ impl Parser<'_> {
                 if self.text[self.at..].starts_with("null") {
                     self.at += 4;
                     Value::Other("null")
-                } else if self.text[self.at..].to_ascii_lowercase().starts_with("nan") {
+                } else if self.bytes[self.at..]
+                    .get(..3)
+                    .is_some_and(|w| w.eq_ignore_ascii_case(b"nan"))
+                {
                     return Err(self.err_here(
                         "`nan` is not a JSON value (JSON has no NaN; every number must be finite)",
                     ));
@@ -124,6 +128,9 @@ impl Parser<'_> {
     fn object(&mut self, depth: usize) -> Result<Value, InputError> {
         self.at += 1; // '{'
         let mut entries: Vec<Entry> = Vec::new();
+        // The keys seen so far: a duplicate is found in constant time, not by a scan of the
+        // entries (which made an object of many keys quadratic).
+        let mut seen: HashSet<String> = HashSet::new();
         self.skip_ws();
         if self.bytes.get(self.at) == Some(&b'}') {
             self.at += 1;
@@ -139,8 +146,11 @@ impl Parser<'_> {
             }
             let key_start = self.at;
             let key = self.string()?;
-            if entries.iter().any(|e| e.key == key) {
-                return Err(self.err_at(key_start, format!("the key \"{key}\" appears twice")));
+            if !seen.insert(key.clone()) {
+                return Err(self.err_at(
+                    key_start,
+                    format!("the key \"{}\" appears twice", short(&key)),
+                ));
             }
             self.skip_ws();
             if self.bytes.get(self.at) != Some(&b':') {

@@ -15,9 +15,14 @@
 //! ```
 //!
 //! Indices in key paths and messages are 1-based, as in the paper.
+//!
+//! The writers (summaries, JSON documents, CSV tables, VTK files) never emit a non-finite
+//! number: they return a [`NonFiniteOutput`] instead, an internal failure (the program's
+//! fault, exit status 1), since the readers accept only finite data.
 
 mod dat;
 mod error;
+mod finite;
 mod json;
 mod model;
 mod mtx;
@@ -31,6 +36,7 @@ mod zone;
 
 pub use dat::{read_fc2d, read_siconos_lcp, Fc2dProblem};
 pub use error::{InputError, InputErrorKind, Location};
+pub use finite::NonFiniteOutput;
 pub use model::*;
 pub use mtx::read_matrix_market;
 pub use output::*;

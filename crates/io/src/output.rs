@@ -1,5 +1,9 @@
 //! Writing results: the human-readable summary, the JSON document of `interfaces.md` and CSV
 //! tables. Everything here formats; nothing solves.
+//!
+//! No writer emits a non-finite number: each checks every number it would print first and
+//! returns a [`NonFiniteOutput`] (an internal failure, not bad input) instead of writing a
+//! `null`, `NaN` or `inf`.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -8,8 +12,17 @@ use serde_json::{json, Value};
 use unilateral_contact::{ContactSolution, Outcome};
 use unilateral_lcp::{LcpSolution, Residual, Tableau};
 
+use crate::finite::{self, NonFiniteOutput};
+
 /// The JSON value of a residual.
-pub fn residual_json(r: Option<&Residual>) -> Value {
+pub fn residual_json(r: Option<&Residual>) -> Result<Value, NonFiniteOutput> {
+    if let Some(r) = r {
+        finite::residual(r, "residual")?;
+    }
+    Ok(residual_json_unchecked(r))
+}
+
+fn residual_json_unchecked(r: Option<&Residual>) -> Value {
     match r {
         Some(r) => json!({
             "equation": r.equation,
@@ -21,7 +34,8 @@ pub fn residual_json(r: Option<&Residual>) -> Value {
 }
 
 /// The result document of a contact solve (`interfaces.md`, "Result JSON").
-pub fn contact_json(sol: &ContactSolution) -> Value {
+pub fn contact_json(sol: &ContactSolution) -> Result<Value, NonFiniteOutput> {
+    finite::contact_solution(sol)?;
     let p_limit = match &sol.outcome {
         Outcome::Mechanism { p_limit, .. } => json!(p_limit),
         _ => Value::Null,
@@ -66,7 +80,7 @@ pub fn contact_json(sol: &ContactSolution) -> Value {
             })
         })
         .collect();
-    json!({
+    Ok(json!({
         "status": sol.outcome.status(),
         "reading": sol.outcome.reading(sol.settings.target),
         "p": sol.p,
@@ -82,9 +96,9 @@ pub fn contact_json(sol: &ContactSolution) -> Value {
         "steps": steps,
         "pairs": pairs,
         "mechanism": mechanism,
-        "residual": residual_json(sol.residual.as_ref()),
+        "residual": residual_json_unchecked(sol.residual.as_ref()),
         "notes": sol.notes,
-    })
+    }))
 }
 
 fn fmt_num(v: f64) -> String {
@@ -104,7 +118,8 @@ fn fmt_num(v: f64) -> String {
 }
 
 /// The human-readable summary of a contact solve.
-pub fn contact_summary(sol: &ContactSolution, title: &str) -> String {
+pub fn contact_summary(sol: &ContactSolution, title: &str) -> Result<String, NonFiniteOutput> {
+    finite::contact_solution(sol)?;
     let mut s = String::new();
     let _ = writeln!(s, "{title}");
     let _ = writeln!(
@@ -234,14 +249,18 @@ pub fn contact_summary(sol: &ContactSolution, title: &str) -> String {
             }
         );
     }
-    s
+    Ok(s)
 }
 
 /// Writes `pairs.csv` and `steps.csv` into `dir` (created if needed).
+///
+/// A non-finite number in the solution is an error carrying a [`NonFiniteOutput`]
+/// ([`NonFiniteOutput::in_io_error`]), and then nothing is written.
 pub fn write_contact_csv(
     sol: &ContactSolution,
     dir: &Path,
 ) -> std::io::Result<Vec<std::path::PathBuf>> {
+    finite::contact_solution(sol)?;
     std::fs::create_dir_all(dir)?;
     let mut pairs = String::from("pair,name,x_n,x_t,z_n,z_t,state\n");
     for (i, p) in sol.pairs.iter().enumerate() {
@@ -288,12 +307,17 @@ fn csv_field(s: &str) -> String {
 }
 
 /// The result document of a plain LCP solve.
-pub fn lcp_json(sol: &LcpSolution) -> Value {
+pub fn lcp_json(sol: &LcpSolution) -> Result<Value, NonFiniteOutput> {
+    finite::lcp_solution(sol)?;
     let (z, w, r) = match &sol.point {
-        Some(p) => (json!(p.z), json!(p.w), residual_json(Some(&p.residual))),
+        Some(p) => (
+            json!(p.z),
+            json!(p.w),
+            residual_json_unchecked(Some(&p.residual)),
+        ),
         None => (Value::Null, Value::Null, Value::Null),
     };
-    json!({
+    Ok(json!({
         "status": sol.status.as_str(),
         "z": z,
         "w": w,
@@ -301,11 +325,12 @@ pub fn lcp_json(sol: &LcpSolution) -> Value {
         "residual": r,
         "strategy": format!("{:?}", sol.strategy),
         "attempts": sol.attempts,
-    })
+    }))
 }
 
 /// The human-readable summary of a plain LCP solve.
-pub fn lcp_summary(sol: &LcpSolution, title: &str) -> String {
+pub fn lcp_summary(sol: &LcpSolution, title: &str) -> Result<String, NonFiniteOutput> {
+    finite::lcp_solution(sol)?;
     let mut s = String::new();
     let _ = writeln!(s, "{title}");
     let _ = writeln!(
@@ -329,11 +354,15 @@ pub fn lcp_summary(sol: &LcpSolution, title: &str) -> String {
             r.equation, r.feasibility, r.complementarity
         );
     }
-    s
+    Ok(s)
 }
 
 /// A tableau in the paper's layout, with labels from `label`.
-pub fn tableau_text(t: &Tableau, label: &dyn Fn(unilateral_lcp::Var) -> String) -> String {
+pub fn tableau_text(
+    t: &Tableau,
+    label: &dyn Fn(unilateral_lcp::Var) -> String,
+) -> Result<String, NonFiniteOutput> {
+    finite::tableaux(std::slice::from_ref(t))?;
     let mut s = String::new();
     let _ = writeln!(s, "tableau {}", t.title);
     let w = 9;
@@ -363,7 +392,7 @@ pub fn tableau_text(t: &Tableau, label: &dyn Fn(unilateral_lcp::Var) -> String) 
             }
         }
     }
-    s
+    Ok(s)
 }
 
 fn short(v: f64) -> String {
@@ -378,8 +407,12 @@ fn short(v: f64) -> String {
 }
 
 /// The tableaux as JSON (entries by row).
-pub fn tableaux_json(ts: &[Tableau], label: &dyn Fn(unilateral_lcp::Var) -> String) -> Value {
-    Value::Array(
+pub fn tableaux_json(
+    ts: &[Tableau],
+    label: &dyn Fn(unilateral_lcp::Var) -> String,
+) -> Result<Value, NonFiniteOutput> {
+    finite::tableaux(ts)?;
+    Ok(Value::Array(
         ts.iter()
             .map(|t| {
                 json!({
@@ -395,13 +428,17 @@ pub fn tableaux_json(ts: &[Tableau], label: &dyn Fn(unilateral_lcp::Var) -> Stri
                 })
             })
             .collect(),
-    )
+    ))
 }
 
 /// The human-readable summary of a structural analysis: the contact summary, then the largest
 /// displacement and internal forces and the equilibrium check.
-pub fn structural_summary(a: &unilateral_analysis::Analysis, title: &str) -> String {
-    let mut s = contact_summary(&a.solution, title);
+pub fn structural_summary(
+    a: &unilateral_analysis::Analysis,
+    title: &str,
+) -> Result<String, NonFiniteOutput> {
+    finite::analysis(a)?;
+    let mut s = contact_summary(&a.solution, title)?;
     if let (Some(r), Some(ex)) = (&a.results, a.extremes()) {
         let _ = writeln!(s, "\nstructure at p = {}:", fmt_num(r.p));
         if let Some(d) = &ex.displacement {
@@ -450,7 +487,7 @@ pub fn structural_summary(a: &unilateral_analysis::Analysis, title: &str) -> Str
             e.relative()
         );
     }
-    s
+    Ok(s)
 }
 
 fn dof_name(d: &unilateral_fem::SupportDof) -> String {
@@ -464,10 +501,11 @@ fn dof_name(d: &unilateral_fem::SupportDof) -> String {
 
 /// The result document of a structural analysis: the contact document plus node
 /// displacements, reactions, frame end forces, plane-element stresses and the equilibrium check.
-pub fn structural_json(a: &unilateral_analysis::Analysis) -> Value {
-    let mut doc = contact_json(&a.solution);
+pub fn structural_json(a: &unilateral_analysis::Analysis) -> Result<Value, NonFiniteOutput> {
+    finite::analysis(a)?;
+    let mut doc = contact_json(&a.solution)?;
     let Some(r) = &a.results else {
-        return doc;
+        return Ok(doc);
     };
     let names = &a.names;
     let nodes: Vec<Value> = r
@@ -516,7 +554,7 @@ pub fn structural_json(a: &unilateral_analysis::Analysis) -> Value {
         "equilibrium".into(),
         json!({ "applied": e.applied, "reactions": e.reactions, "contact": e.contact, "springs": e.springs, "resultant": e.resultant, "relative": e.relative() }),
     );
-    doc
+    Ok(doc)
 }
 
 /// Writes the contact tables and one table per kind of structural result into `dir`.
@@ -524,6 +562,7 @@ pub fn write_structural_csv(
     a: &unilateral_analysis::Analysis,
     dir: &Path,
 ) -> std::io::Result<Vec<std::path::PathBuf>> {
+    finite::analysis(a)?;
     let mut files = write_contact_csv(&a.solution, dir)?;
     let Some(r) = &a.results else {
         return Ok(files);

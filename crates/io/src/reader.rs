@@ -9,7 +9,7 @@ use faer::Mat;
 use crate::error::{InputError, InputErrorKind, Location, Pos};
 use crate::mtx::read_mtx;
 use crate::text::read_text;
-use crate::tree::{did_you_mean, Entry, Node, Value};
+use crate::tree::{did_you_mean, short, Entry, Node, Value};
 
 /// The format of a problem file, from its extension.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -395,13 +395,13 @@ impl<'n> Table<'n> {
                     Some(k) => format!(" (did you mean `{k}`?)"),
                     None => String::new(),
                 };
+                let name = short(&e.key);
                 return Err(self.doc.err(
                     e.key_pos.or(e.node.pos),
-                    &self.child(&e.key),
+                    &self.child(&name),
                     InputErrorKind::UnknownKey,
                     format!(
-                        "unknown key `{}` in {}{hint}; the keys here are: {}",
-                        e.key,
+                        "unknown key `{name}` in {}{hint}; the keys here are: {}",
                         self.name(),
                         known.join(", ")
                     ),

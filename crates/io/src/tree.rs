@@ -66,36 +66,75 @@ impl Node {
     }
 }
 
-/// Levenshtein distance on lowercase characters.
-fn distance(a: &str, b: &str) -> usize {
-    let a: Vec<char> = a.to_lowercase().chars().collect();
-    let b: Vec<char> = b.to_lowercase().chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    let mut cur = vec![0; b.len() + 1];
+/// Names longer than this (in characters) get no "did you mean" suggestion: a typo of a name
+/// that long is not found by eye anyway, and the comparison must stay cheap whatever the file.
+const MAX_SUGGESTED_LEN: usize = 256;
+
+/// The Levenshtein distance of `a` and `b` if it is at most `limit`, else `None`.
+///
+/// Only the band `|i - j| ≤ limit` of the table is computed (a path outside it costs more
+/// than `limit`), so a call costs `O(len · limit)`, not `O(len²)`.
+fn distance_within(a: &[char], b: &[char], limit: usize) -> Option<usize> {
+    if a.len().abs_diff(b.len()) > limit {
+        return None;
+    }
+    let over = limit + 1;
+    // prev[j]: distance of a[..i] and b[..j], capped at `over`.
+    let mut prev: Vec<usize> = (0..=b.len()).map(|j| j.min(over)).collect();
+    let mut cur = vec![over; b.len() + 1];
     for (i, ca) in a.iter().enumerate() {
-        cur[0] = i + 1;
-        for (j, cb) in b.iter().enumerate() {
-            let sub = prev[j] + usize::from(ca != cb);
-            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
+        let lo = (i + 1).saturating_sub(limit);
+        let hi = (i + 1 + limit).min(b.len());
+        cur.fill(over);
+        if lo == 0 {
+            cur[0] = (i + 1).min(over);
+        }
+        let mut best = cur[0];
+        for j in lo.max(1)..=hi {
+            let sub = prev[j - 1] + usize::from(*ca != b[j - 1]);
+            let v = sub.min(prev[j] + 1).min(cur[j - 1] + 1).min(over);
+            cur[j] = v;
+            best = best.min(v);
+        }
+        if best > limit {
+            return None;
         }
         std::mem::swap(&mut prev, &mut cur);
     }
-    prev[b.len()]
+    Some(prev[b.len()]).filter(|&d| d <= limit)
 }
 
-/// The closest known key, if it is close enough to be a likely typo.
+fn lower_chars(s: &str) -> Vec<char> {
+    s.chars().flat_map(char::to_lowercase).collect()
+}
+
+/// The closest known key, if it is close enough to be a likely typo (case is ignored).
 pub(crate) fn did_you_mean<'a>(unknown: &str, known: &[&'a str]) -> Option<&'a str> {
-    let limit = match unknown.chars().count() {
+    let len = unknown.chars().count();
+    if len > MAX_SUGGESTED_LEN {
+        return None;
+    }
+    let limit = match len {
         0..=2 => 1,
         3..=5 => 2,
         _ => 3,
     };
+    let a = lower_chars(unknown);
     known
         .iter()
-        .map(|k| (distance(unknown, k), *k))
-        .filter(|&(d, _)| d <= limit)
+        .filter(|k| k.chars().count().abs_diff(len) <= limit)
+        .filter_map(|k| distance_within(&a, &lower_chars(k), limit).map(|d| (d, *k)))
         .min_by_key(|&(d, _)| d)
         .map(|(_, k)| k)
+}
+
+/// A name cut to a length fit for a message: `abc…` after 60 characters.
+pub(crate) fn short(s: &str) -> String {
+    const KEEP: usize = 60;
+    match s.char_indices().nth(KEEP) {
+        None => s.to_string(),
+        Some((cut, _)) => format!("{}… ({} characters)", &s[..cut], s.chars().count()),
+    }
 }
 
 #[cfg(test)]
@@ -110,5 +149,68 @@ mod tests {
         assert_eq!(did_you_mean("Rn", &keys), Some("Rnn"));
         assert_eq!(did_you_mean("stiffness", &keys), None);
         assert_eq!(did_you_mean("", &keys), None);
+    }
+
+    /// Reference: the full Levenshtein table, written the textbook way.
+    fn full_distance(a: &str, b: &str) -> usize {
+        let (a, b) = (lower_chars(a), lower_chars(b));
+        let mut d = vec![vec![0; b.len() + 1]; a.len() + 1];
+        for (i, row) in d.iter_mut().enumerate() {
+            row[0] = i;
+        }
+        d[0] = (0..=b.len()).collect();
+        for i in 1..=a.len() {
+            for j in 1..=b.len() {
+                let sub = d[i - 1][j - 1] + usize::from(a[i - 1] != b[j - 1]);
+                d[i][j] = sub.min(d[i - 1][j] + 1).min(d[i][j - 1] + 1);
+            }
+        }
+        d[a.len()][b.len()]
+    }
+
+    #[test]
+    fn banded_distance_agrees_with_the_full_table() {
+        let words = [
+            "",
+            "a",
+            "ab",
+            "ba",
+            "Rnn",
+            "rtt",
+            "friction",
+            "fricton",
+            "frictionn",
+            "tightening",
+            "tighten",
+            "gap",
+            "gaps",
+            "beam.10",
+            "beam.01",
+            "xyzzy",
+            "名前",
+            "名前x",
+        ];
+        for a in words {
+            for b in words {
+                let full = full_distance(a, b);
+                for limit in 0..5 {
+                    let banded = distance_within(&lower_chars(a), &lower_chars(b), limit);
+                    let expected = (full <= limit).then_some(full);
+                    assert_eq!(banded, expected, "{a:?} {b:?} limit {limit}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn long_names_get_no_suggestion_and_short_messages() {
+        let long = "x".repeat(1_000_000);
+        assert_eq!(did_you_mean(&long, &[long.as_str()]), None);
+        let shown = short(&long);
+        assert!(
+            shown.len() < 100 && shown.contains("1000000 characters"),
+            "{shown}"
+        );
+        assert_eq!(short("Rnn"), "Rnn");
     }
 }

@@ -60,12 +60,14 @@ const VTK_QUAD: u8 = 9;
 /// counts do not match gives an [`io::ErrorKind::InvalidInput`] error.
 pub fn write_vtk_for(model: &Model, analysis: &Analysis, dir: &Path) -> io::Result<Vec<PathBuf>> {
     check_match(model, analysis)?;
+    crate::finite::analysis(analysis)?;
     let snapshots = snapshots(analysis);
     let mesh = MeshGeometry::new(model);
     let pairs = PairGeometry::new(model, analysis);
     std::fs::create_dir_all(dir)?;
     let width = snapshots.len().saturating_sub(1).to_string().len().max(3);
-    let mut files = Vec::new();
+    // Every file is made and checked before the first is written.
+    let mut texts: Vec<(String, String)> = Vec::new();
     let mut pvd = String::from(
         "<?xml version=\"1.0\"?>\n\
          <VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
@@ -85,17 +87,61 @@ pub fn write_vtk_for(model: &Model, analysis: &Analysis, dir: &Path) -> io::Resu
     };
     for (k, snap) in list.iter().enumerate() {
         let name = format!("mesh_{k:0width$}.vtu");
-        files.push(write_file(dir, &name, &mesh.vtu(model, snap))?);
         dataset(&mut pvd, snap.p, 0, &name);
+        texts.push((name, mesh.vtu(model, snap)));
         if pairs.m > 0 {
             let name = format!("pairs_{k:0width$}.vtu");
-            files.push(write_file(dir, &name, &pairs.vtu(snap))?);
             dataset(&mut pvd, snap.p, 1, &name);
+            texts.push((name, pairs.vtu(snap)));
         }
     }
     pvd.push_str("  </Collection>\n</VTKFile>\n");
-    files.push(write_file(dir, PVD_FILE, &pvd)?);
-    Ok(files)
+    texts.push((PVD_FILE.to_string(), pvd));
+    for (name, text) in &texts {
+        check_numbers(name, text)?;
+    }
+    texts
+        .iter()
+        .map(|(name, text)| write_file(dir, name, text))
+        .collect()
+}
+
+/// Every number of a VTK file is finite: the values of each `DataArray` (written by this
+/// module as numbers only) and each `timestep` of the collection. This also covers the values
+/// derived here (displaced points, von Mises stress, pair forces), which could overflow even
+/// when the analysis' own numbers are finite.
+fn check_numbers(file: &str, text: &str) -> Result<(), crate::NonFiniteOutput> {
+    let bad = |what: &str, token: &str| crate::NonFiniteOutput {
+        field: format!("{what} in {file}"),
+        value: token.parse().unwrap_or(f64::NAN),
+    };
+    let is_finite = |token: &str| token.parse::<f64>().is_ok_and(f64::is_finite);
+    let mut rest = text;
+    while let Some(at) = rest.find("<DataArray") {
+        rest = &rest[at..];
+        let Some(open_end) = rest.find('>') else {
+            break;
+        };
+        let tag = &rest[..open_end];
+        let name = tag
+            .split("Name=\"")
+            .nth(1)
+            .and_then(|n| n.split('"').next())
+            .unwrap_or("a data array");
+        let body_end = rest.find("</DataArray>").unwrap_or(rest.len());
+        let body = &rest[open_end + 1..body_end.max(open_end + 1)];
+        if let Some(token) = body.split_ascii_whitespace().find(|t| !is_finite(t)) {
+            return Err(bad(&format!("the data array \"{name}\""), token));
+        }
+        rest = &rest[body_end..];
+    }
+    for part in text.split("timestep=\"").skip(1) {
+        let token = part.split('"').next().unwrap_or("");
+        if !is_finite(token) {
+            return Err(bad("a timestep", token));
+        }
+    }
+    Ok(())
 }
 
 fn write_file(dir: &Path, name: &str, text: &str) -> io::Result<PathBuf> {
@@ -615,4 +661,28 @@ fn num(s: &mut String, x: f64) {
     } else {
         write!(s, "{x:e}")
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_numbers;
+
+    #[test]
+    fn non_finite_numbers_in_a_vtk_text_are_found() {
+        let ok = "<DataArray type=\"Float64\" Name=\"u\" format=\"ascii\">\n 1 -2.5e-3 0\n</DataArray>\n<DataSet timestep=\"0.5\" part=\"0\"/>";
+        assert!(check_numbers("a.vtu", ok).is_ok());
+        for (text, field) in [
+            (
+                ok.replace("-2.5e-3", "NaN"),
+                "the data array \"u\" in a.vtu",
+            ),
+            (
+                ok.replace("-2.5e-3", "-inf"),
+                "the data array \"u\" in a.vtu",
+            ),
+            (ok.replace("0.5", "inf"), "a timestep in a.vtu"),
+        ] {
+            assert_eq!(check_numbers("a.vtu", &text).unwrap_err().field, field);
+        }
+    }
 }

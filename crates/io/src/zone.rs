@@ -1,5 +1,6 @@
 //! Contact-zone problems (`[contact_zone]`, `[load.*]`, `[solve]`) and plain LCPs in TOML/JSON.
 
+use std::collections::HashMap;
 use std::path::Path;
 
 use faer::Mat;
@@ -9,7 +10,7 @@ use unilateral_lcp::Lcp;
 use crate::dat::read_siconos_lcp;
 use crate::error::{InputError, InputErrorKind, Pos};
 use crate::reader::{format_of, Doc, Format, MatrixInput, Table};
-use crate::tree::{did_you_mean, Node, Value};
+use crate::tree::{did_you_mean, short, Node, Value};
 
 /// A contact-zone problem as read from a file: the zone and the `[solve]` settings.
 #[derive(Debug, Clone)]
@@ -368,6 +369,8 @@ fn names(doc: &Doc, node: &Node, key: &str, m: usize) -> Result<Vec<String>, Inp
         ));
     }
     let mut out: Vec<String> = Vec::with_capacity(m);
+    // Pair index of each name, so that a duplicate is found without a scan of the names.
+    let mut index: HashMap<&str, usize> = HashMap::with_capacity(m);
     for (i, item) in items.iter().enumerate() {
         let k = format!("{key}[{}]", i + 1);
         let s = doc.string(item, &k)?.trim();
@@ -379,12 +382,16 @@ fn names(doc: &Doc, node: &Node, key: &str, m: usize) -> Result<Vec<String>, Inp
                 "a pair name must not be empty",
             ));
         }
-        if let Some(j) = out.iter().position(|o| o == s) {
+        if let Some(j) = index.insert(s, i) {
             return Err(doc.err(
                 item.pos,
                 &k,
                 InputErrorKind::Value,
-                format!("the name \"{s}\" is already used by pair {}", j + 1),
+                format!(
+                    "the name \"{}\" is already used by pair {}",
+                    short(s),
+                    j + 1
+                ),
             ));
         }
         out.push(s.to_string());
@@ -461,7 +468,7 @@ pub(crate) fn solve_settings(t: &Table) -> Result<SolveSettings, InputError> {
                     node,
                     "trace",
                     format!(
-                        "unknown trace \"{other}\"{hint}: use \"target\" (stop at the target load p*) or \"end\" (follow the load path to its end)"
+                        "unknown trace \"{}\"{hint}: use \"target\" (stop at the target load p*) or \"end\" (follow the load path to its end)", short(other)
                     ),
                 ));
             }

@@ -648,3 +648,38 @@ fn refuses_another_model() {
     assert_eq!(e.kind(), std::io::ErrorKind::InvalidInput, "{e}");
     assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none());
 }
+
+/// A NaN in the results: every structural writer refuses it, names it, and writes nothing.
+/// (The reference is the number spoiled on purpose.)
+#[test]
+fn refuses_a_non_finite_result() {
+    let (model, mut bad) = analyse("example1-beam.toml");
+    bad.results
+        .as_mut()
+        .expect("example 1 recovers")
+        .displacements[1][1] = f64::NAN;
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("vtk");
+    let e = write_vtk_for(&model, &bad, &out).unwrap_err();
+    let inner = unilateral_io::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
+    assert_eq!(inner.field, "nodes[2].uy");
+    assert!(inner.value.is_nan());
+    assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
+    assert_eq!(
+        unilateral_io::structural_json(&bad).unwrap_err().field,
+        "nodes[2].uy"
+    );
+    assert_eq!(
+        unilateral_io::structural_summary(&bad, "t")
+            .unwrap_err()
+            .field,
+        "nodes[2].uy"
+    );
+    let csv = dir.path().join("csv");
+    let e = unilateral_io::write_structural_csv(&bad, &csv).unwrap_err();
+    assert!(
+        unilateral_io::NonFiniteOutput::in_io_error(&e).is_some(),
+        "{e}"
+    );
+    assert!(!csv.exists());
+}
