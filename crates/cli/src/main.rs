@@ -306,6 +306,13 @@ fn lcp_status_failure(file: &Path, status: unilateral_lcp::LcpStatus) -> Option<
     }
 }
 
+/// A non-finite result is the program's fault: exit 1.
+impl From<unilateral_io::NonFiniteOutput> for Failure {
+    fn from(e: unilateral_io::NonFiniteOutput) -> Self {
+        Failure::Internal(e.to_string())
+    }
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
@@ -356,10 +363,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         problem.zone.pairs()
                     );
                     if json.as_deref() != Some(Path::new("-")) {
-                        print!("{}", unilateral_io::contact_summary(&sol, &title));
+                        print!("{}", unilateral_io::contact_summary(&sol, &title)?);
                     }
                     if let Some(out) = json {
-                        write_json(&out, &unilateral_io::contact_json(&sol))?;
+                        write_json(&out, &unilateral_io::contact_json(&sol)?)?;
                     }
                     if let Some(dir) = csv {
                         report_files(unilateral_io::write_contact_csv(&sol, &dir), &dir)?;
@@ -423,10 +430,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                         a.zone.pairs()
                     );
                     if json.as_deref() != Some(Path::new("-")) {
-                        print!("{}", unilateral_io::structural_summary(&a, &title));
+                        print!("{}", unilateral_io::structural_summary(&a, &title)?);
                     }
                     if let Some(out) = json {
-                        write_json(&out, &unilateral_io::structural_json(&a))?;
+                        write_json(&out, &unilateral_io::structural_json(&a)?)?;
                     }
                     if let Some(dir) = csv {
                         report_files(unilateral_io::write_structural_csv(&a, &dir), &dir)?;
@@ -456,7 +463,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let tables = sol.tableaux(steps);
             let label = |v| sol.lcp.label(v);
             if let Some(out) = &json {
-                write_json(out, &unilateral_io::tableaux_json(&tables, &label))?;
+                write_json(out, &unilateral_io::tableaux_json(&tables, &label)?)?;
             }
             if json.as_deref() != Some(Path::new("-")) {
                 println!(
@@ -465,7 +472,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     problem.settings.tightening
                 );
                 for t in &tables {
-                    println!("{}", unilateral_io::tableau_text(t, &label));
+                    println!("{}", unilateral_io::tableau_text(t, &label)?);
                 }
                 println!("{}", sol.outcome.reading(problem.settings.target));
             }
@@ -477,10 +484,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 .map_err(|e| lcp_failure(&file, &e))?;
             if json.as_deref() != Some(Path::new("-")) {
                 let title = format!("{} (n = {})", file.display(), lcp.q.len());
-                print!("{}", unilateral_io::lcp_summary(&sol, &title));
+                print!("{}", unilateral_io::lcp_summary(&sol, &title)?);
             }
             if let Some(out) = json {
-                write_json(&out, &unilateral_io::lcp_json(&sol))?;
+                write_json(&out, &unilateral_io::lcp_json(&sol)?)?;
             }
             lcp_status_failure(&file, sol.status).map_or(Ok(()), Err)
         }
@@ -542,8 +549,10 @@ impl Overrides {
 }
 
 fn report_files(written: std::io::Result<Vec<PathBuf>>, dir: &Path) -> Result<(), Failure> {
-    let files =
-        written.map_err(|e| Failure::Input(format!("cannot write into {}: {e}", dir.display())))?;
+    let files = written.map_err(|e| match unilateral_io::NonFiniteOutput::in_io_error(&e) {
+        Some(n) => Failure::Internal(n.to_string()),
+        None => Failure::Input(format!("cannot write into {}: {e}", dir.display())),
+    })?;
     for f in files {
         eprintln!("wrote {}", f.display());
     }
