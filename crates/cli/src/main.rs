@@ -260,6 +260,7 @@ fn lcp_failure(file: &Path, e: &unilateral_lcp::LcpError) -> Failure {
 fn report_failure(e: &unilateral_report::ReportError) -> Failure {
     match e {
         unilateral_report::ReportError::Io { .. } => Failure::Input(e.to_string()),
+        unilateral_report::ReportError::NonFinite { .. } => Failure::Internal(e.to_string()),
     }
 }
 
@@ -785,6 +786,22 @@ mod tests {
         let f = lcp_status_failure(&file(), LcpStatus::NumericalFailure).unwrap();
         let msg = check(f, 1);
         assert!(msg.contains("numerical_failure"), "{msg}");
+    }
+
+    #[test]
+    fn a_report_that_cannot_be_written_is_the_users_a_non_finite_picture_the_programs() {
+        let io = unilateral_report::ReportError::Io {
+            path: PathBuf::from("/no/such/dir/forces.svg"),
+            source: std::io::Error::from(std::io::ErrorKind::NotFound),
+        };
+        let msg = check(report_failure(&io), 2);
+        assert!(msg.contains("/no/such/dir/forces.svg"), "{msg}");
+        let nan = unilateral_report::ReportError::NonFinite {
+            file: "forces.svg",
+            token: "NaN".into(),
+        };
+        let msg = check(report_failure(&nan), 1);
+        assert!(msg.contains("forces.svg") && msg.contains("fault"), "{msg}");
     }
 
     #[test]

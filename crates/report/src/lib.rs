@@ -69,6 +69,56 @@ pub enum ReportError {
         #[source]
         source: std::io::Error,
     },
+    /// A picture would contain a number that is not finite. The results handed to the report
+    /// are checked finite, so this is a fault of the program; nothing is written.
+    #[error(
+        "the picture {file} would contain `{token}`, not a finite number; this is a fault of \
+         the program, not of the input, and no report was written"
+    )]
+    NonFinite {
+        /// The picture.
+        file: &'static str,
+        /// The token found (`NaN`, `inf` or `-inf`).
+        token: String,
+    },
+}
+
+/// The first `NaN` or `inf` that a drawing would print as a number, outside the `<title>`
+/// texts (which hold the user's names, where such words may stand).
+fn non_finite_token(svg: &str) -> Option<String> {
+    let mut rest = svg;
+    while !rest.is_empty() {
+        let (drawn, after) = match rest.find("<title>") {
+            Some(i) => {
+                let end = rest[i..].find("</title>").map_or(rest.len(), |j| i + j);
+                (&rest[..i], &rest[end..])
+            }
+            None => (rest, ""),
+        };
+        let bytes = drawn.as_bytes();
+        for word in ["NaN", "inf"] {
+            for (i, _) in drawn.match_indices(word) {
+                let before = i.checked_sub(1).map(|k| bytes[k]);
+                let next = bytes.get(i + word.len()).copied();
+                let letter =
+                    |b: Option<u8>| b.is_some_and(|b| b.is_ascii_alphanumeric() || b == b'_');
+                if !letter(before) && !letter(next) {
+                    let sign = if before == Some(b'-') { "-" } else { "" };
+                    return Some(format!("{sign}{word}"));
+                }
+            }
+        }
+        rest = after.strip_prefix("</title>").unwrap_or(after);
+    }
+    None
+}
+
+/// `Ok` when the picture `file` prints only finite numbers.
+fn check_finite(file: &'static str, svg: &str) -> Result<(), ReportError> {
+    match non_finite_token(svg) {
+        Some(token) => Err(ReportError::NonFinite { file, token }),
+        None => Ok(()),
+    }
 }
 
 /// Names of the files written into the report directory.
@@ -156,16 +206,21 @@ fn write_all(
         Ok(())
     };
     let (forces, displacements) = load_path_svgs(solution, options);
-    put(FORCES_SVG, &forces)?;
-    put(DISPLACEMENTS_SVG, &displacements)?;
     let structure = match (model, analysis) {
-        (Some(m), Some(a)) => {
-            let s = structure_svg(m, a, options);
-            put(STRUCTURE_SVG, &s)?;
-            Some(s)
-        }
+        (Some(m), Some(a)) => Some(structure_svg(m, a, options)),
         _ => None,
     };
+    // Every picture is checked before any file is written.
+    check_finite(FORCES_SVG, &forces)?;
+    check_finite(DISPLACEMENTS_SVG, &displacements)?;
+    if let Some(s) = &structure {
+        check_finite(STRUCTURE_SVG, s)?;
+    }
+    put(FORCES_SVG, &forces)?;
+    put(DISPLACEMENTS_SVG, &displacements)?;
+    if let Some(s) = &structure {
+        put(STRUCTURE_SVG, s)?;
+    }
     let html = report_html(
         model,
         analysis,
@@ -368,4 +423,36 @@ pub fn report_html(
 
 fn strip_decl(s: &str) -> &str {
     s.trim_start_matches(|c: char| c != '<').trim_end()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::non_finite_token;
+
+    #[test]
+    fn non_finite_numbers_are_found_outside_titles() {
+        assert_eq!(
+            non_finite_token(r#"<path d="M 0 0 L NaN 3"/>"#),
+            Some("NaN".into())
+        );
+        assert_eq!(
+            non_finite_token(r#"<circle cx="-inf" cy="1"/>"#),
+            Some("-inf".into())
+        );
+        assert_eq!(
+            non_finite_token(r#"<line x1="inf,2"/>"#),
+            Some("inf".into())
+        );
+        // Names in titles, and words that merely contain the letters, are not numbers.
+        assert_eq!(
+            non_finite_token(
+                r#"<path d="M 0 0"><title>pair inf.NaN</title></path><g class="info"/>"#
+            ),
+            None
+        );
+        assert_eq!(
+            non_finite_token(r#"<path d="M 1e300 2.5e-3 L 0 0"/>"#),
+            None
+        );
+    }
 }
