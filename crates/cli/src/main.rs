@@ -794,13 +794,17 @@ mod tests {
             path: PathBuf::from("/no/such/dir/forces.svg"),
             source: std::io::Error::from(std::io::ErrorKind::NotFound),
         };
-        let msg = check(report_failure(&io), 2);
+        let f = report_failure(&io);
+        let msg = f.message();
+        assert_eq!(f.exit_code(), 2, "{msg}");
         assert!(msg.contains("/no/such/dir/forces.svg"), "{msg}");
         let nan = unilateral_report::ReportError::NonFinite {
             file: "forces.svg",
             token: "NaN".into(),
         };
-        let msg = check(report_failure(&nan), 1);
+        let f = report_failure(&nan);
+        let msg = f.message();
+        assert_eq!(f.exit_code(), 1, "{msg}");
         assert!(msg.contains("forces.svg") && msg.contains("fault"), "{msg}");
     }
 
