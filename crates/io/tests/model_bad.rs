@@ -104,3 +104,27 @@ fn every_bad_model_gives_a_located_error() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A name of a megabyte that matches nothing is refused quickly, and the message quotes only
+/// its beginning and its length (not the whole megabyte).
+#[test]
+fn a_huge_unknown_node_name_gives_a_short_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("huge-name.toml");
+    let name = "n".repeat(1_000_000);
+    let text = format!(
+        "[[nodes]]\nid = \"a\"\nx = 0.0\ny = 0.0\n\n[[nodes]]\nid = \"b\"\nx = 1.0\ny = 0.0\n\n\
+         [[sections]]\nname = \"s\"\nE = 1.0\nA = 1.0\nI = 1.0\n\n\
+         [[elements]]\ntype = \"frame\"\nnodes = [\"a\", \"b\"]\nsection = \"s\"\n\n\
+         [[supports]]\nnodes = \"{name}\"\nfixed = true\n"
+    );
+    std::fs::write(&path, text).unwrap();
+    let msg = read_problem(&path).unwrap_err().to_string();
+    assert!(msg.contains("huge-name.toml:"), "{msg}");
+    assert!(
+        msg.contains("(1000000 characters)"),
+        "{}",
+        &msg[..msg.len().min(300)]
+    );
+    assert!(msg.len() < 1000, "a message of {} bytes", msg.len());
+}

@@ -368,7 +368,10 @@ impl<'d> Builder<'d> {
             Some(k) => format!(" (did you mean `{k}`?)"),
             None => String::new(),
         };
-        self.invalid_at(r, format!("unknown {what} `{}`{hint}", r.name))
+        self.invalid_at(
+            r,
+            format!("unknown {what} `{}`{hint}", crate::tree::short(&r.name)),
+        )
     }
 
     fn plane_options(&self, t: &Table) -> Result<(PlaneAnalysis, PlaneFormulation), InputError> {
@@ -414,7 +417,8 @@ impl<'d> Builder<'d> {
                             &k,
                             InputErrorKind::Value,
                             format!(
-                                "unknown release \"{other}\": use \"start\" and/or \"end\" (a hinge at that end)"
+                                "unknown release \"{}\": use \"start\" and/or \"end\" (a hinge at that end)",
+                                crate::tree::short(other)
                             ),
                         ))
                     }

@@ -185,7 +185,8 @@ pub(crate) fn choice<'a>(
         &t.child(k),
         InputErrorKind::Value,
         format!(
-            "unknown {what} \"{s}\"{hint}: use one of {}",
+            "unknown {what} \"{}\"{hint}: use one of {}",
+            crate::tree::short(s),
             quoted(options)
         ),
     ))
