@@ -104,7 +104,7 @@ impl Model {
         let (asm, t_asm) = timed(|| assemble(self));
         let mut asm = asm?;
         let nnz_lower = asm.kii.as_ref().map_or(0, |k| k.compute_nnz());
-        let (llt, t_fac) = timed(|| factorize(&asm));
+        let (llt, t_fac) = timed(|| factorize(self, &asm));
         let (llt, lambda) = llt?;
         asm.kii = None;
         asm.kii_triplets = Vec::new();
