@@ -7,8 +7,9 @@
 //! kinematics of the mechanisms by hand.
 
 use unilateral_fem::{
-    ContactPairSpec, ContactSolution, DofLabel, FemError, FrameSection, Load, LoadGroup, Model,
-    NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, SupportDof,
+    ContactPairSpec, ContactSolution, DofLabel, Endpoint, FemError, FrameSection, Load, LoadGroup,
+    Model, NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring, SpringKind,
+    SupportDof,
 };
 
 const EI: f64 = 2.1e7;
@@ -87,7 +88,7 @@ fn fine_pinned_beams_are_not_mechanisms() {
                 estimated_error,
                 element_force_ratio,
             }) => {
-                assert!(eigenvalue < 1e-13 && eigenvalue >= 0.0, "{n}: {eigenvalue}");
+                assert!((0.0..1e-13).contains(&eigenvalue), "{n}: {eigenvalue}");
                 assert!(estimated_error > 1e-3 && estimated_error <= 1.0, "{n}");
                 let smooth = (std::f64::consts::PI / n as f64).powi(2) / 25.0;
                 assert!(
@@ -235,8 +236,8 @@ fn a_plane_block_without_support_in_x_slides() {
 fn a_cantilever_keeps_its_tip_stiffness_as_finely_divided_as_accepted() {
     // A cantilever of N elements with a contact pair at its tip: Rnn = 3EI/L³ (the tip
     // stiffness). The Schur complement cancels it out of terms 8N³ times larger (12EI/h³),
-    // so the round-off filter (entries below 1e-13 of their terms are zeroed) and the solve
-    // both meet it: at N = 2000 the ratio is 1.6e-11, a hundred times above the filter, and
+    // so the round-off filter (entries below 32u of their terms are zeroed) and the solve
+    // both meet it: at N = 2000 the ratio is 1.6e-11, 4500 times above the filter, and
     // the value is right to the order u/λ of the stability test's bound (the Schur complement
     // inherits the error of the solves: measured 1.9e-4 = 1.1·u/λ at N = 2000, where λ =
     // 6.2e-13; the tolerance is 4·u/λ). At N = 10⁵ the ratio is
@@ -265,5 +266,41 @@ fn a_cantilever_keeps_its_tip_stiffness_as_finely_divided_as_accepted() {
         Err(FemError::IllConditioned { .. }) => {}
         Err(e) => panic!("{e}"),
         Ok(c) => panic!("accepted with Rnn = {}", c.rnn[(0, 0)]),
+    }
+}
+
+#[test]
+fn a_soft_spring_behind_a_stiff_bar_keeps_its_stiffness() {
+    // A contact pair on node B, a bar of axial stiffness k₁ from B down to C, a spring k₂ = 1
+    // from C to the ground: the pair's normal stiffness is the series k₁k₂/(k₁ + k₂) (hand
+    // calculation), which the Schur complement leaves at k₂/(2k₁) of its terms. The round-off
+    // filter keeps it for contrasts k₁/k₂ up to 10¹³ (the value has then about 3 correct
+    // digits: its terms are 2·10¹³ and their round-off is a few units of 2·10¹³·u ≈ 2e-3).
+    // The tangential stiffness is zero in exact arithmetic (a bar gives no stiffness across
+    // itself) and is returned as 0.
+    for contrast in [1.0, 1e6, 1e11, 1e13] {
+        let mut m = Model::new();
+        let b = m.add_node(0.0, 1.0);
+        let c = m.add_node(0.0, 0.0);
+        m.add_bar(c, b, FrameSection::new(contrast, 1.0, 1.0));
+        m.add_support(c, SupportDof::Ux);
+        m.add_spring(Spring {
+            a: Endpoint::Ground,
+            b: c,
+            kind: SpringKind::Translational {
+                direction: [0.0, 1.0],
+                stiffness: 1.0,
+            },
+        });
+        m.add_contact_pair(ContactPairSpec::to_ground(b, [0.0, 1.0]));
+        let cz = m.condense().unwrap();
+        let exact = contrast / (contrast + 1.0);
+        let tol = 8.0 * U * 2.0 * contrast;
+        let rnn = cz.rnn[(0, 0)];
+        assert!(
+            (rnn - exact).abs() <= tol.max(4.0 * U),
+            "{contrast}: {rnn} vs {exact}"
+        );
+        assert_eq!(cz.rtt[(0, 0)], 0.0, "{contrast}");
     }
 }
