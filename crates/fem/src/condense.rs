@@ -1129,21 +1129,41 @@ pub(crate) struct Condensation {
 const CHUNK: usize = 64;
 
 /// An entry of `R = K_zz − K_zI K_II⁻¹ K_Iz` (or of `R_F`) is round-off when it is smaller
-/// than this fraction of the magnitude of the terms that formed it (`|K_zz|` plus the sum of
-/// the absolute values of the products in `K_zI·(K_II⁻¹ K_Iz)`): 32 unit round-offs, the
-/// error of forming it from those terms in double precision with a margin. Such an entry has
-/// no correct digit left after the cancellation: it is zero in exact arithmetic (for instance
-/// the normal stiffness of a bearing on which a beam can turn freely about a pin, which the
-/// cancellation leaves at 1e-17 to 7e-16 of its terms, measured over the test models, with
-/// any mesh and units). A genuine entry is kept down to that level: the tip stiffness of a
-/// cantilever of `N` elements is `1/(8N³)` of its terms (2e-11 at N = 2000; finer cantilevers
-/// are refused as ill-conditioned by `factorize` before this point), and a spring `k` behind
-/// a bar `10¹³·k` stiff leaves `k` at 5e-14 of its terms, which a threshold of a thousand
-/// round-offs would zero, turning a support into nothing.
-pub(crate) const ROUND_OFF: f64 = 32.0 * f64::EPSILON / 2.0;
+/// than this fraction of the magnitude of what formed it: `|K_zz|`, the sum of the absolute
+/// values of the products in `K_zI·x_j` (`x_j = K_II⁻¹ K_Iz,j`), and the bound
+/// `|x_i|ᵀ|K_II||x_j|` of how far the round-off of the solves (a residual of order
+/// `u·|K_II||x_j|`) reaches the entry. The last term grows with the number of elements the
+/// static modes span, as the round-off does; the first two do not, so a threshold on them
+/// alone either lets the round-off of a fine mesh through or zeroes real stiffness.
+///
+/// The threshold is 8 unit round-offs. Measured over the test models (any mesh from 1 to
+/// 2000 elements, any units), an exact zero (for instance the normal stiffness of a bearing
+/// on which a beam turns freely about a pin) comes out below 4e-17 of this magnitude, and
+/// the smallest genuine entries at 1.7e-14 (the tip stiffness of a cantilever of 2000
+/// elements, `1/(8N³)` of its terms; finer members are refused as ill-conditioned by
+/// `factorize` before this point) and 3.3e-14 (a spring behind a bar 10¹³ times stiffer).
+pub(crate) const ROUND_OFF: f64 = 8.0 * f64::EPSILON / 2.0;
+
+/// `|K|·|x|` for a symmetric `K` stored as its lower triangle.
+fn abs_product(k: &SparseColMat<usize, f64>, x: &[f64]) -> Vec<f64> {
+    let k = k.as_ref();
+    let mut y = vec![0.0; x.len()];
+    for j in 0..x.len() {
+        let rows = k.symbolic().row_idx_of_col_raw(j);
+        let vals = k.val_of_col(j);
+        for (&i, &v) in rows.iter().zip(vals) {
+            y[i] += v.abs() * x[j].abs();
+            if i != j {
+                y[j] += v.abs() * x[i].abs();
+            }
+        }
+    }
+    y
+}
 
 pub(crate) fn condense(
     asm: &Assembled,
+    kii: Option<&SparseColMat<usize, f64>>,
     kzz: Mat<f64>,
     llt: Option<&Llt<usize, f64>>,
 ) -> Condensation {
@@ -1161,6 +1181,20 @@ pub(crate) fn condense(
         }
     }
     if let Some(llt) = llt {
+        // the load columns first: their |K_II|·|x| enter the magnitudes of R_F below
+        let mut xb = Mat::<f64>::from_fn(n_i, 2, |i, g| asm.b_i[g][i]);
+        llt.solve_in_place_with_conj(Conj::No, xb.as_mut());
+        let kxb: Vec<Vec<f64>> = (0..2)
+            .map(|g| kii.map_or_else(Vec::new, |k| abs_product(k, xb.col_as_slice(g))))
+            .collect();
+        for g in 0..2 {
+            let xg = xb.col_as_slice(g);
+            for row in 0..nz {
+                let col = &asm.kiz[row];
+                rf[g][row] += col.iter().map(|&(i, v)| v * xg[i]).sum::<f64>();
+                rf_mag[g][row] += col.iter().map(|&(i, v)| (v * xg[i]).abs()).sum::<f64>();
+            }
+        }
         let mut c0 = 0;
         while c0 < nz {
             let w = CHUNK.min(nz - c0);
@@ -1185,17 +1219,28 @@ pub(crate) fn condense(
                     }
                 }
             }
-            c0 += w;
-        }
-        let mut x = Mat::<f64>::from_fn(n_i, 2, |i, g| asm.b_i[g][i]);
-        llt.solve_in_place_with_conj(Conj::No, x.as_mut());
-        for g in 0..2 {
-            let xg = x.col_as_slice(g);
-            for row in 0..nz {
-                let col = &asm.kiz[row];
-                rf[g][row] += col.iter().map(|&(i, v)| v * xg[i]).sum::<f64>();
-                rf_mag[g][row] += col.iter().map(|&(i, v)| (v * xg[i]).abs()).sum::<f64>();
+            // The round-off of the solves: the computed x_j satisfies K_II x_j = K_Iz,j up
+            // to a residual of order u·|K_II|·|x_j|, which reaches R_ij as x_iᵀ·residual
+            // (K_zI K_II⁻¹ = x_iᵀ): bounded by |x_i|ᵀ|K_II||x_j|. This grows with the number
+            // of elements the static mode x_j spans, where the terms of K_zz and K_zI x_j
+            // alone do not.
+            if let Some(k) = kii {
+                for j in 0..w {
+                    let xj = x.col_as_slice(j);
+                    let kx = abs_product(k, xj);
+                    mag[c0 + j] += xj.iter().zip(&kx).map(|(a, b)| a.abs() * b).sum::<f64>();
+                    for g in 0..2 {
+                        if !kxb[g].is_empty() {
+                            rf_mag[g][c0 + j] += xj
+                                .iter()
+                                .zip(&kxb[g])
+                                .map(|(a, b)| a.abs() * b)
+                                .sum::<f64>();
+                        }
+                    }
+                }
             }
+            c0 += w;
         }
     }
     // symmetrize, recording the round-off asymmetry

@@ -236,13 +236,13 @@ fn a_plane_block_without_support_in_x_slides() {
 fn a_cantilever_keeps_its_tip_stiffness_as_finely_divided_as_accepted() {
     // A cantilever of N elements with a contact pair at its tip: Rnn = 3EI/L³ (the tip
     // stiffness). The Schur complement cancels it out of terms 8N³ times larger (12EI/h³),
-    // so the round-off filter (entries below 32u of their terms are zeroed) and the solve
-    // both meet it: at N = 2000 the ratio is 1.6e-11, 4500 times above the filter, and
+    // so the round-off filter and the solve both meet it: at N = 2000 the ratio to the
+    // magnitude the filter measures is 1.7e-14, nineteen times above its threshold 8u, and
     // the value is right to the order u/λ of the stability test's bound (the Schur complement
     // inherits the error of the solves: measured 1.9e-4 = 1.1·u/λ at N = 2000, where λ =
-    // 6.2e-13; the tolerance is 4·u/λ). At N = 10⁵ the ratio is
-    // 1.25e-16, below round-off: the structure is refused as ill-conditioned, so no zeroed
-    // (or wrong) stiffness is ever returned.
+    // 6.2e-13; the tolerance is 4·u/λ). At N = 10⁵ the ratio of R to its terms is 1.25e-16,
+    // below round-off: the structure is refused as ill-conditioned, so no zeroed (or wrong)
+    // stiffness is ever returned.
     let len = 10.0;
     let build = |n: usize| {
         let mut m = Model::new();
@@ -302,5 +302,27 @@ fn a_soft_spring_behind_a_stiff_bar_keeps_its_stiffness() {
             "{contrast}: {rnn} vs {exact}"
         );
         assert_eq!(cz.rtt[(0, 0)], 0.0, "{contrast}");
+    }
+}
+
+#[test]
+fn a_beam_turning_about_a_pin_has_no_normal_stiffness_at_its_bearing() {
+    // A beam pinned at x = 0 on a bearing (ground pair, normal y) at x = L: with the bearing a
+    // rigid link the beam is statically determinate, and a normal displacement of the bearing
+    // turns it rigidly about the pin, so Rnn = 0 exactly (hand kinematics); Rtt = EA/L (the
+    // bar along x), Rnt = 0. Round-off leaves Rnn at a fraction of its terms that grows with
+    // the number of elements (2.5e-16 at 8, 3e-14 at 2000 of the terms next to the pair),
+    // so the filter must measure the round-off of the solves, not just those terms.
+    let len = 10.0;
+    for n in [1, 2, 4, 5, 8, 10, 20, 200, 2000] {
+        let mut m = Model::new();
+        let ids = member(&mut m, len, n, &[]);
+        m.pin(ids[0]);
+        m.add_contact_pair(ContactPairSpec::to_ground(ids[n], [0.0, 1.0]).friction(0.25));
+        let c = m.condense().unwrap();
+        assert_eq!(c.rnn[(0, 0)], 0.0, "{n}");
+        assert_eq!(c.rnt[(0, 0)], 0.0, "{n}");
+        let rtt = c.rtt[(0, 0)];
+        assert!(((rtt - EA / len) / (EA / len)).abs() < 1e-9, "{n}: {rtt}");
     }
 }
