@@ -326,3 +326,69 @@ fn a_beam_turning_about_a_pin_has_no_normal_stiffness_at_its_bearing() {
         assert!(((rtt - EA / len) / (EA / len)).abs() < 1e-9, "{n}: {rtt}");
     }
 }
+
+#[test]
+fn the_verdicts_do_not_depend_on_the_units() {
+    // The same models in other units: lengths × sl, forces × sf (so E × sf/sl², A × sl²,
+    // I × sl⁴). Every measure the stability test and the round-off filter use is relative to
+    // the element's own diagonal or to the terms of the entry, so the verdicts are the same,
+    // and the element-force ratio of the smooth mode of a fine beam (which is not round-off)
+    // agrees to the accuracy of the computed mode at this conditioning (u/λ = 1.7e-2 bounds
+    // it; measured 1.2e-6): tolerance 1e-4.
+    let scaled = |sl: f64, sf: f64| {
+        FrameSection::new(2.1e11 * sf / (sl * sl), 2e-2 * sl * sl, 1e-4 * sl.powi(4))
+    };
+    // at the far end: nothing (a mechanism), a roller, or a contact pair (a bearing)
+    #[derive(Clone, Copy)]
+    enum End {
+        Free,
+        Roller,
+        Bearing,
+    }
+    let build = |sl: f64, sf: f64, n: usize, end: End| {
+        let mut m = Model::new();
+        let ids: Vec<_> = (0..=n)
+            .map(|i| m.add_node(10.0 * sl * i as f64 / n as f64, 0.0))
+            .collect();
+        for w in ids.windows(2) {
+            m.add_frame(w[0], w[1], scaled(sl, sf));
+        }
+        m.pin(ids[0]);
+        match end {
+            End::Free => {}
+            End::Roller => m.add_support(ids[n], SupportDof::Uy),
+            End::Bearing => {
+                m.add_contact_pair(ContactPairSpec::to_ground(ids[n], [0.0, 1.0]));
+            }
+        }
+        m
+    };
+    let rho = |m: &Model| match m.condense() {
+        Err(FemError::IllConditioned {
+            element_force_ratio,
+            ..
+        }) => element_force_ratio,
+        Err(e) => panic!("{e}"),
+        Ok(_) => panic!("accepted"),
+    };
+    let rho0 = rho(&build(1.0, 1.0, 5000, End::Roller));
+    for (sl, sf) in [
+        (1e-3, 1e3),
+        (1e3, 1e-3),
+        (1e-12, 1.0),
+        (1.0, 1e12),
+        (1e6, 1e-12),
+    ] {
+        let r = rho(&build(sl, sf, 5000, End::Roller));
+        assert!(((r - rho0) / rho0).abs() < 1e-4, "{sl} {sf}: {r} vs {rho0}");
+        assert!(
+            matches!(
+                build(sl, sf, 5000, End::Free).condense(),
+                Err(FemError::Unstable { .. })
+            ),
+            "{sl} {sf}"
+        );
+        let c = build(sl, sf, 2000, End::Bearing).condense().unwrap();
+        assert_eq!(c.rnn[(0, 0)], 0.0, "{sl} {sf}");
+    }
+}
