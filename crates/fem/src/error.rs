@@ -197,6 +197,32 @@ pub enum FemError {
         /// Extra hint (may be empty).
         hint: String,
     },
+    /// The bonded structure is stable but too ill-conditioned for its displacements to be
+    /// computed in double precision: the smallest eigenvalue of its Jacobi-scaled stiffness
+    /// is so small that the round-off of the factorization, amplified by its inverse, could
+    /// reach `estimated_error` of the answer. Its lowest mode deforms the elements, which a
+    /// mechanism does not: a member divided into very many short elements does this, since
+    /// the eigenvalue falls as the fourth power of the element length (below the accepted
+    /// 1e-13 from about 2500 elements in a pinned–pinned beam).
+    #[error(
+        "the bonded structure is too ill-conditioned to be solved accurately in double \
+             precision: the smallest eigenvalue of its scaled stiffness is {eigenvalue:.2e}, so \
+             round-off could reach {estimated_error:.1e} of the displacements. Its lowest mode \
+             deforms the elements by {element_force_ratio:.1e} of their stiffness, which a \
+             mechanism (rigid motion of every element) would not do beyond round-off. This is a \
+             limit of the program, not an error in the model: divide the members into fewer, \
+             longer elements (a few thousand per member at most)"
+    )]
+    IllConditioned {
+        /// Smallest scaled eigenvalue estimate of the bonded stiffness.
+        eigenvalue: f64,
+        /// Unit round-off over `eigenvalue`: the relative error the solve could have.
+        estimated_error: f64,
+        /// How far the least deforming low mode is from a rigid motion of every element:
+        /// `Σ_e ‖k̃_e ũ_e‖ / Σ_e ‖k̃_e‖·‖ũ_e‖`, each element scaled by its own diagonal
+        /// (round-off, below 1e-11, for a mechanism).
+        element_force_ratio: f64,
+    },
     /// A contact solution whose vectors have the wrong length or non-finite entries.
     #[error("contact solution: {0}")]
     BadSolution(String),
@@ -230,9 +256,13 @@ impl FemError {
     /// `true` for failures that are the program's fault rather than the model's: the sparse
     /// linear algebra failing on a valid model ([`FemError::LinearAlgebra`]) and a contact
     /// solution handed to the recovery that does not fit the model
-    /// ([`FemError::BadSolution`], which only the program produces). Every other variant
-    /// describes the model.
+    /// ([`FemError::BadSolution`], which only the program produces), and a valid model that
+    /// double precision cannot solve accurately ([`FemError::IllConditioned`]). Every other
+    /// variant describes the model.
     pub fn is_internal(&self) -> bool {
-        matches!(self, FemError::LinearAlgebra(_) | FemError::BadSolution(_))
+        matches!(
+            self,
+            FemError::LinearAlgebra(_) | FemError::BadSolution(_) | FemError::IllConditioned { .. }
+        )
     }
 }

@@ -104,12 +104,13 @@ impl Model {
         let (asm, t_asm) = timed(|| assemble(self));
         let mut asm = asm?;
         let nnz_lower = asm.kii.as_ref().map_or(0, |k| k.compute_nnz());
-        let (llt, t_fac) = timed(|| factorize(&asm));
+        let (llt, t_fac) = timed(|| factorize(self, &asm));
         let (llt, lambda) = llt?;
-        asm.kii = None;
         asm.kii_triplets = Vec::new();
         let kzz = std::mem::replace(&mut asm.kzz, Mat::zeros(0, 0));
-        let (c, t_con) = timed(|| condense(&asm, kzz, llt.as_ref()));
+        let kii = asm.kii.take();
+        let (c, t_con) = timed(|| condense(&asm, kii.as_ref(), kzz, llt.as_ref()));
+        drop(kii);
         let m = asm.map.m;
         let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| c.r[(r0 + i, c0 + j)]);
         let clv = |g: usize| ContactLoadVector {
