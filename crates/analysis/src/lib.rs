@@ -396,6 +396,10 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
             what: "the sparse linear algebra of the bonded structure failed".into(),
             message: message.clone(),
         },
+        FemError::IllConditioned { .. } => AnalysisError::Internal {
+            what: "the bonded structure cannot be solved accurately in double precision".into(),
+            message: e.to_string(),
+        },
         _ => {
             let message = match &e {
                 FemError::ZeroLength { element, a, b } => format!(
