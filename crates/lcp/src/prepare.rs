@@ -56,13 +56,24 @@ pub(crate) struct Prepared {
 
 impl Prepared {
     pub fn new(m: &Mat<f64>) -> Self {
-        let scaling = Scaling::equilibrate(m);
+        Self::with_rhs(m, &[])
+    }
+
+    /// Equilibrated together with the right-hand sides `rhs` (see [`Scaling::equilibrate`]).
+    pub fn with_rhs(m: &Mat<f64>, rhs: &[&[f64]]) -> Self {
+        let scaling = Scaling::equilibrate(m, rhs);
         let m_scaled = std::sync::Arc::new(scaling.scale_matrix(m));
         Self {
             n: m.nrows(),
             scaling,
             m_scaled,
         }
+    }
+
+    /// `E M D` as a matrix.
+    pub fn matrix(&self) -> Mat<f64> {
+        let n = self.n;
+        Mat::from_fn(n, n, |i, j| self.m_scaled[j * n + i])
     }
 
     /// Tableau columns for `x = h + g t + M z` given in original units.

@@ -4,48 +4,110 @@
 //! `x = q + M z` into `x̂ = E q + (E M D) ẑ`. Ruiz's iteration balances the largest entry of every
 //! row and column of `E M D` to about one, so that relative tolerances mean the same thing in
 //! every row whatever the units (forces and displacements of a steel structure differ by 10¹¹).
+//!
+//! The iteration works on binary exponents, not on the numbers: a scale is an integer power of
+//! two, so a change of units by `2^k` shifts every exponent by `k` and changes no bit of the
+//! equilibrated problem, and no scale overflows however small or large the data (an entry of
+//! `1e-308` needs a scale of `1e308`, a product of `1e-308` and `1e308` loses nothing).
+//!
+//! Right-hand sides may take part (each with a column scale of its own, which is not kept): a
+//! row whose `M` entries and `q` entry are both tiny is then scaled up to the size of the other
+//! rows, instead of looking like round-off of them.
 
 use faer::Mat;
+
+use crate::residual::{exponent, ldexp};
+
+/// Exponents of the scales stay within this bound, so that every scale is a normal number.
+const MAX_EXP: i32 = 1000;
+
+/// Ruiz sweeps at most; the iteration stops as soon as every row and column is balanced to
+/// within a factor of two, which usually takes a handful.
+const MAX_SWEEPS: usize = 64;
 
 /// Diagonal scalings `E` (rows) and `D` (columns), powers of two.
 #[derive(Debug, Clone)]
 pub(crate) struct Scaling {
     pub row: Vec<f64>,
     pub col: Vec<f64>,
+    /// `row[i] = 2^row_exp[i]`.
+    pub row_exp: Vec<i32>,
+    /// `col[j] = 2^col_exp[j]`.
+    pub col_exp: Vec<i32>,
+}
+
+/// `log2 |v|` to within one half (`None` for zero).
+fn log2_of(v: f64) -> Option<f64> {
+    exponent(v).map(|e| e as f64 + 0.5)
 }
 
 impl Scaling {
-    pub fn equilibrate(m: &Mat<f64>) -> Self {
+    /// Balances `[M | r_1 | r_2 | …]`: the rows of `M` with the right-hand sides `rhs`, each of
+    /// which has a column scale of its own.
+    pub fn equilibrate(m: &Mat<f64>, rhs: &[&[f64]]) -> Self {
         let n = m.nrows();
-        let mut row = vec![1.0f64; n];
-        let mut col = vec![1.0f64; n];
-        for _ in 0..6 {
-            let mut rmax = vec![0.0f64; n];
+        let mut a = vec![0.0f64; n];
+        let mut b = vec![0.0f64; n];
+        let mut c = vec![0.0f64; rhs.len()];
+        for _ in 0..MAX_SWEEPS {
+            let mut rmax = vec![f64::NEG_INFINITY; n];
             for j in 0..n {
                 for i in 0..n {
-                    let v = (m[(i, j)] * row[i] * col[j]).abs();
-                    rmax[i] = rmax[i].max(v);
+                    if let Some(l) = log2_of(m[(i, j)]) {
+                        rmax[i] = rmax[i].max(l + a[i] + b[j]);
+                    }
                 }
             }
+            for (k, r) in rhs.iter().enumerate() {
+                for i in 0..n {
+                    if let Some(l) = log2_of(r[i]) {
+                        rmax[i] = rmax[i].max(l + a[i] + c[k]);
+                    }
+                }
+            }
+            let mut balanced = true;
             for i in 0..n {
-                if rmax[i] > 0.0 {
-                    row[i] /= rmax[i].sqrt();
+                if rmax[i].is_finite() {
+                    balanced &= rmax[i].abs() <= 1.0;
+                    a[i] -= rmax[i] / 2.0;
                 }
             }
             for j in 0..n {
-                let mut cmax = 0.0f64;
+                let mut cmax = f64::NEG_INFINITY;
                 for i in 0..n {
-                    cmax = cmax.max((m[(i, j)] * row[i] * col[j]).abs());
+                    if let Some(l) = log2_of(m[(i, j)]) {
+                        cmax = cmax.max(l + a[i] + b[j]);
+                    }
                 }
-                if cmax > 0.0 {
-                    col[j] /= cmax.sqrt();
+                if cmax.is_finite() {
+                    balanced &= cmax.abs() <= 1.0;
+                    b[j] -= cmax / 2.0;
                 }
+            }
+            for (k, r) in rhs.iter().enumerate() {
+                let mut cmax = f64::NEG_INFINITY;
+                for i in 0..n {
+                    if let Some(l) = log2_of(r[i]) {
+                        cmax = cmax.max(l + a[i] + c[k]);
+                    }
+                }
+                if cmax.is_finite() {
+                    // The column scale of a right-hand side is free: set it at once.
+                    c[k] -= cmax;
+                }
+            }
+            if balanced {
+                break;
             }
         }
-        let pow2 = |v: f64| 2f64.powi(v.log2().round() as i32);
+        let to_exp = |v: f64| (v.round() as i32).clamp(-MAX_EXP, MAX_EXP);
+        let row_exp: Vec<i32> = a.into_iter().map(to_exp).collect();
+        let col_exp: Vec<i32> = b.into_iter().map(to_exp).collect();
         Self {
-            row: row.into_iter().map(pow2).collect(),
-            col: col.into_iter().map(pow2).collect(),
+            row: row_exp.iter().map(|&e| ldexp(1.0, e)).collect(),
+            col: col_exp.iter().map(|&e| ldexp(1.0, e)).collect(),
+            row_exp,
+            col_exp,
         }
     }
 
@@ -54,9 +116,9 @@ impl Scaling {
         let n = m.nrows();
         let mut out = vec![0.0; n * n];
         for j in 0..n {
-            let c = self.col[j];
+            let c = self.col_exp[j];
             for i in 0..n {
-                out[j * n + i] = m[(i, j)] * self.row[i] * c;
+                out[j * n + i] = ldexp(m[(i, j)], self.row_exp[i] + c);
             }
         }
         out
