@@ -172,9 +172,8 @@ impl Residual {
         let zneg = (0..cols)
             .filter(|&j| z[j] < 0.0)
             .fold(0.0f64, |a, j| a.max(effect[j]));
-        let complementarity = (0..rows.min(cols)).fold(0.0f64, |a, i| {
-            a.max(rel(ws[i].abs(), s[i]).min(effect[i]))
-        });
+        let complementarity =
+            (0..rows.min(cols)).fold(0.0f64, |a, i| a.max(rel(ws[i].abs(), s[i]).min(effect[i])));
         Self {
             equation,
             feasibility: wneg.max(zneg),

@@ -157,3 +157,102 @@ fn the_residual_judges_each_row_against_its_own_data() {
     }
     assert!(r0.equation > 1e-13, "{r0:?}");
 }
+
+mod rescaled {
+    use proptest::prelude::*;
+    use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings, Strategy as How};
+    use unilateral_oracle as oracle;
+
+    /// A strictly diagonally dominant integer matrix with a positive diagonal (a P-matrix, so the
+    /// LCP has exactly one solution) and an integer `q`.
+    fn dominant(max_n: usize) -> impl Strategy<Value = (Vec<Vec<f64>>, Vec<f64>)> {
+        (1..=max_n).prop_flat_map(|n| {
+            (
+                prop::collection::vec(prop::collection::vec(-3i32..=3, n), n),
+                prop::collection::vec(1i32..=3, n),
+                prop::collection::vec(-8i32..=8, n),
+            )
+                .prop_map(move |(off, extra, q)| {
+                    let m = (0..n)
+                        .map(|i| {
+                            let sum: i32 =
+                                (0..n).filter(|&j| j != i).map(|j| off[i][j].abs()).sum();
+                            (0..n)
+                                .map(|j| {
+                                    if i == j {
+                                        (sum + extra[i]) as f64
+                                    } else {
+                                        off[i][j] as f64
+                                    }
+                                })
+                                .collect()
+                        })
+                        .collect();
+                    (m, q.into_iter().map(f64::from).collect())
+                })
+        })
+    }
+
+    /// `10^k` correctly rounded.
+    fn ten(k: i32) -> f64 {
+        format!("1e{k}").parse().unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+        /// Rows and columns rescaled by `10^k`, `k` in [−150, 150]: `M' = D_r M D_c`,
+        /// `q' = D_r q`. Reference: the oracle's exact solution `(z, w)` of the unscaled problem
+        /// (exact rational enumeration) mapped by the exact relation `z' = D_c⁻¹ z`,
+        /// `w' = D_r w`; agreement to 1e-9 of the unscaled data's size, and the same support.
+        #[test]
+        fn rescaled_rows_and_columns_give_the_mapped_solution(
+            (m, q, kr, kc) in dominant(6).prop_flat_map(|(m, q)| {
+                let n = q.len();
+                (
+                    Just(m),
+                    Just(q),
+                    prop::collection::vec(-150i32..=150, n),
+                    prop::collection::vec(-150i32..=150, n),
+                )
+            })
+        ) {
+            let n = q.len();
+            let sols = oracle::enumerate(&m, &q);
+            prop_assert_eq!(sols.len(), 1, "a P-matrix LCP has exactly one solution");
+            let (zo, wo) = (sols[0].z_f64(), sols[0].w_f64());
+            let (dr, dc): (Vec<f64>, Vec<f64>) =
+                (kr.iter().map(|&k| ten(k)).collect(), kc.iter().map(|&k| ten(k)).collect());
+            let lcp = Lcp {
+                m: faer::Mat::from_fn(n, n, |i, j| dr[i] * m[i][j] * dc[j]),
+                q: (0..n).map(|i| dr[i] * q[i]).collect(),
+            };
+            let sol = solve_lcp(&lcp, &Settings::default()).unwrap();
+            prop_assert_eq!(sol.status, LcpStatus::Solved, "attempts: {:?}", sol.attempts);
+            // By the pivoting itself, not by the last-resort enumeration.
+            prop_assert!(
+                matches!(sol.strategy, How::Lemke { .. } | How::Trivial),
+                "attempts: {:?}",
+                sol.attempts
+            );
+            let pt = sol.point.unwrap();
+            prop_assert!(pt.residual.max() <= 1e-12, "{:?}", pt.residual);
+            let zscale = 1.0 + zo.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            let wscale = 1.0 + q.iter().chain(&wo).fold(0.0f64, |a, b| a.max(b.abs()));
+            for j in 0..n {
+                let z = pt.z[j] * dc[j];
+                prop_assert!((z - zo[j]).abs() <= 1e-9 * zscale, "z[{}]: {} vs {}", j, z, zo[j]);
+                let w = pt.w[j] / dr[j];
+                prop_assert!((w - wo[j]).abs() <= 1e-9 * wscale, "w[{}]: {} vs {}", j, w, wo[j]);
+                // The support: an unknown that is zero in the exact solution (and whose
+                // complement is not) is exactly zero, whatever the scaling.
+                if zo[j] == 0.0 && wo[j] > 0.0 {
+                    prop_assert_eq!(pt.z[j], 0.0);
+                }
+                if wo[j] == 0.0 && zo[j] > 0.0 {
+                    prop_assert_eq!(pt.w[j], 0.0);
+                }
+            }
+        }
+    }
+}
