@@ -65,6 +65,10 @@ pub(crate) struct Pivoter<'a> {
     /// Round-off scale of each basic value (by slot), for the zero test of that value alone:
     /// computed with the values from the data, then carried through every pivot.
     value_scale: Vec<f64>,
+    /// The size of the right-hand side and of the start's values: no zero test is looser than
+    /// this scale allows (the propagated scales of an ill-conditioned degenerate basis can grow
+    /// past it, and a real negative value must not pass for zero).
+    global_scale: f64,
     /// Kernel residual seen on the last entering column.
     drift: f64,
     /// Pivots since the basic values were last recomputed from the data.
@@ -86,6 +90,7 @@ impl<'a> Pivoter<'a> {
         let start = basis.slot_var.clone();
         let start_is_slack = start.iter().enumerate().all(|(i, &v)| i == v);
         let value_scale = basis.abs_scale(cols, &cols.h);
+        let global_scale = max_abs(&cols.h).max(max_abs(&beta));
         Self {
             cols,
             basis,
@@ -99,6 +104,7 @@ impl<'a> Pivoter<'a> {
             pivots: 0,
             refactorizations: 0,
             value_scale,
+            global_scale,
             drift: 0.0,
             since_values: 0,
             own_admitted: std::cell::Cell::new(false),
@@ -107,7 +113,7 @@ impl<'a> Pivoter<'a> {
 
     /// The size below which the basic value at `slot` is round-off of its own row's data.
     fn zero_value(&self, slot: usize) -> f64 {
-        self.tol.value * self.value_scale[slot]
+        self.tol.value * self.value_scale[slot].min(self.global_scale)
     }
 
     pub fn driver_slot(&self) -> Option<usize> {

@@ -130,14 +130,14 @@ impl Residual {
         let ws: Vec<f64> = w.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut r: Vec<f64> = q.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut mag: Vec<f64> = r.iter().map(|v| v.abs()).collect();
-        for j in 0..cols {
-            if ez[j].is_none() {
+        for (j, ezj) in ez.iter().enumerate() {
+            if ezj.is_none() {
                 continue;
             }
-            for i in 0..rows {
+            for (i, (ri, mi)) in r.iter_mut().zip(mag.iter_mut()).enumerate() {
                 let t = term(i, j);
-                r[i] += t;
-                mag[i] += t.abs();
+                *ri += t;
+                *mi += t.abs();
             }
         }
         let s: Vec<f64> = mag.iter().zip(&ws).map(|(a, b)| a.max(b.abs())).collect();
