@@ -122,6 +122,23 @@ fn a_decoupled_row_with_tiny_data_is_not_hidden_by_the_others() {
 }
 
 #[test]
+fn a_subnormal_stiffness_solves_when_its_answer_is_a_double() {
+    // Reference, by hand: M = diag(1e-310, 1) (1e-310 is subnormal), q = (−1e-300, −1):
+    // z = (1e10, 1), w = 0, every number a double; the subnormal carries ~3 fewer digits of
+    // its own, so the agreement asked is 1e-12.
+    let s = solve2([[1e-310, 0.0], [0.0, 1.0]], [-1e-300, -1.0]);
+    assert_eq!(s.status, LcpStatus::Solved, "{s:?}");
+    let p = s.point.unwrap();
+    assert!((p.z[0] - 1e10).abs() <= 1e-12 * 1e10, "{:?}", p.z);
+    assert!((p.z[1] - 1.0).abs() <= 1e-14, "{:?}", p.z);
+    // With q1 = −1 the answer z1 = 1e310 is beyond the largest double (1.8e308): no finite
+    // point solves row 1, and the engine says it failed instead of answering.
+    let s = solve2([[1e-310, 0.0], [0.0, 1.0]], [-1.0, -1.0]);
+    assert_eq!(s.status, LcpStatus::NumericalFailure, "{s:?}");
+    assert!(s.point.is_none());
+}
+
+#[test]
 fn the_residual_judges_each_row_against_its_own_data() {
     // Reference: the wrong point of the previous test, z = (0, 1), w = (−1e-300, 0), violates
     // w1 ≥ 0 by all of row 1's data (|q1| = 1e-300): a relative violation of exactly 1.
