@@ -113,18 +113,28 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
             attempts: vec!["q ≥ 0: z = 0".into()],
         });
     }
-    let prep = Prepared::new(&lcp.m);
+    // Equilibrated whatever the units of rows and unknowns, each block that M couples brought
+    // to the size of its q, so that a block whose data are all tiny is as visible to the
+    // pivoting as any other; the built-in covering vectors are chosen in the equilibrated
+    // problem, where every row has entries of order one (a covering vector of ones in the
+    // original units would be `E·1` there, as lopsided as the units).
+    let prep = Prepared::for_lcp(&lcp.m, &lcp.q);
+    let qhat = prep.scaling.scale_rows(&lcp.q);
+    let original = |v: Vec<f64>| prep.scaling.unscale_x(&v);
     let mut coverings: Vec<(&'static str, Vec<f64>)> = Vec::new();
     match &settings.covering {
         Some(c) => coverings.push(("user", c.clone())),
-        None => coverings.push(("ones", vec![1.0; n])),
+        None => coverings.push(("ones", original(vec![1.0; n]))),
     }
     coverings.push((
         "graded",
-        (0..n).map(|i| 1.0 + i as f64 / n as f64).collect(),
+        original((0..n).map(|i| 1.0 + i as f64 / n as f64).collect()),
     ));
-    let qmean = lcp.q.iter().map(|v| v.abs()).sum::<f64>() / n as f64;
-    coverings.push(("|q|", lcp.q.iter().map(|v| v.abs() + qmean).collect()));
+    let qmean = qhat.iter().map(|v| v.abs()).sum::<f64>() / n as f64;
+    coverings.push((
+        "|q|",
+        original(qhat.iter().map(|v| v.abs() + qmean).collect()),
+    ));
     let mut attempts = Vec::new();
     let mut pivots = 0;
     let mut last_status = LcpStatus::Ray;
@@ -186,19 +196,30 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
         }
     }
     if n <= 16 {
-        if let Some((z, w, _)) = enumerate_first(&lcp.m, &lcp.q) {
+        // On the equilibrated problem, so that its tolerances too meet data of order one.
+        if let Some((zhat, what, _)) = enumerate_first(&prep.matrix(), &qhat) {
+            let z = prep.scaling.unscale_z(&zhat);
+            let w = prep.scaling.unscale_x(&what);
             let residual = Residual::of(&lcp.m, &lcp.q, &w, &z);
-            debug_assert!(residual.accepts(&w, &z));
-            attempts.push("enumeration of complementary bases: solved".into());
-            return Ok(LcpSolution {
-                status: LcpStatus::Solved,
-                point: Some(LcpPoint { z, w, residual }),
-                pivots,
-                strategy: Strategy::Enumeration,
-                attempts,
-            });
+            if residual.accepts(&w, &z) {
+                attempts.push("enumeration of complementary bases: solved".into());
+                return Ok(LcpSolution {
+                    status: LcpStatus::Solved,
+                    point: Some(LcpPoint { z, w, residual }),
+                    pivots,
+                    strategy: Strategy::Enumeration,
+                    attempts,
+                });
+            }
+            attempts.push(format!(
+                "enumeration of complementary bases: a basis found but its point does not \
+                 verify in the original units (residual {:.1e})",
+                residual.max()
+            ));
+            unverified = true;
+        } else {
+            attempts.push("enumeration of complementary bases: no solution".into());
         }
-        attempts.push("enumeration of complementary bases: no solution".into());
         last_status = LcpStatus::Ray;
         last_strategy = Strategy::Enumeration;
     }

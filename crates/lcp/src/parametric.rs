@@ -573,11 +573,9 @@ fn start_basis(
         }
     }
     if n <= 16 {
-        let lcp = Lcp {
-            m: problem.m.clone(),
-            q: h.to_vec(),
-        };
-        if let Some((_, _, idx)) = enumerate_first(&lcp.m, &lcp.q) {
+        // On the equilibrated problem, whose entries are of order one.
+        let hhat = prep.scaling.scale_rows(h);
+        if let Some((_, _, idx)) = enumerate_first(&prep.matrix(), &hhat) {
             let mut slots: Vec<usize> = (0..n).collect();
             for i in idx {
                 slots[i] = n + i;

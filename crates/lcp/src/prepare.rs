@@ -56,13 +56,31 @@ pub(crate) struct Prepared {
 
 impl Prepared {
     pub fn new(m: &Mat<f64>) -> Self {
-        let scaling = Scaling::equilibrate(m);
+        let scaling = Scaling::equilibrate(m, &[]);
         let m_scaled = std::sync::Arc::new(scaling.scale_matrix(m));
         Self {
             n: m.nrows(),
             scaling,
             m_scaled,
         }
+    }
+
+    /// Equilibrated independently of the units of rows and unknowns, each coupled block
+    /// brought to the size of its `q` (see [`Scaling::equilibrate_lcp`]).
+    pub fn for_lcp(m: &Mat<f64>, q: &[f64]) -> Self {
+        let scaling = Scaling::equilibrate_lcp(m, Some(q));
+        let m_scaled = std::sync::Arc::new(scaling.scale_matrix(m));
+        Self {
+            n: m.nrows(),
+            scaling,
+            m_scaled,
+        }
+    }
+
+    /// `E M D` as a matrix.
+    pub fn matrix(&self) -> Mat<f64> {
+        let n = self.n;
+        Mat::from_fn(n, n, |i, j| self.m_scaled[j * n + i])
     }
 
     /// Tableau columns for `x = h + g t + M z` given in original units.

@@ -2,17 +2,28 @@
 
 use faer::Mat;
 
-/// Verified residuals of a solution of `w = q + M z`, all relative to the data's scale.
+/// Verified residuals of a solution of `w = q + M z`, each row and each unknown measured against
+/// its own data.
 ///
-/// * `equation` = `‖w − q − Mz‖∞ / s_w`,
-/// * `feasibility` = largest violation of `w ≥ 0` (over `s_w`) or `z ≥ 0` (over `‖z‖∞`),
-/// * `complementarity` = `max |w_i z_i| / (s_w ‖z‖∞)`,
+/// With `s_i = max(|q_i|, Σ_j |M_ij z_j|, |w_i|)` the scale of row `i`:
 ///
-/// where `s_w = max(‖q‖∞, ‖|M||z|‖∞, ‖w‖∞)`.
+/// * `equation` = `max_i |w_i − q_i − (Mz)_i| / s_i`,
+/// * `feasibility` = the largest of `max(0, −w_i) / s_i` and, for `z_j < 0`, of the relative
+///   change `max_i |M_ij z_j| / s_i` that setting `z_j` to zero would make in the rows,
+/// * `complementarity` = `max_i min(|w_i| / s_i, max_k |M_ki z_i| / s_k)`: how far, relative to
+///   the rows it meets, the point is from one with `w_i = 0` or `z_i = 0`.
 ///
-/// The sums are formed on data rescaled by powers of two (exact), so they neither overflow nor
-/// underflow whatever the magnitudes (`M` of `1e300` times `z` of `1e10` is no infinity). A
-/// non-finite number in `w` or `z` makes every residual infinite: such a point is never accepted.
+/// Every measure is a relative change of the data, row by row, that would make the point exact,
+/// so none depends on the units of any row or unknown (it is unchanged when `M`, `q`, `w` are
+/// multiplied by positive diagonal scalings `E` on the left and `z` by `D⁻¹`), and a row with tiny
+/// data is judged on its own: its violation is never hidden by the size of other rows. A
+/// non-zero `z_j` whose column of `M` is zero has no row to be measured against and counts as a
+/// full violation (it cannot be verified).
+///
+/// The sums are formed row by row on data rescaled by powers of two (exact), so they neither
+/// overflow nor underflow whatever the magnitudes (`M` of `1e300` times `z` of `1e10` is no
+/// infinity). A non-finite number in `w` or `z` makes every residual infinite: such a point is
+/// never accepted.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Residual {
     /// Relative residual of the equation.
@@ -52,10 +63,6 @@ pub(crate) fn ldexp(mut x: f64, mut k: i32) -> f64 {
     x * step(k)
 }
 
-fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
-    v.fold(0.0f64, |a, b| a.max(b.abs()))
-}
-
 impl Residual {
     /// The largest of the three (infinite when any is not a number).
     pub fn max(&self) -> f64 {
@@ -75,60 +82,98 @@ impl Residual {
         }
     }
 
-    /// Residuals of `(w, z)` for `w = q + M z`.
+    /// Residuals of `(w, z)` for `w = q + M z` (`M` is `q.len() × z.len()`).
     pub fn of(m: &Mat<f64>, q: &[f64], w: &[f64], z: &[f64]) -> Self {
-        let n = q.len();
-        if w.iter().chain(z).chain(q).any(|v| !v.is_finite()) {
+        let (rows, cols) = (q.len(), z.len());
+        if w.iter().chain(z).chain(q).any(|v| !v.is_finite())
+            || m.nrows() != rows
+            || m.ncols() != cols
+            || w.len() != rows
+        {
             return Self::unverifiable();
         }
-        // Powers of two: e_m for M, e_z for z, e_s for the force side (q, w, |M||z|).
-        let mmax = (0..m.ncols()).fold(0.0f64, |a, j| {
-            a.max(max_abs((0..m.nrows()).map(|i| m[(i, j)])))
-        });
-        if !mmax.is_finite() {
+        if (0..cols).any(|j| (0..rows).any(|i| !m[(i, j)].is_finite())) {
             return Self::unverifiable();
         }
-        let e_m = exponent(mmax).unwrap_or(0);
-        let e_z = exponent(max_abs(z.iter().copied())).unwrap_or(0);
-        let e_qw = exponent(max_abs(q.iter().chain(w).copied()));
-        let e_mz = e_m + e_z + 1;
-        let e_s = e_qw.map_or(e_mz, |e| e.max(e_mz));
-        // Everything below is the original data times 2^(−e_s) (w, q, Mz) or 2^(−e_z) (z).
-        let zs: Vec<f64> = z.iter().map(|&v| ldexp(v, -e_z)).collect();
-        let ws: Vec<f64> = w.iter().map(|&v| ldexp(v, -e_s)).collect();
-        let mut r: Vec<f64> = q.iter().map(|&v| ldexp(v, -e_s)).collect();
+        // Row i is formed times 2^(−e[i]), with e[i] above the exponent of every term of the row.
+        let mut e: Vec<i32> = (0..rows)
+            .map(|i| {
+                let t = [q[i], w[i]].into_iter().filter_map(exponent).max();
+                t.unwrap_or(i32::MIN)
+            })
+            .collect();
+        let ez: Vec<Option<i32>> = z.iter().map(|&v| exponent(v)).collect();
+        for (j, &ezj) in ez.iter().enumerate() {
+            let Some(ezj) = ezj else { continue };
+            for (i, ei) in e.iter_mut().enumerate() {
+                if let Some(emij) = exponent(m[(i, j)]) {
+                    *ei = (*ei).max(emij + ezj + 1);
+                }
+            }
+        }
+        let e: Vec<i32> = e
+            .into_iter()
+            .map(|v| if v == i32::MIN { 0 } else { v })
+            .collect();
+        // The term M_ij z_j times 2^(−e[i]): the mantissas multiplied, then one exact shift.
+        let zmant: Vec<f64> = z
+            .iter()
+            .zip(&ez)
+            .map(|(&v, &x)| x.map_or(0.0, |x| ldexp(v, -x)))
+            .collect();
+        let term = |i: usize, j: usize| -> f64 {
+            let (Some(ezj), Some(emij)) = (ez[j], exponent(m[(i, j)])) else {
+                return 0.0;
+            };
+            ldexp(ldexp(m[(i, j)], -emij) * zmant[j], emij + ezj - e[i])
+        };
+        let ws: Vec<f64> = w.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
+        let mut r: Vec<f64> = q.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut mag: Vec<f64> = r.iter().map(|v| v.abs()).collect();
-        let shift = e_m + e_z - e_s;
-        for (j, &zj) in zs.iter().enumerate() {
-            if zj == 0.0 {
+        for (j, ezj) in ez.iter().enumerate() {
+            if ezj.is_none() {
                 continue;
             }
-            for i in 0..n {
-                let t = ldexp(ldexp(m[(i, j)], -e_m) * zj, shift);
-                r[i] += t;
-                mag[i] += t.abs();
+            for (i, (ri, mi)) in r.iter_mut().zip(mag.iter_mut()).enumerate() {
+                let t = term(i, j);
+                *ri += t;
+                *mi += t.abs();
             }
         }
-        let tiny = f64::MIN_POSITIVE;
-        let sw = mag
-            .iter()
-            .chain(ws.iter())
-            .fold(0.0f64, |a, b| a.max(b.abs()))
-            .max(tiny);
-        let sz = max_abs(zs.iter().copied()).max(tiny);
-        let equation = ws
-            .iter()
-            .zip(&r)
-            .fold(0.0f64, |a, (wi, ri)| a.max((wi - ri).abs()))
-            / sw;
-        let wneg = ws.iter().fold(0.0f64, |a, &b| a.max(-b)) / sw;
-        let zneg = zs.iter().fold(0.0f64, |a, &b| a.max(-b)) / sz;
-        let complementarity = ws
-            .iter()
-            .zip(&zs)
-            .fold(0.0f64, |a, (wi, zi)| a.max((wi * zi).abs()))
-            / sw
-            / sz;
+        let s: Vec<f64> = mag.iter().zip(&ws).map(|(a, b)| a.max(b.abs())).collect();
+        let rel = |v: f64, si: f64| if v == 0.0 { 0.0 } else { v / si };
+        let mut equation = 0.0f64;
+        let mut wneg = 0.0f64;
+        for i in 0..rows {
+            equation = equation.max(rel((ws[i] - r[i]).abs(), s[i]));
+            wneg = wneg.max(rel((-ws[i]).max(0.0), s[i]));
+        }
+        // The effect of each z_j on the rows it meets, relative to their scales.
+        let effect: Vec<f64> = (0..cols)
+            .map(|j| {
+                if ez[j].is_none() {
+                    return 0.0;
+                }
+                let mut met = false;
+                let mut best = 0.0f64;
+                for i in 0..rows {
+                    if m[(i, j)] != 0.0 {
+                        met = true;
+                        best = best.max(rel(term(i, j).abs(), s[i]));
+                    }
+                }
+                if met {
+                    best
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let zneg = (0..cols)
+            .filter(|&j| z[j] < 0.0)
+            .fold(0.0f64, |a, j| a.max(effect[j]));
+        let complementarity =
+            (0..rows.min(cols)).fold(0.0f64, |a, i| a.max(rel(ws[i].abs(), s[i]).min(effect[i])));
         Self {
             equation,
             feasibility: wneg.max(zneg),
