@@ -25,33 +25,7 @@ use faer::Mat;
 use crate::zone::{max_abs, roundoff_of_zero};
 use crate::{ContactLoad, ContactZone};
 
-/// The binary exponent `e` of `x` with `2^e ≤ |x| < 2^(e+1)` (`None` for zero or non-finite).
-pub(crate) fn exponent(x: f64) -> Option<i32> {
-    if x == 0.0 || !x.is_finite() {
-        return None;
-    }
-    let bits = x.abs().to_bits();
-    let biased = (bits >> 52) as i32;
-    if biased > 0 {
-        return Some(biased - 1023);
-    }
-    let mant = bits & ((1u64 << 52) - 1);
-    Some(-1074 + (63 - mant.leading_zeros() as i32))
-}
-
-/// `x · 2^k`, exact unless the result leaves the normal range.
-pub(crate) fn ldexp(mut x: f64, mut k: i32) -> f64 {
-    let step = |k: i32| f64::from_bits(((k + 1023) as u64) << 52);
-    while k > 1000 {
-        x *= step(1000);
-        k -= 1000;
-    }
-    while k < -1000 {
-        x *= step(-1000);
-        k += 1000;
-    }
-    x * step(k)
-}
+pub(crate) use unilateral_lcp::binary::{exponent, ldexp};
 
 fn max_exp<'a>(v: impl IntoIterator<Item = &'a f64>) -> Option<i32> {
     v.into_iter().filter_map(|&x| exponent(x)).max()

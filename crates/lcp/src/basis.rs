@@ -10,9 +10,9 @@
 use faer::linalg::solvers::DenseSolveCore;
 use faer::Mat;
 
+use crate::binary::ldexp;
 use crate::columns::Columns;
 use crate::kernel::{dot, KernelInverse};
-use crate::residual::ldexp;
 
 /// Revised representation of a complementary basis.
 #[derive(Debug, Clone)]

@@ -29,7 +29,7 @@ pub(crate) struct Columns {
 impl Columns {
     /// Builds the columns from equilibrated `h` and `g`, each divided by its power-of-two scale.
     pub fn new(n: usize, m: std::sync::Arc<Vec<f64>>, h: Vec<f64>, g: Vec<f64>) -> Self {
-        use crate::residual::{exponent, ldexp};
+        use crate::binary::{exponent, ldexp};
         let top = |v: &[f64]| exponent(v.iter().fold(0.0f64, |a, b| a.max(b.abs())));
         let (eh, eg) = match (top(&h), top(&g)) {
             (Some(a), Some(b)) => (a, b),
@@ -45,18 +45,18 @@ impl Columns {
     /// Basic values (`x`, `z` by slot) in the equilibrated units of the caller.
     pub fn values(&self, beta: &[f64]) -> Vec<f64> {
         beta.iter()
-            .map(|&b| crate::residual::ldexp(b, self.eh))
+            .map(|&b| crate::binary::ldexp(b, self.eh))
             .collect()
     }
 
     /// The driver's value in the caller's units from its value in the columns' units.
     pub fn driver_real(&self, t: f64) -> f64 {
-        crate::residual::ldexp(t, self.eh - self.eg)
+        crate::binary::ldexp(t, self.eh - self.eg)
     }
 
     /// The driver's value in the columns' units from the caller's.
     pub fn driver_scaled(&self, t: f64) -> f64 {
-        crate::residual::ldexp(t, self.eg - self.eh)
+        crate::binary::ldexp(t, self.eg - self.eh)
     }
 
     pub fn driver(&self) -> usize {

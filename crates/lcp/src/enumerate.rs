@@ -3,8 +3,8 @@
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
+use crate::binary::ldexp;
 use crate::lemke::lcp_w;
-use crate::residual::ldexp;
 use crate::scaling::Scaling;
 use crate::Residual;
 

@@ -32,6 +32,7 @@
 //! [`PathStatus::NumericalFailure`]) — never a NaN "solved".
 
 mod basis;
+pub mod binary;
 mod columns;
 mod enumerate;
 mod error;

@@ -2,6 +2,8 @@
 
 use faer::Mat;
 
+use crate::binary::{exponent, ldexp};
+
 /// Verified residuals of a solution of `w = q + M z`, each row and each unknown measured against
 /// its own data.
 ///
@@ -32,35 +34,6 @@ pub struct Residual {
     pub feasibility: f64,
     /// Relative violation of complementarity.
     pub complementarity: f64,
-}
-
-/// The binary exponent `e` of `x` with `2^e ≤ |x| < 2^(e+1)` (`None` for zero or non-finite).
-pub(crate) fn exponent(x: f64) -> Option<i32> {
-    if x == 0.0 || !x.is_finite() {
-        return None;
-    }
-    let bits = x.abs().to_bits();
-    let biased = (bits >> 52) as i32;
-    if biased > 0 {
-        return Some(biased - 1023);
-    }
-    // Subnormal: the position of the leading mantissa bit.
-    let mant = bits & ((1u64 << 52) - 1);
-    Some(-1074 + (63 - mant.leading_zeros() as i32))
-}
-
-/// `x · 2^k`, exact unless the result leaves the normal range.
-pub(crate) fn ldexp(mut x: f64, mut k: i32) -> f64 {
-    let step = |k: i32| f64::from_bits(((k + 1023) as u64) << 52);
-    while k > 1000 {
-        x *= step(1000);
-        k -= 1000;
-    }
-    while k < -1000 {
-        x *= step(-1000);
-        k += 1000;
-    }
-    x * step(k)
 }
 
 impl Residual {

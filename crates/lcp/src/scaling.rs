@@ -16,7 +16,7 @@
 
 use faer::Mat;
 
-use crate::residual::{exponent, ldexp};
+use crate::binary::{exponent, ldexp};
 
 /// Exponents of the scales stay within this bound, so that every scale is a normal number.
 const MAX_EXP: i32 = 1000;
