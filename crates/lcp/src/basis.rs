@@ -10,7 +10,6 @@
 use faer::linalg::solvers::DenseSolveCore;
 use faer::Mat;
 
-use crate::binary::ldexp;
 use crate::columns::Columns;
 use crate::kernel::{dot, KernelInverse};
 
@@ -100,14 +99,7 @@ impl Basis {
             return Ok(());
         }
         let kmat = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
-        // The kernel is equilibrated (powers of two, exact) before it is factorised, so that
-        // the singularity test compares pivots of rows and columns brought to one size: a row
-        // whose entries are all small is not a near-singularity.
-        let sc = crate::scaling::Scaling::equilibrate(&kmat, &[]);
-        let khat = Mat::<f64>::from_fn(k, k, |a, b| {
-            ldexp(kmat[(a, b)], sc.row_exp[a] + sc.col_exp[b])
-        });
-        let lu = khat.partial_piv_lu();
+        let lu = kmat.partial_piv_lu();
         let u = lu.U();
         let umax = (0..k).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
         let umin = (0..k)
@@ -117,18 +109,8 @@ impl Basis {
             return Err(SingularBasis);
         }
         let inv = lu.inverse();
-        // K = E⁻¹ K̂ D⁻¹, so K⁻¹ = D K̂⁻¹ E; rows indexed like the columns of K (S), columns like
-        // its rows (R).
-        let g: Vec<f64> = (0..k * k)
-            .map(|t| {
-                let (a, b) = (t % k, t / k);
-                ldexp(inv[(a, b)], sc.col_exp[a] + sc.row_exp[b])
-            })
-            .collect();
-        if g.iter().any(|v| !v.is_finite()) {
-            return Err(SingularBasis);
-        }
-        self.kinv.assign(k, |a, b| g[b * k + a]);
+        // K⁻¹ has rows indexed like the columns of K (S) and columns like its rows (R).
+        self.kinv.assign(k, |a, b| inv[(a, b)]);
         Ok(())
     }
 
@@ -139,36 +121,6 @@ impl Basis {
         let ys = self.kernel_solve(&vr);
         let mut tmp = v.to_vec();
         self.subtract_kernel_columns(cols, &ys, &mut tmp);
-        self.scatter(&ys, &tmp, n)
-    }
-
-    /// A bound on the round-off scale of each basic value of `B⁻¹ v`, by slot: `|K⁻¹| |v_R|` for
-    /// the kernel's columns, `|v_i| + Σ_S |A_iS| (|K⁻¹| |v_R|)_S` for a basic slack `x_i`. A value
-    /// is zero when it is round-off of the quantities it is computed from, in its own row.
-    pub fn abs_scale(&self, cols: &Columns, v: &[f64]) -> Vec<f64> {
-        let n = self.n;
-        let k = self.s_cols.len();
-        let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r].abs()).collect();
-        let mut ys = vec![0.0f64; k];
-        for (b, &vb) in vr.iter().enumerate() {
-            if vb == 0.0 {
-                continue;
-            }
-            for (y, g) in ys.iter_mut().zip(self.kinv.col(b)) {
-                *y += g.abs() * vb;
-            }
-        }
-        let mut tmp: Vec<f64> = v[..n].iter().map(|x| x.abs()).collect();
-        let mut col = vec![0.0; n];
-        for (&c, &y) in self.s_cols.iter().zip(&ys) {
-            if y == 0.0 {
-                continue;
-            }
-            cols.col_into(c, &mut col);
-            for (t, a) in tmp.iter_mut().zip(&col) {
-                *t += a.abs() * y;
-            }
-        }
         self.scatter(&ys, &tmp, n)
     }
 

@@ -62,20 +62,11 @@ pub(crate) struct Pivoter<'a> {
     since_refactor: usize,
     pub pivots: usize,
     pub refactorizations: usize,
-    /// Round-off scale of each basic value (by slot), for the zero test of that value alone:
-    /// computed with the values from the data, then carried through every pivot.
-    value_scale: Vec<f64>,
-    /// The size of the right-hand side and of the start's values: no zero test is looser than
-    /// this scale allows (the propagated scales of an ill-conditioned degenerate basis can grow
-    /// past it, and a real negative value must not pass for zero).
-    global_scale: f64,
+    value_scale: f64,
     /// Kernel residual seen on the last entering column.
     drift: f64,
     /// Pivots since the basic values were last recomputed from the data.
     since_values: usize,
-    /// Set when an entry of an entering column counted as positive only against its own error
-    /// bound: that bound assumes a freshly factorised basis, so the column is recomputed on one.
-    own_admitted: std::cell::Cell<bool>,
 }
 
 impl<'a> Pivoter<'a> {
@@ -89,8 +80,7 @@ impl<'a> Pivoter<'a> {
         let beta = basis.solve(cols, &cols.h);
         let start = basis.slot_var.clone();
         let start_is_slack = start.iter().enumerate().all(|(i, &v)| i == v);
-        let value_scale = basis.abs_scale(cols, &cols.h);
-        let global_scale = max_abs(&cols.h).max(max_abs(&beta));
+        let value_scale = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
         Self {
             cols,
             basis,
@@ -104,16 +94,13 @@ impl<'a> Pivoter<'a> {
             pivots: 0,
             refactorizations: 0,
             value_scale,
-            global_scale,
             drift: 0.0,
             since_values: 0,
-            own_admitted: std::cell::Cell::new(false),
         }
     }
 
-    /// The size below which the basic value at `slot` is round-off of its own row's data.
-    fn zero_value(&self, slot: usize) -> f64 {
-        self.tol.value * self.value_scale[slot].min(self.global_scale)
+    fn zero_value(&self) -> f64 {
+        self.tol.value * self.value_scale
     }
 
     pub fn driver_slot(&self) -> Option<usize> {
@@ -131,42 +118,11 @@ impl<'a> Pivoter<'a> {
         self.cols.driver_real(self.driver_value_scaled())
     }
 
-    /// Slots whose entry in `alpha` (the column of `entering`) counts as positive: above
-    /// `pivot · ‖α‖∞`, or — for an entry below that which may belong to a row whose data are all
-    /// small — above `pivot` times a bound on its own error, `(|B⁻¹| (|a| + |B| |α|))_i` (see
-    /// [`Basis::abs_scale`]), so that a row of tiny data is not taken for round-off of the
-    /// others while the round-off of a zero entry still is.
-    fn positive_slots(&self, alpha: &[f64], entering: usize) -> Vec<usize> {
+    /// Slots whose entry in `alpha` counts as positive.
+    fn positive_slots(&self, alpha: &[f64]) -> Vec<usize> {
         let amax = max_abs(alpha);
         let thr = self.tol.pivot * amax;
-        let small = (0..alpha.len()).any(|i| alpha[i] > 0.0 && alpha[i] <= thr);
-        if !small {
-            return (0..alpha.len()).filter(|&i| alpha[i] > thr).collect();
-        }
-        // A bound on the error of the computed α = B⁻¹a of a backward-stable solve:
-        // |B⁻¹| (|a| + |B| |α|), each slot on its own.
-        let n = self.cols.n;
-        let mut col = vec![0.0; n];
-        self.cols.col_into(entering, &mut col);
-        let mut v: Vec<f64> = col.iter().map(|x| x.abs()).collect();
-        for (s, &var) in self.basis.slot_var.iter().enumerate() {
-            let a = alpha[s].abs();
-            if a == 0.0 {
-                continue;
-            }
-            self.cols.col_into(var, &mut col);
-            for (vi, c) in v.iter_mut().zip(&col) {
-                *vi += c.abs() * a;
-            }
-        }
-        let own = self.basis.abs_scale(self.cols, &v);
-        let out: Vec<usize> = (0..alpha.len())
-            .filter(|&i| alpha[i] > thr.min(self.tol.pivot * own[i]))
-            .collect();
-        if out.iter().any(|&i| alpha[i] <= thr) {
-            self.own_admitted.set(true);
-        }
-        out
+        (0..alpha.len()).filter(|&i| alpha[i] > thr).collect()
     }
 
     /// Lexicographic vector of a slot: row of `B⁻¹ B_start` in priority order, over `alpha_i`.
@@ -257,11 +213,12 @@ impl<'a> Pivoter<'a> {
 
     /// Minimum-ratio test over the positive entries of `alpha`, ties broken lexicographically
     /// (the driver's row wins a tie). Returns the leaving slot and the step length.
-    pub fn ratio_test(&self, alpha: &[f64], entering: usize) -> Option<(usize, f64)> {
-        let cand = self.positive_slots(alpha, entering);
+    pub fn ratio_test(&self, alpha: &[f64]) -> Option<(usize, f64)> {
+        let cand = self.positive_slots(alpha);
         if cand.is_empty() {
             return None;
         }
+        let zero = self.zero_value();
         let val = |i: usize| self.beta[i].max(0.0);
         let (mut imin, mut rmin) = (cand[0], f64::INFINITY);
         for &i in &cand {
@@ -276,9 +233,7 @@ impl<'a> Pivoter<'a> {
         let ties: Vec<usize> = cand
             .iter()
             .copied()
-            .filter(|&i| {
-                val(i) - rmin * alpha[i] <= TIE * (val(i) + rmin * alpha[i]) + self.zero_value(i)
-            })
+            .filter(|&i| val(i) - rmin * alpha[i] <= TIE * (val(i) + rmin * alpha[i]) + zero)
             .collect();
         if ties.len() <= 1 {
             return Some((imin, rmin));
@@ -294,14 +249,15 @@ impl<'a> Pivoter<'a> {
 
     /// The candidates within `1e-7` (relative) of the minimum ratio at `slot`, `slot` included,
     /// when there is more than one: a tie that drift of the updated basic values could misjudge.
-    fn near_ties(&self, alpha: &[f64], entering: usize, slot: usize) -> Vec<usize> {
+    fn near_ties(&self, alpha: &[f64], slot: usize) -> Vec<usize> {
         let val = |i: usize| self.beta[i].max(0.0);
         let rmin = val(slot) / alpha[slot];
-        let close: Vec<usize> = self
-            .positive_slots(alpha, entering)
-            .into_iter()
+        let thr = self.tol.pivot * max_abs(alpha);
+        let zero = self.zero_value();
+        let close: Vec<usize> = (0..alpha.len())
             .filter(|&i| {
-                val(i) - rmin * alpha[i] <= 1e-7 * (val(i) + rmin * alpha[i]) + self.zero_value(i)
+                alpha[i] > thr
+                    && val(i) - rmin * alpha[i] <= 1e-7 * (val(i) + rmin * alpha[i]) + zero
             })
             .collect();
         if close.len() > 1 {
@@ -315,8 +271,9 @@ impl<'a> Pivoter<'a> {
     /// lexicographically largest `β_i/α_i` over `α_i < 0`. Returns the slot, or `None` when the
     /// basis is already feasible.
     pub fn lemke_first_slot(&self, alpha: &[f64]) -> Option<usize> {
+        let zero = self.zero_value();
         let cand: Vec<usize> = (0..alpha.len())
-            .filter(|&i| alpha[i] < 0.0 && self.beta[i] < -self.zero_value(i))
+            .filter(|&i| alpha[i] < 0.0 && self.beta[i] < -zero)
             .collect();
         if cand.is_empty() {
             return None;
@@ -328,7 +285,7 @@ impl<'a> Pivoter<'a> {
         let ties: Vec<usize> = cand
             .iter()
             .copied()
-            .filter(|&i| (self.beta[i] - rmax * alpha[i]).abs() <= self.zero_value(i))
+            .filter(|&i| (self.beta[i] - rmax * alpha[i]).abs() <= zero)
             .collect();
         let ties = if ties.is_empty() {
             vec![cand
@@ -355,13 +312,6 @@ impl<'a> Pivoter<'a> {
             *b -= theta * a;
         }
         self.beta[slot] = theta;
-        // Round-off scales through the pivot: θ = β_r/α_r carries σ_r/|α_r|, and every other
-        // value β_i − θ·α_i gains |α_i| times that, plus the size of the product itself.
-        let sr = self.value_scale[slot] / alpha[slot].abs() + theta.abs();
-        for (s, a) in self.value_scale.iter_mut().zip(alpha) {
-            *s += a.abs() * sr;
-        }
-        self.value_scale[slot] = sr;
         self.basis.pivot(self.cols, entering, slot, alpha);
         self.pivots += 1;
         self.since_refactor += 1;
@@ -380,7 +330,6 @@ impl<'a> Pivoter<'a> {
     /// free of the drift that the updates `β −= θ·α` accumulate.
     pub fn refresh_values(&mut self) {
         self.beta = self.basis.solve(self.cols, &self.cols.h);
-        self.value_scale = self.basis.abs_scale(self.cols, &self.cols.h);
         self.since_values = 0;
     }
 
@@ -396,7 +345,6 @@ impl<'a> Pivoter<'a> {
     pub fn refactor(&mut self) -> Result<(), SingularBasis> {
         self.basis.refactor(self.cols)?;
         self.beta = self.basis.solve(self.cols, &self.cols.h);
-        self.value_scale = self.basis.abs_scale(self.cols, &self.cols.h);
         self.since_refactor = 0;
         self.since_values = 0;
         self.drift = 0.0;
@@ -438,29 +386,26 @@ impl<'a> Pivoter<'a> {
         loop {
             let (mut alpha, drift) = self.basis.ftran_checked(self.cols, entering);
             self.drift = drift;
-            self.own_admitted.set(false);
-            let mut step = self.ratio_test(&alpha, entering);
+            let mut step = self.ratio_test(&alpha);
             // A ray is judged on a fresh factorisation, never on updates. A tiny pivot is judged
             // on basic values recomputed from the data (the updated ones drift, and near-zero
             // values decide ties); the column itself is accurate while the kernel's residual is.
-            if (step.is_none() || drift > DRIFT || self.own_admitted.get())
-                && self.since_refactor > 0
-            {
+            if (step.is_none() || drift > DRIFT) && self.since_refactor > 0 {
                 if self.refactor().is_err() {
                     return (Ending::Singular, entering);
                 }
                 alpha = self.basis.ftran(self.cols, entering);
-                step = self.ratio_test(&alpha, entering);
+                step = self.ratio_test(&alpha);
             } else if let Some((slot, _)) = step {
                 if self.since_values > 0 {
                     if alpha[slot] < 1e-6 * max_abs(&alpha) {
                         self.refresh_values();
-                        step = self.ratio_test(&alpha, entering);
+                        step = self.ratio_test(&alpha);
                     } else {
-                        let close = self.near_ties(&alpha, entering, slot);
+                        let close = self.near_ties(&alpha, slot);
                         if !close.is_empty() {
                             self.refresh_slots(&close);
-                            step = self.ratio_test(&alpha, entering);
+                            step = self.ratio_test(&alpha);
                         }
                     }
                 }

@@ -103,14 +103,14 @@ impl Residual {
         let ws: Vec<f64> = w.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut r: Vec<f64> = q.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut mag: Vec<f64> = r.iter().map(|v| v.abs()).collect();
-        for (j, ezj) in ez.iter().enumerate() {
-            if ezj.is_none() {
+        for j in 0..cols {
+            if ez[j].is_none() {
                 continue;
             }
-            for (i, (ri, mi)) in r.iter_mut().zip(mag.iter_mut()).enumerate() {
+            for i in 0..rows {
                 let t = term(i, j);
-                *ri += t;
-                *mi += t.abs();
+                r[i] += t;
+                mag[i] += t.abs();
             }
         }
         let s: Vec<f64> = mag.iter().zip(&ws).map(|(a, b)| a.max(b.abs())).collect();
