@@ -3,12 +3,14 @@
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
+use crate::binary::ldexp;
 use crate::lemke::lcp_w;
+use crate::scaling::Scaling;
 use crate::Residual;
 
 /// All `2^n` complementary bases in order of growing support; the first whose solution verifies
 /// is returned as `(z, w, S)` with `S` the basic `z` indices. Bases with a numerically singular
-/// `M[S, S]` are skipped.
+/// `M[S, S]` (after equilibration) are skipped.
 pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<f64>, Vec<usize>)> {
     let n = q.len();
     assert!(n <= 24, "enumeration is for small problems");
@@ -20,7 +22,13 @@ pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<
         let mut z = vec![0.0; n];
         if k > 0 {
             let a = Mat::<f64>::from_fn(k, k, |r, c| m[(idx[r], idx[c])]);
-            let lu = a.partial_piv_lu();
+            // `M[S, S]` is equilibrated (powers of two, exact) before the singularity test, so
+            // that its pivots compare rows and columns brought to one size: a row whose entries
+            // are all small is not a near-singularity.
+            let sc = Scaling::equilibrate_lcp(&a, None);
+            let ahat =
+                Mat::<f64>::from_fn(k, k, |r, c| ldexp(a[(r, c)], sc.row_exp[r] + sc.col_exp[c]));
+            let lu = ahat.partial_piv_lu();
             let u = lu.U();
             let umax = (0..k).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
             let umin = (0..k)
@@ -29,19 +37,18 @@ pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<
             if umin.is_nan() || umin <= 1e-12 * umax {
                 continue;
             }
-            let rhs = Mat::<f64>::from_fn(k, 1, |r, _| -q[idx[r]]);
+            // M[S,S] z_S = −q_S with M̂ = E M D: z_S = D M̂⁻¹ (−E q_S).
+            let rhs = Mat::<f64>::from_fn(k, 1, |r, _| ldexp(-q[idx[r]], sc.row_exp[r]));
             let sol = lu.solve(&rhs);
             for (r, &i) in idx.iter().enumerate() {
-                z[i] = sol[(r, 0)];
+                z[i] = ldexp(sol[(r, 0)], sc.col_exp[r]);
             }
         }
-        let zmax = z
-            .iter()
-            .fold(0.0f64, |a, b| a.max(b.abs()))
-            .max(f64::MIN_POSITIVE);
-        if z.iter().any(|&v| v < -1e-12 * zmax) {
+        if z.iter().any(|v| !v.is_finite()) {
             continue;
         }
+        // Negative entries are set to zero; if one mattered, its row no longer balances and the
+        // verification below rejects the point.
         for v in z.iter_mut() {
             *v = v.max(0.0);
         }

@@ -113,11 +113,12 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
             attempts: vec!["q ≥ 0: z = 0".into()],
         });
     }
-    // Rows are balanced with `q`, so that a row whose data are all tiny is as visible to the
+    // Equilibrated whatever the units of rows and unknowns, each block that M couples brought
+    // to the size of its q, so that a block whose data are all tiny is as visible to the
     // pivoting as any other; the built-in covering vectors are chosen in the equilibrated
     // problem, where every row has entries of order one (a covering vector of ones in the
     // original units would be `E·1` there, as lopsided as the units).
-    let prep = Prepared::with_rhs(&lcp.m, &[&lcp.q]);
+    let prep = Prepared::for_lcp(&lcp.m, &lcp.q);
     let qhat = prep.scaling.scale_rows(&lcp.q);
     let original = |v: Vec<f64>| prep.scaling.unscale_x(&v);
     let mut coverings: Vec<(&'static str, Vec<f64>)> = Vec::new();

@@ -15,13 +15,18 @@
 //! its [`Residual`] computed from the original data.
 //!
 //! **Units.** The answer may not depend on the units of the data. `M` is equilibrated by powers
-//! of two (rows and columns), and the right-hand side `q0` and the direction `d` are each
+//! of two (rows and columns, computed on binary exponents so that no scale overflows); for the
+//! standard LCP the equilibration is itself independent of the units of rows and unknowns
+//! (rows divided by the diagonal, the remaining similarity max-balanced, each block that `M`
+//! couples brought to the size of its `q`), and the covering vectors and the enumeration work
+//! in the equilibrated problem. The right-hand side `q0` and the direction `d` are each
 //! divided by a power of two near their own largest entry, the driver rescaled to match (see
 //! the `columns` module): every tolerance then compares quantities of one kind and one size, so
 //! a `q0` of `1e-150` against an `M` of `1e9` is never read as round-off, and a change of units
 //! by `2^k` changes no bit of what the pivoting sees. A solution is reported only when every one
-//! of its numbers is finite and its residuals, formed overflow-free from the original data,
-//! verify; otherwise the status says the engine failed ([`LcpStatus::NumericalFailure`],
+//! of its numbers is finite and its residuals, formed overflow-free from the original data and
+//! measured row by row against each row's own data (see [`Residual`]), verify; otherwise the
+//! status says the engine failed ([`LcpStatus::NumericalFailure`],
 //! [`PathStatus::NumericalFailure`]) — never a NaN "solved".
 
 mod basis;

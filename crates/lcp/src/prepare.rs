@@ -56,12 +56,19 @@ pub(crate) struct Prepared {
 
 impl Prepared {
     pub fn new(m: &Mat<f64>) -> Self {
-        Self::with_rhs(m, &[])
+        let scaling = Scaling::equilibrate(m, &[]);
+        let m_scaled = std::sync::Arc::new(scaling.scale_matrix(m));
+        Self {
+            n: m.nrows(),
+            scaling,
+            m_scaled,
+        }
     }
 
-    /// Equilibrated together with the right-hand sides `rhs` (see [`Scaling::equilibrate`]).
-    pub fn with_rhs(m: &Mat<f64>, rhs: &[&[f64]]) -> Self {
-        let scaling = Scaling::equilibrate(m, rhs);
+    /// Equilibrated independently of the units of rows and unknowns, each coupled block
+    /// brought to the size of its `q` (see [`Scaling::equilibrate_lcp`]).
+    pub fn for_lcp(m: &Mat<f64>, q: &[f64]) -> Self {
+        let scaling = Scaling::equilibrate_lcp(m, Some(q));
         let m_scaled = std::sync::Arc::new(scaling.scale_matrix(m));
         Self {
             n: m.nrows(),

@@ -46,8 +46,131 @@ impl Scaling {
     /// which has a column scale of its own.
     pub fn equilibrate(m: &Mat<f64>, rhs: &[&[f64]]) -> Self {
         let n = m.nrows();
-        let mut a = vec![0.0f64; n];
-        let mut b = vec![0.0f64; n];
+        let (a, b) = Self::ruiz(m, rhs, vec![0.0; n], vec![0.0; n]);
+        Self::from_exponents(&a, &b)
+    }
+
+    /// The equilibration of an LCP `w = q + M z` that does not depend on the units of its rows
+    /// and unknowns (`D_r M D_c`, `D_r q` give the same equilibrated problem, up to a factor of
+    /// two per row and column).
+    ///
+    /// 1. When every diagonal entry is non-zero, each row is divided by its diagonal entry,
+    ///    which leaves `D_c⁻¹ N D_c` (`N` with a unit diagonal), and the similarity `D_c` is
+    ///    undone by max-balancing (each unknown's largest coupling in its row made equal to its
+    ///    largest in its column; the max-balanced matrix is unique; a coupling one way only is
+    ///    made as large as the diagonal). Ruiz's iteration alone,
+    ///    started from the data, can settle on a balance where a few huge columns make every
+    ///    other entry of their rows negligible.
+    /// 2. Ruiz's iteration on `M` from there.
+    /// 3. The scalings that leave `E M D` unchanged — rows times `t`, columns over `t`, on each
+    ///    set of rows and columns that `M` couples — bring the largest `|q̂_i|` of each set to
+    ///    about one: a block whose data are all tiny (`M = diag(1e-308, 1)`, `q = (−1e-300, −1)`)
+    ///    is then as large as the others, not round-off next to them.
+    pub fn equilibrate_lcp(m: &Mat<f64>, q: Option<&[f64]>) -> Self {
+        let n = m.nrows();
+        let diag: Option<Vec<f64>> = (0..n).map(|i| log2_of(m[(i, i)])).collect();
+        let (a0, b0) = match diag {
+            Some(diag) => {
+                let a: Vec<f64> = diag.iter().map(|d| -d).collect();
+                let mut b = vec![0.0f64; n];
+                for _ in 0..MAX_SWEEPS {
+                    let mut moved = 0.0f64;
+                    for i in 0..n {
+                        let mut rmax = f64::NEG_INFINITY;
+                        let mut cmax = f64::NEG_INFINITY;
+                        for j in (0..n).filter(|&j| j != i) {
+                            if let Some(l) = log2_of(m[(i, j)]) {
+                                rmax = rmax.max(l + a[i] + b[j]);
+                            }
+                            if let Some(l) = log2_of(m[(j, i)]) {
+                                cmax = cmax.max(l + a[j] - b[j]);
+                            }
+                        }
+                        // Balanced where the unknown is coupled both ways; where only one
+                        // way (a block-triangular coupling, which a similarity can make as
+                        // large or small as it likes), that coupling is made as large as the
+                        // diagonal.
+                        let new = match (rmax.is_finite(), cmax.is_finite()) {
+                            (true, true) => (rmax - cmax) / 2.0,
+                            (true, false) => rmax,
+                            (false, true) => -cmax,
+                            (false, false) => continue,
+                        };
+                        moved = moved.max((new - b[i]).abs());
+                        b[i] = new;
+                    }
+                    if moved <= 0.5 {
+                        break;
+                    }
+                }
+                ((0..n).map(|i| a[i] - b[i]).collect(), b)
+            }
+            None => (vec![0.0; n], vec![0.0; n]),
+        };
+        let (mut a, mut b) = Self::ruiz(m, &[], a0, b0);
+        if let Some(q) = q {
+            // Union-find over rows 0..n and columns n..2n joined by the non-zeros of M.
+            let mut parent: Vec<usize> = (0..2 * n).collect();
+            fn find(p: &mut [usize], mut x: usize) -> usize {
+                while p[x] != x {
+                    p[x] = p[p[x]];
+                    x = p[x];
+                }
+                x
+            }
+            for j in 0..n {
+                for i in 0..n {
+                    if m[(i, j)] != 0.0 {
+                        let (ri, rj) = (find(&mut parent, i), find(&mut parent, n + j));
+                        if ri != rj {
+                            parent[ri] = rj;
+                        }
+                    }
+                }
+            }
+            let mut top = vec![f64::NEG_INFINITY; 2 * n];
+            for i in 0..n {
+                if let Some(l) = log2_of(q[i]) {
+                    let r = find(&mut parent, i);
+                    top[r] = top[r].max(l + a[i]);
+                }
+            }
+            for i in 0..n {
+                let t = top[find(&mut parent, i)];
+                if t.is_finite() {
+                    a[i] -= t;
+                }
+            }
+            for j in 0..n {
+                let t = top[find(&mut parent, n + j)];
+                if t.is_finite() {
+                    b[j] += t;
+                }
+            }
+        }
+        Self::from_exponents(&a, &b)
+    }
+
+    fn from_exponents(a: &[f64], b: &[f64]) -> Self {
+        let to_exp = |v: &f64| (v.round() as i32).clamp(-MAX_EXP, MAX_EXP);
+        let row_exp: Vec<i32> = a.iter().map(to_exp).collect();
+        let col_exp: Vec<i32> = b.iter().map(to_exp).collect();
+        Self {
+            row: row_exp.iter().map(|&e| ldexp(1.0, e)).collect(),
+            col: col_exp.iter().map(|&e| ldexp(1.0, e)).collect(),
+            row_exp,
+            col_exp,
+        }
+    }
+
+    /// Ruiz's iteration from row and column exponents `a`, `b`.
+    fn ruiz(
+        m: &Mat<f64>,
+        rhs: &[&[f64]],
+        mut a: Vec<f64>,
+        mut b: Vec<f64>,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let n = m.nrows();
         let mut c = vec![0.0f64; rhs.len()];
         for _ in 0..MAX_SWEEPS {
             let mut rmax = vec![f64::NEG_INFINITY; n];
@@ -100,15 +223,7 @@ impl Scaling {
                 break;
             }
         }
-        let to_exp = |v: f64| (v.round() as i32).clamp(-MAX_EXP, MAX_EXP);
-        let row_exp: Vec<i32> = a.into_iter().map(to_exp).collect();
-        let col_exp: Vec<i32> = b.into_iter().map(to_exp).collect();
-        Self {
-            row: row_exp.iter().map(|&e| ldexp(1.0, e)).collect(),
-            col: col_exp.iter().map(|&e| ldexp(1.0, e)).collect(),
-            row_exp,
-            col_exp,
-        }
+        (a, b)
     }
 
     /// `E M D` in column-major order.

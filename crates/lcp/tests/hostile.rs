@@ -122,6 +122,23 @@ fn a_decoupled_row_with_tiny_data_is_not_hidden_by_the_others() {
 }
 
 #[test]
+fn a_subnormal_stiffness_solves_when_its_answer_is_a_double() {
+    // Reference, by hand: M = diag(1e-310, 1) (1e-310 is subnormal), q = (−1e-300, −1):
+    // z = (1e10, 1), w = 0, every number a double; the subnormal carries ~3 fewer digits of
+    // its own, so the agreement asked is 1e-12.
+    let s = solve2([[1e-310, 0.0], [0.0, 1.0]], [-1e-300, -1.0]);
+    assert_eq!(s.status, LcpStatus::Solved, "{s:?}");
+    let p = s.point.unwrap();
+    assert!((p.z[0] - 1e10).abs() <= 1e-12 * 1e10, "{:?}", p.z);
+    assert!((p.z[1] - 1.0).abs() <= 1e-14, "{:?}", p.z);
+    // With q1 = −1 the answer z1 = 1e310 is beyond the largest double (1.8e308): no finite
+    // point solves row 1, and the engine says it failed instead of answering.
+    let s = solve2([[1e-310, 0.0], [0.0, 1.0]], [-1.0, -1.0]);
+    assert_eq!(s.status, LcpStatus::NumericalFailure, "{s:?}");
+    assert!(s.point.is_none());
+}
+
+#[test]
 fn the_residual_judges_each_row_against_its_own_data() {
     // Reference: the wrong point of the previous test, z = (0, 1), w = (−1e-300, 0), violates
     // w1 ≥ 0 by all of row 1's data (|q1| = 1e-300): a relative violation of exactly 1.
@@ -156,4 +173,107 @@ fn the_residual_judges_each_row_against_its_own_data() {
         assert!((a - b).abs() <= 1e-6 * a.max(b) + 1e-30, "{r0:?} vs {r1:?}");
     }
     assert!(r0.equation > 1e-13, "{r0:?}");
+}
+
+mod rescaled {
+    use proptest::prelude::*;
+    use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings, Strategy as How};
+    use unilateral_oracle as oracle;
+
+    /// A strictly diagonally dominant integer matrix with a positive diagonal (a P-matrix, so the
+    /// LCP has exactly one solution) and an integer `q`. Every off-diagonal entry is non-zero
+    /// (±1 to ±3): the matrix is irreducible, which is what makes its equilibration independent
+    /// of the scaling (a block-triangular coupling can be made any size by a scaling, and no
+    /// equilibration can tell which size was meant).
+    fn dominant(max_n: usize) -> impl Strategy<Value = (Vec<Vec<f64>>, Vec<f64>)> {
+        let entry = prop_oneof![-3i32..=-1, 1i32..=3];
+        (1..=max_n).prop_flat_map(move |n| {
+            (
+                prop::collection::vec(prop::collection::vec(entry.clone(), n), n),
+                prop::collection::vec(1i32..=3, n),
+                prop::collection::vec(-8i32..=8, n),
+            )
+                .prop_map(move |(off, extra, q)| {
+                    let m = (0..n)
+                        .map(|i| {
+                            let sum: i32 =
+                                (0..n).filter(|&j| j != i).map(|j| off[i][j].abs()).sum();
+                            (0..n)
+                                .map(|j| {
+                                    if i == j {
+                                        (sum + extra[i]) as f64
+                                    } else {
+                                        off[i][j] as f64
+                                    }
+                                })
+                                .collect()
+                        })
+                        .collect();
+                    (m, q.into_iter().map(f64::from).collect())
+                })
+        })
+    }
+
+    /// `10^k` correctly rounded.
+    fn ten(k: i32) -> f64 {
+        format!("1e{k}").parse().unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+
+        /// Rows and columns rescaled by `10^k`, `k` in [−150, 150]: `M' = D_r M D_c`,
+        /// `q' = D_r q`. Reference: the oracle's exact solution `(z, w)` of the unscaled problem
+        /// (exact rational enumeration) mapped by the exact relation `z' = D_c⁻¹ z`,
+        /// `w' = D_r w`; agreement to 1e-9 of the unscaled data's size, and the same support.
+        #[test]
+        fn rescaled_rows_and_columns_give_the_mapped_solution(
+            (m, q, kr, kc) in dominant(6).prop_flat_map(|(m, q)| {
+                let n = q.len();
+                (
+                    Just(m),
+                    Just(q),
+                    prop::collection::vec(-150i32..=150, n),
+                    prop::collection::vec(-150i32..=150, n),
+                )
+            })
+        ) {
+            let n = q.len();
+            let sols = oracle::enumerate(&m, &q);
+            prop_assert_eq!(sols.len(), 1, "a P-matrix LCP has exactly one solution");
+            let (zo, wo) = (sols[0].z_f64(), sols[0].w_f64());
+            let (dr, dc): (Vec<f64>, Vec<f64>) =
+                (kr.iter().map(|&k| ten(k)).collect(), kc.iter().map(|&k| ten(k)).collect());
+            let lcp = Lcp {
+                m: faer::Mat::from_fn(n, n, |i, j| dr[i] * m[i][j] * dc[j]),
+                q: (0..n).map(|i| dr[i] * q[i]).collect(),
+            };
+            let sol = solve_lcp(&lcp, &Settings::default()).unwrap();
+            prop_assert_eq!(sol.status, LcpStatus::Solved, "attempts: {:?}", sol.attempts);
+            // By the pivoting itself, not by the last-resort enumeration.
+            prop_assert!(
+                matches!(sol.strategy, How::Lemke { .. } | How::Trivial),
+                "attempts: {:?}",
+                sol.attempts
+            );
+            let pt = sol.point.unwrap();
+            prop_assert!(pt.residual.max() <= 1e-12, "{:?}", pt.residual);
+            let zscale = 1.0 + zo.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            let wscale = 1.0 + q.iter().chain(&wo).fold(0.0f64, |a, b| a.max(b.abs()));
+            for j in 0..n {
+                let z = pt.z[j] * dc[j];
+                prop_assert!((z - zo[j]).abs() <= 1e-9 * zscale, "z[{}]: {} vs {}", j, z, zo[j]);
+                let w = pt.w[j] / dr[j];
+                prop_assert!((w - wo[j]).abs() <= 1e-9 * wscale, "w[{}]: {} vs {}", j, w, wo[j]);
+                // The support: an unknown that is zero in the exact solution (and whose
+                // complement is not) is exactly zero, whatever the scaling.
+                if zo[j] == 0.0 && wo[j] > 0.0 {
+                    prop_assert_eq!(pt.z[j], 0.0);
+                }
+                if wo[j] == 0.0 && zo[j] > 0.0 {
+                    prop_assert_eq!(pt.w[j], 0.0);
+                }
+            }
+        }
+    }
 }
