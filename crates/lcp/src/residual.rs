@@ -103,8 +103,8 @@ impl Residual {
         let ws: Vec<f64> = w.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut r: Vec<f64> = q.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut mag: Vec<f64> = r.iter().map(|v| v.abs()).collect();
-        for j in 0..cols {
-            if ez[j].is_none() {
+        for (j, ezj) in ez.iter().enumerate() {
+            if ezj.is_none() {
                 continue;
             }
             for i in 0..rows {
