@@ -662,7 +662,7 @@ fn solution_on_segment(
         .collect();
     match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
         Some((x, z, pivots)) => {
-            let residual = Residual::of(&problem.m, &q_real, &x, &z);
+            let residual = Residual::of_parametric(&problem.m, &problem.q0, &problem.d, p, &x, &z);
             if !residual.accepts(&x, &z) {
                 return fresh_solution(problem, p, settings);
             }

@@ -57,8 +57,43 @@ impl Residual {
 
     /// Residuals of `(w, z)` for `w = q + M z` (`M` is `q.len() × z.len()`).
     pub fn of(m: &Mat<f64>, q: &[f64], w: &[f64], z: &[f64]) -> Self {
+        let size: Vec<f64> = q.iter().map(|v| v.abs()).collect();
+        Self::of_terms(m, q, &size, w, z)
+    }
+
+    /// Residuals of `(x, z)` for the parametric `x = q0 + p·d + M z` at load `p`. Each row is
+    /// measured against the terms `|q0_i| + |p·d_i|` that form its right-hand side as well as
+    /// its `M z` terms: where `q0_i + p·d_i` cancels (at the load of an event, where it is
+    /// zero in exact arithmetic) its round-off is that of the terms, not of the difference.
+    pub fn of_parametric(
+        m: &Mat<f64>,
+        q0: &[f64],
+        d: &[f64],
+        p: f64,
+        x: &[f64],
+        z: &[f64],
+    ) -> Self {
+        if q0.len() != d.len() {
+            return Self::unverifiable();
+        }
+        let q: Vec<f64> = q0.iter().zip(d).map(|(a, b)| a + p * b).collect();
+        let size: Vec<f64> = q0
+            .iter()
+            .zip(d)
+            .map(|(a, b)| a.abs() + (p * b).abs())
+            .collect();
+        Self::of_terms(m, &q, &size, x, z)
+    }
+
+    /// [`Residual::of`] with `size[i] ≥ |q_i|` the magnitude of the terms that formed `q_i`.
+    fn of_terms(m: &Mat<f64>, q: &[f64], size: &[f64], w: &[f64], z: &[f64]) -> Self {
         let (rows, cols) = (q.len(), z.len());
-        if w.iter().chain(z).chain(q).any(|v| !v.is_finite())
+        if w.iter()
+            .chain(z)
+            .chain(q)
+            .chain(size)
+            .any(|v| !v.is_finite())
+            || size.len() != rows
             || m.nrows() != rows
             || m.ncols() != cols
             || w.len() != rows
@@ -71,7 +106,7 @@ impl Residual {
         // Row i is formed times 2^(−e[i]), with e[i] above the exponent of every term of the row.
         let mut e: Vec<i32> = (0..rows)
             .map(|i| {
-                let t = [q[i], w[i]].into_iter().filter_map(exponent).max();
+                let t = [size[i], w[i]].into_iter().filter_map(exponent).max();
                 t.unwrap_or(i32::MIN)
             })
             .collect();
@@ -102,7 +137,7 @@ impl Residual {
         };
         let ws: Vec<f64> = w.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut r: Vec<f64> = q.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
-        let mut mag: Vec<f64> = r.iter().map(|v| v.abs()).collect();
+        let mut mag: Vec<f64> = size.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         for (j, ezj) in ez.iter().enumerate() {
             if ezj.is_none() {
                 continue;

@@ -277,3 +277,22 @@ mod rescaled {
         }
     }
 }
+
+/// At the load of an event the right-hand side `q0_i + p·d_i` of the row that changes is zero
+/// in exact arithmetic and round-off in floating point (here `2 − 2.0000000000000004`): the
+/// row is measured against the terms that formed it, so the exact point `x = 0` verifies.
+/// Measured against the difference alone (the standard form), the same point would not.
+/// (Found by `p_matrix_path_matches_enumeration`: `solution_at` at the path's last breakpoint
+/// returned nothing.)
+#[test]
+fn a_cancelling_right_hand_side_is_judged_by_its_terms() {
+    let m = faer::Mat::from_fn(2, 2, |i, j| if i == j { 1.0 } else { 0.0 });
+    let p = 2.0000000000000004;
+    let (q0, d) = ([2.0, 1.0], [-1.0, 0.0]);
+    let r = Residual::of_parametric(&m, &q0, &d, p, &[0.0, 1.0], &[0.0, 0.0]);
+    assert!(r.max() <= 1e-15, "{r:?}");
+    let q: Vec<f64> = q0.iter().zip(&d).map(|(a, b)| a + p * b).collect();
+    assert!(q[0] < 0.0);
+    let r = Residual::of(&m, &q, &[0.0, 1.0], &[0.0, 0.0]);
+    assert!(r.max() >= 0.5, "{r:?}");
+}
