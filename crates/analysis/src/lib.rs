@@ -397,7 +397,7 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
             message: message.clone(),
         },
         FemError::IllConditioned { .. } => AnalysisError::Internal {
-            what: "the bonded structure cannot be solved accurately in double precision".into(),
+            what: "condensing the model to its contact zone".into(),
             message: e.to_string(),
         },
         _ => {

@@ -240,7 +240,12 @@ fn analysis_failure(file: &Path, e: &unilateral_analysis::AnalysisError) -> Fail
         E::Contact(c) => contact_failure(file, c, ZoneOrigin::Condensed),
         // `NotOnPath` only arises where the program itself asked for a load of the path (the
         // events of a report), so it is the program's fault here.
-        E::Recovery { .. } | E::Equilibrium { .. } | E::Internal { .. } | E::NotOnPath { .. } => {
+        // The framing ("internal error", whose fault) is the CLI's; the analysis' own words for
+        // it are not repeated.
+        E::Internal { what, message } => {
+            Failure::Internal(format!("{}: {what}: {message}", file.display()))
+        }
+        E::Recovery { .. } | E::Equilibrium { .. } | E::NotOnPath { .. } => {
             Failure::Internal(format!("{}: {e}", file.display()))
         }
     }
