@@ -17,7 +17,7 @@
 //! * otherwise (a ray) the reported solution at the target solves the real problem, and equals
 //!   the enumerated solution when that is unique.
 
-mod common;
+use crate::common;
 
 use common::*;
 use unilateral_lcp::{

@@ -4,7 +4,7 @@
 // Literals are written exactly as the .dat files print them, so they can be found there.
 #![allow(clippy::excessive_precision)]
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! literature. Each must end with the right status and a verified residual, and agree with the
 //! exact oracle wherever the oracle's answer is unique.
 
-mod common;
+use crate::common;
 
 use common::*;
 use unilateral_lcp::{

@@ -2,7 +2,7 @@
 //! file, the place (line:column) and the key, and contains the fragment listed in
 //! `tests/data/bad-models/EXPECTED.txt`; nothing may panic. Files whose location column says
 //! `analysis` are valid input whose problem shows at analysis time (checked by
-//! crates/analysis/tests/bad_models.rs): here they must read without error.
+//! crates/analysis/tests/it/bad_models.rs): here they must read without error.
 
 use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};

@@ -7,7 +7,7 @@
 //!   and its events (loads, entering and leaving variables) agree with the oracle's exact
 //!   parametric Lemke method on nondegenerate data (also for general matrices).
 
-mod common;
+use crate::common;
 
 use common::*;
 use proptest::prelude::*;

@@ -50,7 +50,7 @@
 //! `W` of this file is singular (its columns 2 and 4, the tangential directions of the two
 //! contacts, are identical), so no contact stiffness matrix exists; the test asserts that.
 
-mod common;
+use crate::common;
 
 use common::{siconos, siconos_files};
 

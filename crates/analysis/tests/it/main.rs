@@ -1,0 +1,10 @@
+//! The integration tests of `unilateral-analysis`, as modules of one test binary: one build and one
+//! link for all of them (a binary per file costs minutes on a two-core machine).
+
+mod bad_models;
+mod example1;
+mod example2;
+mod example3;
+mod fixes;
+mod keys;
+mod scale;
