@@ -1,8 +1,8 @@
 //! The integration tests of `unilateral-io`, as modules of one test binary: one build and one
 //! link for all of them (a binary per file costs minutes on a two-core machine).
 
-mod common;
 mod bad_inputs;
+mod common;
 mod corpus;
 mod layouts;
 mod model_bad;

@@ -1,8 +1,8 @@
 //! The integration tests of `unilateral-lcp`, as modules of one test binary: one build and one
 //! link for all of them (a binary per file costs minutes on a two-core machine).
 
-mod common;
 mod against_oracle;
+mod common;
 mod contact_path;
 mod degenerate;
 mod hostile;
