@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use crate::Failure;
+use crate::failure::Failure;
 
 /// `(name, file name, description, content)`.
 const EXAMPLES: &[(&str, &str, &str, &str)] = &[
@@ -10,25 +10,25 @@ const EXAMPLES: &[(&str, &str, &str, &str)] = &[
         "example1-beam",
         "example1-beam.toml",
         "the paper's Example 1 as a structure: continuous beam on three frictional supports",
-        include_str!("../../../examples/example1-beam.toml"),
+        include_str!("../../../../examples/example1-beam.toml"),
     ),
     (
         "example1-contact-zone",
         "example1-contact-zone.toml",
         "the paper's Example 1 as contact-zone matrices (its Tables 1-3)",
-        include_str!("../../../examples/example1-contact-zone.toml"),
+        include_str!("../../../../examples/example1-contact-zone.toml"),
     ),
     (
         "example2-cantilever",
         "example2-cantilever.toml",
         "the paper's Example 2: 260 m cantilever on a rigid base pulled at its end (analytical answer)",
-        include_str!("../../../examples/example2-cantilever.toml"),
+        include_str!("../../../../examples/example2-cantilever.toml"),
     ),
     (
         "example3-sheet-pile",
         "example3-sheet-pile.toml",
         "the paper's Example 3 (reconstruction): sheet pile wall in soil pushed at the top",
-        include_str!("../../../examples/example3-sheet-pile.toml"),
+        include_str!("../../../../examples/example3-sheet-pile.toml"),
     ),
 ];
 

@@ -1,0 +1,187 @@
+//! The command line: its arguments as clap types, and the `[solve]` values they override.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+use crate::failure::Failure;
+
+/// Frictional unilateral contact of 2D structures under a growing load, followed exactly
+/// from event to event by the parametric Lemke method.
+#[derive(Parser, Debug)]
+#[command(name = "unilateral", version, about, long_about = None)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(crate) enum TraceArg {
+    /// Stop at the target load (Criterion 1).
+    Target,
+    /// Follow the path until the scheme stops changing or a mechanism forms.
+    End,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(crate) enum StressArg {
+    /// The von Mises equivalent stress.
+    Vm,
+    /// σxx.
+    Sxx,
+    /// σyy.
+    Syy,
+}
+
+/// Options of `--report`.
+#[derive(clap::Args, Debug, Clone)]
+pub(crate) struct ReportArgs {
+    /// Chart only these pairs (names, comma-separated; default: all).
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub(crate) report_pairs: Option<Vec<String>>,
+    /// Draw the bending moment diagrams of frame members in the structure picture.
+    #[arg(long)]
+    pub(crate) moments: bool,
+    /// The stress that colours plane elements.
+    #[arg(long, value_enum, default_value = "vm")]
+    pub(crate) stress: StressArg,
+}
+
+impl ReportArgs {
+    /// Every name given to `--report-pairs` must be a pair of the problem.
+    pub(crate) fn check(&self, pairs: &[unilateral_contact::PairResult]) -> Result<(), Failure> {
+        for name in self.report_pairs.iter().flatten() {
+            if !pairs.iter().any(|p| &p.name == name) {
+                let known: Vec<&str> = pairs.iter().take(12).map(|p| p.name.as_str()).collect();
+                return Err(Failure::Input(format!(
+                    "--report-pairs: no pair named '{name}'; the pairs are {}{}",
+                    known.join(", "),
+                    if pairs.len() > 12 { ", …" } else { "" }
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    pub(crate) fn options(&self, title: Option<String>) -> unilateral_report::ReportOptions {
+        unilateral_report::ReportOptions {
+            pairs: self.report_pairs.clone(),
+            moments: self.moments,
+            stress: match self.stress {
+                StressArg::Vm => unilateral_report::StressComponent::VonMises,
+                StressArg::Sxx => unilateral_report::StressComponent::Sxx,
+                StressArg::Syy => unilateral_report::StressComponent::Syy,
+            },
+            title,
+        }
+    }
+}
+
+#[derive(Subcommand, Debug)]
+pub(crate) enum Command {
+    /// Follow the load path of a problem file and report the solution.
+    Solve(SolveArgs),
+    /// Print the Lemke tableaux of the path, step by step, as in the paper's Tables 1-3.
+    Tableau(TableauArgs),
+    /// Solve a plain LCP w = Mz + q (Siconos .dat, .toml or .json).
+    Lcp(LcpArgs),
+    /// List the bundled examples, or write one out to start from.
+    Example(ExampleArgs),
+}
+
+/// The arguments of `unilateral solve`.
+#[derive(clap::Args, Debug)]
+pub(crate) struct SolveArgs {
+    /// A structural model or a contact-zone problem (.toml or .json).
+    pub(crate) file: PathBuf,
+    /// The load p* at which the solution is reported (default: the file's, else 1).
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) target: Option<f64>,
+    /// How far to follow the path.
+    #[arg(long, value_enum)]
+    pub(crate) trace: Option<TraceArg>,
+    /// The artificial tightening c ≥ 0.
+    #[arg(long, allow_negative_numbers = true)]
+    pub(crate) tightening: Option<f64>,
+    /// Write the result document as JSON to this file (`-` for stdout).
+    #[arg(long, value_name = "OUT.json")]
+    pub(crate) json: Option<PathBuf>,
+    /// Write CSV tables (pairs.csv, steps.csv) into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) csv: Option<PathBuf>,
+    /// Write the load-path charts, the structure picture and report.html into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) report: Option<PathBuf>,
+    /// Write ParaView files (.vtu per event, .pvd collection) into this directory
+    /// (structural models).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) vtk: Option<PathBuf>,
+    #[command(flatten)]
+    pub(crate) report_args: ReportArgs,
+}
+
+/// The arguments of `unilateral tableau`.
+#[derive(clap::Args, Debug)]
+pub(crate) struct TableauArgs {
+    /// A contact-zone problem (.toml or .json).
+    pub(crate) file: PathBuf,
+    /// Print at most this many steps.
+    #[arg(long)]
+    pub(crate) steps: Option<usize>,
+    /// Write the tableaux as JSON to this file (`-` for stdout).
+    #[arg(long, value_name = "OUT.json")]
+    pub(crate) json: Option<PathBuf>,
+}
+
+/// The arguments of `unilateral lcp`.
+#[derive(clap::Args, Debug)]
+pub(crate) struct LcpArgs {
+    /// The problem file.
+    pub(crate) file: PathBuf,
+    /// Write the result as JSON to this file (`-` for stdout).
+    #[arg(long, value_name = "OUT.json")]
+    pub(crate) json: Option<PathBuf>,
+}
+
+/// The arguments of `unilateral example`.
+#[derive(clap::Args, Debug)]
+pub(crate) struct ExampleArgs {
+    /// The example to write out.
+    pub(crate) name: Option<String>,
+    /// Directory to write into (default: the current directory).
+    #[arg(long, value_name = "DIR", default_value = ".")]
+    pub(crate) to: PathBuf,
+    /// Overwrite an existing file.
+    #[arg(long)]
+    pub(crate) force: bool,
+}
+
+/// Command-line values that override the file's `[solve]` table.
+pub(crate) struct Overrides {
+    pub(crate) target: Option<f64>,
+    pub(crate) trace: Option<TraceArg>,
+    pub(crate) tightening: Option<f64>,
+}
+
+impl Overrides {
+    pub(crate) fn apply(
+        &self,
+        settings: &mut unilateral_contact::SolveSettings,
+    ) -> Result<(), Failure> {
+        if let Some(t) = self.target {
+            settings.target = t;
+        }
+        if let Some(t) = self.trace {
+            settings.trace = match t {
+                TraceArg::Target => unilateral_contact::Trace::Target,
+                TraceArg::End => unilateral_contact::Trace::End,
+            };
+        }
+        if let Some(c) = self.tightening {
+            settings.tightening = c;
+        }
+        settings
+            .validate()
+            .map_err(|e| Failure::Input(format!("command line: {e}")))
+    }
+}
