@@ -16,6 +16,8 @@
 //! Node and element names (as a model file gives them) may be passed with [`analyze_named`]
 //! so that errors and extremes name them.
 
+#![warn(missing_docs)]
+
 use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
 use unilateral_fem::{
     Condensed, ContactSolution as FemSolution, DofLabel, ElementId, FemError, Model, NodeId,

@@ -9,28 +9,45 @@ pub enum ContactError {
     /// A matrix block has the wrong shape.
     #[error("{name} is {rows}×{cols}, but the contact zone has {pairs} pairs (expected {pairs}×{pairs})")]
     MatrixSize {
+        /// The block (`Rnn`, `Rnt`, `Rtn` or `Rtt`).
         name: &'static str,
+        /// Its number of rows.
         rows: usize,
+        /// Its number of columns.
         cols: usize,
+        /// The number of pairs of the zone.
         pairs: usize,
     },
     /// A per-pair vector has the wrong length.
     #[error("{name} has {len} entries, but the contact zone has {pairs} pairs")]
     VectorSize {
+        /// The vector (friction, gap, a load vector).
         name: String,
+        /// Its length.
         len: usize,
+        /// The number of pairs of the zone.
         pairs: usize,
     },
     /// A NaN or infinite value.
     #[error("{name}{index} is not a finite number")]
-    NotFinite { name: String, index: String },
+    NotFinite {
+        /// The matrix or vector.
+        name: String,
+        /// The place in it, as printed (`[2]`, `[1, 3]`).
+        index: String,
+    },
     /// `Rnn` or `Rtt` is not symmetric.
     #[error("{name} must be symmetric, but entry ({row}, {col}) = {upper} differs from ({col}, {row}) = {lower}")]
     NotSymmetric {
+        /// The matrix (`Rnn` or `Rtt`).
         name: &'static str,
+        /// 1-based row of the upper entry.
         row: usize,
+        /// 1-based column of the upper entry.
         col: usize,
+        /// The entry `(row, col)`.
         upper: f64,
+        /// The entry `(col, row)`.
         lower: f64,
     },
     /// A stiffness matrix has a negative diagonal entry (it cannot be positive semidefinite).
@@ -38,15 +55,21 @@ pub enum ContactError {
         "{name} must be positive semidefinite, but its diagonal entry for pair {pair} is {value}"
     )]
     NegativeDiagonal {
+        /// The matrix (`Rnn` or `Rtt`).
         name: &'static str,
+        /// 1-based pair.
         pair: usize,
+        /// The diagonal entry.
         value: f64,
     },
     /// Friction or gap is negative.
     #[error("{name} must be ≥ 0, but pair {pair} has {value}")]
     Negative {
+        /// `friction` or `gap`.
         name: &'static str,
+        /// 1-based pair.
         pair: usize,
+        /// The value given.
         value: f64,
     },
     /// The data are finite but their combination is not representable: the formulation's

@@ -12,6 +12,8 @@
 //! Signs (`formulation.md` §1): `x_n` compression positive, `z_n` opening positive; friction is
 //! split as `x_t± = f·x_n ± x_t`, `z_t = (z_t+ − z_t-)/2`.
 
+#![warn(missing_docs)]
+
 mod error;
 pub mod generate;
 mod lcp;

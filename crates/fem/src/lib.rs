@@ -27,6 +27,7 @@
 //! assert!((c.rnn[(0, 0)] - 0.375).abs() < 1e-12);
 //! ```
 
+#![warn(missing_docs)]
 // Index loops mirror the formulas of small dense element matrices; negated comparisons are
 // deliberate so that NaN fails the positivity checks.
 #![allow(

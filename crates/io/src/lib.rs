@@ -20,6 +20,8 @@
 //! number: they return a [`NonFiniteOutput`] instead, an internal failure (the program's
 //! fault, exit status 1), since the readers accept only finite data.
 
+#![warn(missing_docs)]
+
 mod dat;
 mod error;
 mod finite;

@@ -9,7 +9,12 @@ pub enum LcpError {
     Dimension(String),
     /// A NaN or infinite entry.
     #[error("{what} has a non-finite entry at {index}")]
-    NotFinite { what: &'static str, index: String },
+    NotFinite {
+        /// `M`, `q`, `q0` or `d`.
+        what: &'static str,
+        /// The place of the entry, as printed.
+        index: String,
+    },
     /// A setting out of range.
     #[error("invalid setting: {0}")]
     Settings(String),

@@ -29,6 +29,8 @@
 //! status says the engine failed ([`LcpStatus::NumericalFailure`],
 //! [`PathStatus::NumericalFailure`]) — never a NaN "solved".
 
+#![warn(missing_docs)]
+
 mod basis;
 pub mod binary;
 mod columns;

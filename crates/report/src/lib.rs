@@ -17,6 +17,8 @@
 //! [`Analysis`] does not keep: [`write_report_for`] takes it; [`write_report`] writes the
 //! charts and the HTML without the structure picture.
 
+#![warn(missing_docs)]
+
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
