@@ -78,9 +78,9 @@ pub enum ContactError {
     #[error("{0}")]
     OutOfRange(String),
     /// The engine rejected data that the contact formulation had already checked: a fault of
-    /// the program, not of the model.
+    /// the program, not of the model. The engine's own error is kept, typed.
     #[error("internal failure of the solver (the program's fault, not the model's): {0}")]
-    Internal(String),
+    Engine(#[from] unilateral_lcp::LcpError),
     /// Settings out of range.
     #[error("invalid solve setting: {0}")]
     Settings(String),

@@ -306,8 +306,7 @@ pub fn solve(
         tightening: normalised.tightening(units.normalised_force(settings.tightening)),
     };
     let engine = engine_settings(&normalised, settings);
-    let mut path = follow_path(&normalised.problem, &normalised_options, &engine)
-        .map_err(|e| ContactError::Internal(e.to_string()))?;
+    let mut path = follow_path(&normalised.problem, &normalised_options, &engine)?;
     let m = lcp.pairs;
     let names = zone.pair_names.clone();
     // Which pairs are open, followed along the path, to read friction events of open pairs.
