@@ -532,13 +532,8 @@ pub fn extremes(r: &Results, names: &Names) -> Extremes {
     }
     for pl in &r.planes {
         for (g, s) in pl.stress.iter().enumerate() {
-            let [sx, sy, txy, sz] = *s;
-            let vm = (0.5 * ((sx - sy).powi(2) + (sy - sz).powi(2) + (sz - sx).powi(2))
-                + 3.0 * txy * txy)
-                .sqrt();
-            let c = 0.5 * (sx + sy);
-            let rad = (0.25 * (sx - sy).powi(2) + txy * txy).sqrt();
-            let s2 = c - rad;
+            let vm = unilateral_fem::von_mises(*s);
+            let (_, s2) = unilateral_fem::principal(*s);
             let mk = |value: f64| ElementValue {
                 element: pl.element,
                 name: names.element(pl.element),

@@ -41,6 +41,7 @@ mod elements;
 mod error;
 mod model;
 mod results;
+mod stress;
 
 pub use condense::{check_memory, dense_condensation_bytes, machine_memory, CondensationStats};
 pub use error::{DofLabel, FemError, FreeDof};
@@ -53,3 +54,4 @@ pub use results::{
     Condensed, ContactLoadVector, ContactSolution, DiagramPoint, Equilibrium, LineResult,
     PlaneResult, Reaction, Results, DIAGRAM_SAMPLES,
 };
+pub use stress::{principal, von_mises};

@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 
 use unilateral_analysis::Analysis;
 use unilateral_contact::{PairResult, PairState};
-use unilateral_fem::{Element, Endpoint, Model, Results};
+use unilateral_fem::{von_mises, Element, Endpoint, Model, Results};
 
 /// Name of the collection file written by [`write_vtk_for`].
 pub const PVD_FILE: &str = "unilateral.pvd";
@@ -408,11 +408,6 @@ fn cell_results(s: &mut String, model: &Model, r: &Results) {
     f64_array(s, "axial_force", &[], line.iter().map(|v| [v[0]]));
     f64_array(s, "max_abs_moment", &[], line.iter().map(|v| [v[1]]));
     f64_array(s, "max_abs_shear", &[], line.iter().map(|v| [v[2]]));
-}
-
-/// Von Mises stress of `[σxx, σyy, τxy, σzz]`.
-fn von_mises([sx, sy, txy, sz]: [f64; 4]) -> f64 {
-    (0.5 * ((sx - sy).powi(2) + (sy - sz).powi(2) + (sz - sx).powi(2)) + 3.0 * txy * txy).sqrt()
 }
 
 /// The parts of a pairs file that do not change along the path.

@@ -36,14 +36,10 @@ pub fn nice_floor(v: f64) -> f64 {
 }
 
 fn stress_value(s: &[f64; 4], c: StressComponent) -> f64 {
-    let [sx, sy, txy, sz] = *s;
     match c {
-        StressComponent::Sxx => sx,
-        StressComponent::Syy => sy,
-        StressComponent::VonMises => {
-            (0.5 * ((sx - sy).powi(2) + (sy - sz).powi(2) + (sz - sx).powi(2)) + 3.0 * txy * txy)
-                .sqrt()
-        }
+        StressComponent::Sxx => s[0],
+        StressComponent::Syy => s[1],
+        StressComponent::VonMises => unilateral_fem::von_mises(*s),
     }
 }
 
