@@ -331,34 +331,8 @@ fn the_heated_beam_gives_the_same_answer_in_any_units() {
 /// x = 10, under its weight q = 250 kN/m (constant) and heated uniformly by ΔT = 50 K·p
 /// (variable); E = 2.1e11 Pa, A = 0.01 m², I = 1e-4 m⁴, α = 1.2e-5 /K.
 fn heated_beam(divisions: usize) -> Model {
-    let mut m = Model::new();
-    let nodes: Vec<_> = (0..=divisions)
-        .map(|i| m.add_node(10.0 * i as f64 / divisions as f64, 0.0))
-        .collect();
-    let sec = FrameSection::new(2.1e11, 0.01, 1e-4).with_alpha(1.2e-5);
-    for w in nodes.windows(2) {
-        let e = m.add_frame(w[0], w[1], sec);
-        m.add_load(
-            LoadGroup::Constant,
-            Load::Distributed {
-                element: e,
-                start: [0.0, -2.5e5],
-                end: [0.0, -2.5e5],
-                frame: LoadFrame::Global,
-            },
-        );
-        m.add_load(
-            LoadGroup::Variable,
-            Load::Temperature {
-                element: e,
-                uniform: 50.0,
-                gradient: 0.0,
-            },
-        );
-    }
-    m.pin(nodes[0]);
-    m.add_contact_pair(ContactPairSpec::to_ground(nodes[divisions], [0.0, 1.0]).friction(0.3));
-    m
+    // ×1.0 is exact: the same numbers as written out in N and m.
+    heated_beam_in(divisions, 1.0, 1.0)
 }
 
 #[test]
