@@ -63,14 +63,14 @@ impl ReportArgs {
         Ok(())
     }
 
-    pub(crate) fn options(&self, title: Option<String>) -> unilateral_report::ReportOptions {
-        unilateral_report::ReportOptions {
+    pub(crate) fn options(&self, title: Option<String>) -> unilateral_output::ReportOptions {
+        unilateral_output::ReportOptions {
             pairs: self.report_pairs.clone(),
             moments: self.moments,
             stress: match self.stress {
-                StressArg::Vm => unilateral_report::StressComponent::VonMises,
-                StressArg::Sxx => unilateral_report::StressComponent::Sxx,
-                StressArg::Syy => unilateral_report::StressComponent::Syy,
+                StressArg::Vm => unilateral_output::StressComponent::VonMises,
+                StressArg::Sxx => unilateral_output::StressComponent::Sxx,
+                StressArg::Syy => unilateral_output::StressComponent::Syy,
             },
             title,
         }

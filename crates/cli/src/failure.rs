@@ -123,10 +123,10 @@ pub(crate) fn lcp_failure(file: &Path, e: &unilateral_lcp::LcpError) -> Failure 
 }
 
 /// A report that could not be written: the directory named on the command line.
-pub(crate) fn report_failure(e: &unilateral_report::ReportError) -> Failure {
+pub(crate) fn report_failure(e: &unilateral_output::ReportError) -> Failure {
     match e {
-        unilateral_report::ReportError::Io { .. } => Failure::Input(e.to_string()),
-        unilateral_report::ReportError::NonFinite { .. } => Failure::Internal(e.to_string()),
+        unilateral_output::ReportError::Io { .. } => Failure::Input(e.to_string()),
+        unilateral_output::ReportError::NonFinite { .. } => Failure::Internal(e.to_string()),
     }
 }
 
@@ -180,8 +180,8 @@ pub(crate) fn lcp_status_failure(
 }
 
 /// A non-finite result is the program's fault: exit 1.
-impl From<unilateral_io::NonFiniteOutput> for Failure {
-    fn from(e: unilateral_io::NonFiniteOutput) -> Self {
+impl From<unilateral_output::NonFiniteOutput> for Failure {
+    fn from(e: unilateral_output::NonFiniteOutput) -> Self {
         Failure::Internal(e.to_string())
     }
 }
@@ -407,7 +407,7 @@ mod tests {
 
     #[test]
     fn a_report_that_cannot_be_written_is_the_users_a_non_finite_picture_the_programs() {
-        let io = unilateral_report::ReportError::Io {
+        let io = unilateral_output::ReportError::Io {
             path: PathBuf::from("/no/such/dir/forces.svg"),
             source: std::io::Error::from(std::io::ErrorKind::NotFound),
         };
@@ -415,7 +415,7 @@ mod tests {
         let msg = f.message();
         assert_eq!(f.exit_code(), 2, "{msg}");
         assert!(msg.contains("/no/such/dir/forces.svg"), "{msg}");
-        let nan = unilateral_report::ReportError::NonFinite {
+        let nan = unilateral_output::ReportError::NonFinite {
             file: "forces.svg",
             token: "NaN".into(),
         };

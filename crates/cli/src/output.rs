@@ -35,10 +35,12 @@ pub(crate) fn report_files(
     written: std::io::Result<Vec<PathBuf>>,
     dir: &Path,
 ) -> Result<(), Failure> {
-    let files = written.map_err(|e| match unilateral_io::NonFiniteOutput::in_io_error(&e) {
-        Some(n) => Failure::Internal(n.to_string()),
-        None => Failure::Input(format!("cannot write into {}: {e}", dir.display())),
-    })?;
+    let files = written.map_err(
+        |e| match unilateral_output::NonFiniteOutput::in_io_error(&e) {
+            Some(n) => Failure::Internal(n.to_string()),
+            None => Failure::Input(format!("cannot write into {}: {e}", dir.display())),
+        },
+    )?;
     for f in files {
         eprintln!("wrote {}", f.display());
     }

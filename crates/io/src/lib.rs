@@ -16,31 +16,24 @@
 //!
 //! Indices in key paths and messages are 1-based, as in the paper.
 //!
-//! The writers (summaries, JSON documents, CSV tables, VTK files) never emit a non-finite
-//! number: they return a [`NonFiniteOutput`] instead, an internal failure (the program's
-//! fault, exit status 1), since the readers accept only finite data.
+//! Readers only: the answers are turned into files by `unilateral-output`, which this crate
+//! does not depend on.
 
 #![warn(missing_docs)]
 
 mod dat;
 mod error;
-mod finite;
 mod json;
 mod model;
 mod mtx;
-mod output;
 mod reader;
 mod text;
 mod toml_tree;
 mod tree;
-mod vtk;
 mod zone;
 
 pub use dat::{read_fc2d, read_siconos_lcp, Fc2dProblem};
 pub use error::{InputError, InputErrorKind, Location};
-pub use finite::NonFiniteOutput;
 pub use model::*;
 pub use mtx::read_matrix_market;
-pub use output::*;
-pub use vtk::{write_vtk_for, PVD_FILE};
 pub use zone::{read_contact_zone, read_lcp, ContactZoneProblem};

@@ -13,10 +13,10 @@ pub(crate) fn run(args: LcpArgs) -> Result<(), Failure> {
         .map_err(|e| lcp_failure(&file, &e))?;
     if json.as_deref() != Some(Path::new("-")) {
         let title = format!("{} (n = {})", file.display(), lcp.q.len());
-        print!("{}", unilateral_io::lcp_summary(&sol, &title)?);
+        print!("{}", unilateral_output::lcp_summary(&sol, &title)?);
     }
     if let Some(out) = json {
-        write_json(&out, &unilateral_io::lcp_json(&sol)?)?;
+        write_json(&out, &unilateral_output::lcp_json(&sol)?)?;
     }
     lcp_status_failure(&file, sol.status).map_or(Ok(()), Err)
 }

@@ -26,8 +26,8 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
 /// the step every kind of problem shares.
 fn write_outputs(
     args: &SolveArgs,
-    summary: impl FnOnce() -> Result<String, unilateral_io::NonFiniteOutput>,
-    json: impl FnOnce() -> Result<serde_json::Value, unilateral_io::NonFiniteOutput>,
+    summary: impl FnOnce() -> Result<String, unilateral_output::NonFiniteOutput>,
+    json: impl FnOnce() -> Result<serde_json::Value, unilateral_output::NonFiniteOutput>,
     csv: impl FnOnce(&Path) -> std::io::Result<Vec<PathBuf>>,
 ) -> Result<(), Failure> {
     if args.json.as_deref() != Some(Path::new("-")) {
@@ -59,9 +59,9 @@ fn contact_zone(
     );
     write_outputs(
         args,
-        || unilateral_io::contact_summary(&sol, &title),
-        || unilateral_io::contact_json(&sol),
-        |dir| unilateral_io::write_contact_csv(&sol, dir),
+        || unilateral_output::contact_summary(&sol, &title),
+        || unilateral_output::contact_json(&sol),
+        |dir| unilateral_output::write_contact_csv(&sol, dir),
     )?;
     if args.vtk.is_some() {
         return Err(Failure::Input(
@@ -71,7 +71,7 @@ fn contact_zone(
     if let Some(dir) = &args.report {
         args.report_args.check(&sol.pairs)?;
         let files =
-            unilateral_report::write_path_report(&sol, dir, &args.report_args.options(None))
+            unilateral_output::write_path_report(&sol, dir, &args.report_args.options(None))
                 .map_err(|e| report_failure(&e))?;
         report_files(Ok(files), dir)?;
     }
@@ -119,17 +119,20 @@ fn structural(
     );
     write_outputs(
         args,
-        || unilateral_io::structural_summary(&a, &title),
-        || unilateral_io::structural_json(&a),
-        |dir| unilateral_io::write_structural_csv(&a, dir),
+        || unilateral_output::structural_summary(&a, &title),
+        || unilateral_output::structural_json(&a),
+        |dir| unilateral_output::write_structural_csv(&a, dir),
     )?;
     if let Some(dir) = &args.vtk {
-        report_files(unilateral_io::write_vtk_for(&problem.model, &a, dir), dir)?;
+        report_files(
+            unilateral_output::write_vtk_for(&problem.model, &a, dir),
+            dir,
+        )?;
     }
     if let Some(dir) = &args.report {
         args.report_args.check(&a.solution.pairs)?;
         let options = args.report_args.options(problem.title.clone());
-        let files = unilateral_report::write_report_for(&problem.model, &a, dir, &options)
+        let files = unilateral_output::write_report_for(&problem.model, &a, dir, &options)
             .map_err(|e| report_failure(&e))?;
         report_files(Ok(files), dir)?;
     }

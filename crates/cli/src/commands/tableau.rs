@@ -14,7 +14,7 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
     let tables = sol.tableaux(steps);
     let label = |v| sol.lcp.label(v);
     if let Some(out) = &json {
-        write_json(out, &unilateral_io::tableaux_json(&tables, &label)?)?;
+        write_json(out, &unilateral_output::tableaux_json(&tables, &label)?)?;
     }
     if json.as_deref() != Some(Path::new("-")) {
         println!(
@@ -23,7 +23,7 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
             problem.settings.tightening
         );
         for t in &tables {
-            println!("{}", unilateral_io::tableau_text(t, &label)?);
+            println!("{}", unilateral_output::tableau_text(t, &label)?);
         }
         println!("{}", sol.outcome.reading(problem.settings.target));
     }

@@ -20,9 +20,12 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Duration;
 
 use unilateral_io::{
-    contact_json, contact_summary, lcp_json, lcp_summary, read_contact_zone, read_fc2d, read_lcp,
-    read_matrix_market, read_problem, read_siconos_lcp, structural_json, structural_summary,
-    write_contact_csv, write_structural_csv, write_vtk_for, InputError, Problem,
+    read_contact_zone, read_fc2d, read_lcp, read_matrix_market, read_problem, read_siconos_lcp,
+    InputError, Problem,
+};
+use unilateral_output::{
+    contact_json, contact_summary, lcp_json, lcp_summary, structural_json, structural_summary,
+    write_contact_csv, write_structural_csv, write_vtk_for,
 };
 
 fn repo() -> PathBuf {

@@ -9,4 +9,3 @@ mod model_bad;
 mod model_read;
 mod readers;
 mod siconos_data;
-mod vtk;

@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 
 use unilateral_analysis::{analyze_named, Analysis, Names};
 use unilateral_fem::{Element, Endpoint, Model};
-use unilateral_io::{read_problem, write_vtk_for, Problem, PVD_FILE};
+use unilateral_io::{read_problem, Problem};
+use unilateral_output::{write_vtk_for, PVD_FILE};
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -661,24 +662,24 @@ fn refuses_a_non_finite_result() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("vtk");
     let e = write_vtk_for(&model, &bad, &out).unwrap_err();
-    let inner = unilateral_io::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
+    let inner = unilateral_output::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
     assert_eq!(inner.field, "nodes[2].uy");
     assert!(inner.value.is_nan());
     assert!(!out.exists() || std::fs::read_dir(&out).unwrap().next().is_none());
     assert_eq!(
-        unilateral_io::structural_json(&bad).unwrap_err().field,
+        unilateral_output::structural_json(&bad).unwrap_err().field,
         "nodes[2].uy"
     );
     assert_eq!(
-        unilateral_io::structural_summary(&bad, "t")
+        unilateral_output::structural_summary(&bad, "t")
             .unwrap_err()
             .field,
         "nodes[2].uy"
     );
     let csv = dir.path().join("csv");
-    let e = unilateral_io::write_structural_csv(&bad, &csv).unwrap_err();
+    let e = unilateral_output::write_structural_csv(&bad, &csv).unwrap_err();
     assert!(
-        unilateral_io::NonFiniteOutput::in_io_error(&e).is_some(),
+        unilateral_output::NonFiniteOutput::in_io_error(&e).is_some(),
         "{e}"
     );
     assert!(!csv.exists());

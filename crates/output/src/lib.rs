@@ -1,5 +1,10 @@
-//! # unilateral-report — pictures and reports of a contact analysis
+//! # unilateral-output — the answers turned into files
 //!
+//! * the summary, the JSON document and the CSV tables of a contact-zone solve, a structural
+//!   analysis, the Lemke tableaux and a plain LCP ([`contact_summary`], [`structural_json`],
+//!   [`write_structural_csv`], …) and ParaView files over the load path ([`write_vtk_for`]);
+//!   none of them ever writes a number that is not finite: they return a [`NonFiniteOutput`]
+//!   instead (an internal failure: the readers accept only finite data);
 //! * load-path charts ([`load_path_svgs`]): the forces `x_n`, `x_t` and the mutual
 //!   displacements `z_n`, `z_t` of the pairs against the load `p`, one small panel per pair,
 //!   every event marked and numbered — the working scheme changing as the load grows;
@@ -27,9 +32,16 @@ use unilateral_contact::ContactSolution;
 use unilateral_fem::Model;
 
 mod chart;
+mod documents;
+mod finite;
 pub mod font;
 mod structure;
 pub mod svg;
+mod vtk;
+
+pub use documents::*;
+pub use finite::NonFiniteOutput;
+pub use vtk::{write_vtk_for, PVD_FILE};
 
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};
 pub use structure::state_style;

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use unilateral_analysis::{analyze_named, Names};
 use unilateral_io::Problem;
-use unilateral_report::{write_path_report, write_report, write_report_for, ReportOptions};
+use unilateral_output::{write_path_report, write_report, write_report_for, ReportOptions};
 
 /// A small XML well-formedness checker: elements nest and close, attributes are quoted and
 /// unique, entities are known, there is one root element. Returns the element names in order.
@@ -245,7 +245,7 @@ fn example3_selected_pairs_and_sigma_xx() {
                 "left.1".into(),
                 "no-such-pair".into(),
             ]),
-            stress: unilateral_report::StressComponent::Sxx,
+            stress: unilateral_output::StressComponent::Sxx,
             ..Default::default()
         },
     );

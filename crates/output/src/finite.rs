@@ -218,9 +218,10 @@ pub(crate) fn tableaux(ts: &[Tableau]) -> Result<(), NonFiniteOutput> {
 mod tests {
     use std::path::Path;
 
+    use unilateral_io::{read_contact_zone, read_lcp};
+
     use crate::{
-        contact_json, contact_summary, lcp_json, lcp_summary, read_contact_zone, read_lcp,
-        write_contact_csv, NonFiniteOutput,
+        contact_json, contact_summary, lcp_json, lcp_summary, write_contact_csv, NonFiniteOutput,
     };
 
     fn good(name: &str) -> std::path::PathBuf {

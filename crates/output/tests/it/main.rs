@@ -1,0 +1,5 @@
+//! The integration tests of `unilateral-output`, as modules of one test binary: one build and
+//! one link for all of them.
+
+mod examples;
+mod vtk;
