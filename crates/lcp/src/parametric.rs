@@ -2,6 +2,7 @@
 //! (`formulation.md` §4), and the removal of the artificial tightening.
 
 use crate::basis::Basis;
+use crate::columns::Columns;
 use crate::enumerate::enumerate_first;
 use crate::lemke::{lemke_run, solve_lcp, LemkeOutcome};
 use crate::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
@@ -533,32 +534,9 @@ fn start_basis(
         let h0: Vec<f64> = h.iter().zip(dir).map(|(a, e)| a + t0 * e).collect();
         let g: Vec<f64> = dir.iter().map(|e| -e).collect();
         let cols_t = prep.columns(&h0, &g);
-        let tol = Tolerances {
-            pivot: settings.pivot_tol(),
-            value: 1e-13,
-        };
-        let mut piv = Pivoter::new(
-            &cols_t,
-            Basis::slack(n),
-            tol,
-            settings.priority(n),
-            settings.refactor_interval,
-        );
-        let mut records = Vec::new();
-        let mut crossed = None;
-        let (ending, entering) = piv.run(
-            2 * n,
-            Some((t0, true)),
-            settings.cap(n),
-            &mut records,
-            &mut crossed,
-        );
-        pivots += piv.pivots;
-        if let Ending::TargetReached = ending {
-            let mut slots = piv.basis.slot_var.clone();
-            if let Some(ds) = slots.iter().position(|&v| v == 2 * n) {
-                slots[ds] = entering;
-            }
+        let (reached, spent) = drive_to_zero(&cols_t, Basis::slack(n), t0, settings, n);
+        pivots += spent;
+        if let Some(slots) = reached {
             if let Some(b) = feasible(slots) {
                 return (Some(b), pivots);
             }
@@ -735,12 +713,32 @@ fn remove_tightening(
     let g: Vec<f64> = cov.iter().map(|c| -c).collect();
     let cols_c = prep.columns(&h, &g);
     let basis = Basis::from_slots(&cols_c, slots).ok()?;
+    let (reached, spent) = drive_to_zero(&cols_c, basis, c0, settings, n);
+    let final_slots = reached?;
+    let basis = Basis::from_slots(&cols, final_slots.clone()).ok()?;
+    let beta = basis.solve(&cols, &cols.h);
+    let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp(&beta)));
+    nonnegative(x, z, spent)
+}
+
+/// Drives the auxiliary variable of `cols` (the driver, index `2n`, whose column is `g`) from
+/// `t0` down to zero by complementary pivots from `basis`: the phase that both finds the start
+/// at `p = 0` and removes the tightening. Returns the complementary basis reached (the driver
+/// replaced by the last entering column), `None` when the drive stops short of zero, and the
+/// pivots spent either way.
+fn drive_to_zero(
+    cols: &Columns,
+    basis: Basis,
+    t0: f64,
+    settings: &Settings,
+    n: usize,
+) -> (Option<Vec<usize>>, usize) {
     let tol = Tolerances {
         pivot: settings.pivot_tol(),
         value: 1e-13,
     };
     let mut piv = Pivoter::new(
-        &cols_c,
+        cols,
         basis,
         tol,
         settings.priority(n),
@@ -750,23 +748,19 @@ fn remove_tightening(
     let mut crossed = None;
     let (ending, entering) = piv.run(
         2 * n,
-        Some((c0, true)),
+        Some((t0, true)),
         settings.cap(n),
         &mut records,
         &mut crossed,
     );
     let Ending::TargetReached = ending else {
-        return None;
+        return (None, piv.pivots);
     };
-    // The final complementary basis: the driver replaced by the entering column.
-    let mut final_slots = piv.basis.slot_var.clone();
-    if let Some(ds) = final_slots.iter().position(|&v| v == 2 * n) {
-        final_slots[ds] = entering;
+    let mut slots = piv.basis.slot_var.clone();
+    if let Some(ds) = slots.iter().position(|&v| v == 2 * n) {
+        slots[ds] = entering;
     }
-    let basis = Basis::from_slots(&cols, final_slots.clone()).ok()?;
-    let beta = basis.solve(&cols, &cols.h);
-    let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp(&beta)));
-    nonnegative(x, z, piv.pivots)
+    (Some(slots), piv.pivots)
 }
 
 fn clamp(beta: &[f64]) -> Vec<f64> {

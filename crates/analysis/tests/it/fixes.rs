@@ -21,6 +21,16 @@ const BEAM_L: f64 = 12.0;
 const BEAM_EI: f64 = 2.1e7;
 const BEAM_Q: f64 = 1.0e4;
 
+/// A nodal force `(fx, fy)` without moment.
+fn nodal(node: unilateral_fem::NodeId, fx: f64, fy: f64) -> Load {
+    Load::Nodal {
+        node,
+        fx,
+        fy,
+        m: 0.0,
+    }
+}
+
 /// Deflection (downwards positive) at `x` of a simply supported beam of span `L` under a unit
 /// uniform load, times EI: `x (L³ − 2 L x² + x³) / 24` (any beam-theory table).
 fn udl_deflection(x: f64) -> f64 {
@@ -197,15 +207,7 @@ fn two_cantilevers(g: f64, normal: [f64; 2]) -> (Model, [unilateral_fem::NodeId;
     m.fix(r0);
     m.fix(r1);
     m.add_contact_pair(ContactPairSpec::between(t0, t1, normal).gap(g));
-    m.add_load(
-        LoadGroup::Variable,
-        Load::Nodal {
-            node: t1,
-            fx: 0.0,
-            fy: -1.0,
-            m: 0.0,
-        },
-    );
+    m.add_load(LoadGroup::Variable, nodal(t1, 0.0, -1.0));
     (m, [t0, t1])
 }
 
@@ -388,25 +390,9 @@ fn slider(len: f64, e: f64, area: f64, inertia: f64, w: f64) -> Model {
     m.add_frame(a, b, FrameSection::new(e, area, inertia));
     for n in [a, b] {
         m.add_contact_pair(ContactPairSpec::to_ground(n, [0.0, 1.0]).friction(0.3));
-        m.add_load(
-            LoadGroup::Constant,
-            Load::Nodal {
-                node: n,
-                fx: 0.0,
-                fy: -w,
-                m: 0.0,
-            },
-        );
+        m.add_load(LoadGroup::Constant, nodal(n, 0.0, -w));
     }
-    m.add_load(
-        LoadGroup::Variable,
-        Load::Nodal {
-            node: b,
-            fx: 0.05 * w,
-            fy: 0.0,
-            m: 0.0,
-        },
-    );
+    m.add_load(LoadGroup::Variable, nodal(b, 0.05 * w, 0.0));
     m
 }
 
@@ -601,15 +587,7 @@ fn a_model_with_too_many_pairs_is_refused_before_allocating() {
     for &nd in &nodes {
         m.add_contact_pair(ContactPairSpec::to_ground(nd, [0.0, 1.0]));
     }
-    m.add_load(
-        LoadGroup::Variable,
-        Load::Nodal {
-            node: nodes[3],
-            fx: 0.0,
-            fy: -1.0,
-            m: 0.0,
-        },
-    );
+    m.add_load(LoadGroup::Variable, nodal(nodes[3], 0.0, -1.0));
     let r = std::panic::catch_unwind(|| analyze(&m, &SolveSettings::default()));
     let r = r.expect("no panic");
     let e = r.expect_err("refused");
@@ -649,25 +627,9 @@ fn a_constant_load_that_pulls_every_pair_apart_is_diagnosed() {
                 .friction(0.3)
                 .name(name),
         );
-        m.add_load(
-            LoadGroup::Constant,
-            Load::Nodal {
-                node: n,
-                fx: 0.0,
-                fy: -1e3,
-                m: 0.0,
-            },
-        );
+        m.add_load(LoadGroup::Constant, nodal(n, 0.0, -1e3));
     }
-    m.add_load(
-        LoadGroup::Variable,
-        Load::Nodal {
-            node: b,
-            fx: 1.0,
-            fy: 0.0,
-            m: 0.0,
-        },
-    );
+    m.add_load(LoadGroup::Variable, nodal(b, 1.0, 0.0));
     let e = analyze(&m, &SolveSettings::default()).expect_err("no equilibrium at p = 0");
     let msg = e.to_string();
     println!("{msg}");
@@ -688,24 +650,8 @@ fn a_constant_load_that_pulls_every_pair_apart_is_diagnosed() {
     m.add_frame(a, b, FrameSection::new(1e7, 1.0, 1.0));
     m.fix(a);
     m.add_contact_pair(ContactPairSpec::to_ground(b, [0.0, -1.0]).friction(0.3));
-    m.add_load(
-        LoadGroup::Constant,
-        Load::Nodal {
-            node: b,
-            fx: 0.0,
-            fy: -1e3,
-            m: 0.0,
-        },
-    );
-    m.add_load(
-        LoadGroup::Variable,
-        Load::Nodal {
-            node: b,
-            fx: 1.0,
-            fy: 0.0,
-            m: 0.0,
-        },
-    );
+    m.add_load(LoadGroup::Constant, nodal(b, 0.0, -1e3));
+    m.add_load(LoadGroup::Variable, nodal(b, 1.0, 0.0));
     let an = analyze(&m, &SolveSettings::default()).expect("held by its support");
     let pr = &an.solution.pairs[0];
     assert_eq!(pr.state, PairState::Open);
@@ -779,15 +725,7 @@ fn values_that_overflow_are_bad_input_not_infinities() {
     m.add_frame(a, b, FrameSection::new(1e308, 1e10, 1.0));
     m.fix(a);
     m.add_contact_pair(ContactPairSpec::to_ground(b, [0.0, 1.0]));
-    m.add_load(
-        LoadGroup::Variable,
-        Load::Nodal {
-            node: b,
-            fx: 0.0,
-            fy: -1.0,
-            m: 0.0,
-        },
-    );
+    m.add_load(LoadGroup::Variable, nodal(b, 0.0, -1.0));
     let e = analyze(&m, &SolveSettings::default()).expect_err("overflow");
     let msg = e.to_string();
     assert!(

@@ -209,25 +209,16 @@ proptest! {
         f in log_factor(),
         u in log_factor(),
     ) {
-        let k = 2 * m;
-        let bm = |i: usize, j: usize| b[i * 6 + j] as f64 / 4.0;
-        // Positive definite (B Bᵀ + I/4): with a singular R the solution is not unique (an open
-        // pair free to slide), and which of the solutions a path reaches may rightly change with
-        // one rounding; the determinate slider of `units_and_hostile` covers singular R.
-        let r = Mat::<f64>::from_fn(k, k, |i, j| {
-            (0..k).map(|l| bm(i, l) * bm(j, l)).sum::<f64>() + if i == j { 0.25 } else { 0.0 }
-        });
-        let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| r[(r0 + i, c0 + j)]);
-        let mut zone = ContactZone::new(block(0, 0), block(m, m));
-        zone.rnt = block(0, m);
-        zone.rtn = block(m, 0);
-        zone.friction = friction[..m].iter().map(|&v| v as f64 / 8.0).collect();
-        zone.gap = gaps[..m].iter().map(|&v| v as f64 / 16.0).collect();
-        let l = |i: usize| loads[i] as f64 / 4.0;
-        zone.constant.normal = (0..m).map(l).collect();
-        zone.constant.tangential = (0..m).map(|i| l(3 + i)).collect();
-        zone.variable.normal = (0..m).map(|i| l(6 + i)).collect();
-        zone.variable.tangential = (0..m).map(|i| l(9 + i)).collect();
+        // Positive definite: with a singular R the solution is not unique (an open pair free
+        // to slide), and which of the solutions a path reaches may rightly change with one
+        // rounding; the determinate slider of `units_and_hostile` covers singular R.
+        let zone = crate::common::definite_zone(
+            m,
+            |i, j| b[i * 6 + j] as f64 / 4.0,
+            friction[..m].iter().map(|&v| v as f64 / 8.0).collect(),
+            gaps[..m].iter().map(|&v| v as f64 / 16.0).collect(),
+            |kind, i| loads[3 * kind + i] as f64 / 4.0,
+        );
         let settings = SolveSettings {
             tightening: c,
             target: 2.0,

@@ -193,10 +193,8 @@ mod campaign {
     use super::*;
     use proptest::prelude::*;
 
-    /// A symmetric positive definite `2m × 2m` stiffness `B Bᵀ + I/4` (small integers / 4),
-    /// split into the blocks. Definite: a structure held by its supports, not a mechanism (with a
-    /// singular `R` the exact data can have solutions only at numerically singular bases, with
-    /// displacements of 1e15, which no basis method in floating point can be asked to find).
+    /// The stiffness `B Bᵀ + I/4` of small integers / 4 (see `common::definite_zone`), the
+    /// loads in eighths.
     pub fn zone_from(
         m: usize,
         b: &[i32],
@@ -204,23 +202,13 @@ mod campaign {
         gaps: &[f64],
         loads: &[i32],
     ) -> ContactZone {
-        let k = 2 * m;
-        let bm = |i: usize, j: usize| b[i * k + j] as f64 / 4.0;
-        let r = Mat::<f64>::from_fn(k, k, |i, j| {
-            (0..k).map(|l| bm(i, l) * bm(j, l)).sum::<f64>() + if i == j { 0.25 } else { 0.0 }
-        });
-        let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| r[(r0 + i, c0 + j)]);
-        let mut zone = ContactZone::new(block(0, 0), block(m, m));
-        zone.rnt = block(0, m);
-        zone.rtn = block(m, 0);
-        zone.friction = friction[..m].to_vec();
-        zone.gap = gaps[..m].to_vec();
-        let l = |i: usize| loads[i] as f64 / 8.0;
-        zone.constant.normal = (0..m).map(l).collect();
-        zone.constant.tangential = (0..m).map(|i| l(m + i)).collect();
-        zone.variable.normal = (0..m).map(|i| l(2 * m + i)).collect();
-        zone.variable.tangential = (0..m).map(|i| l(3 * m + i)).collect();
-        zone
+        crate::common::definite_zone(
+            m,
+            |i, j| b[i * 2 * m + j] as f64 / 4.0,
+            friction[..m].to_vec(),
+            gaps[..m].to_vec(),
+            |kind, i| loads[kind * m + i] as f64 / 8.0,
+        )
     }
 
     proptest! {

@@ -1,0 +1,34 @@
+//! Fixtures shared by the contact tests.
+
+use faer::Mat;
+use unilateral_contact::ContactZone;
+
+/// A contact zone of `m` pairs whose full stiffness `[[Rnn, Rnt], [Rtn, Rtt]]` is the symmetric
+/// positive definite `B Bᵀ + I/4` for the `2m × 2m` matrix `B` given entry by entry (`b(i, j)`).
+/// Definite: a structure held by its supports, not a mechanism — with a singular `R` the
+/// solution need not be unique, and the exact data can have solutions only at numerically
+/// singular bases. `load(kind, i)` gives the loads of pair `i`: kind 0 constant normal,
+/// 1 constant tangential, 2 variable normal, 3 variable tangential.
+pub fn definite_zone(
+    m: usize,
+    b: impl Fn(usize, usize) -> f64,
+    friction: Vec<f64>,
+    gap: Vec<f64>,
+    load: impl Fn(usize, usize) -> f64,
+) -> ContactZone {
+    let k = 2 * m;
+    let r = Mat::<f64>::from_fn(k, k, |i, j| {
+        (0..k).map(|l| b(i, l) * b(j, l)).sum::<f64>() + if i == j { 0.25 } else { 0.0 }
+    });
+    let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| r[(r0 + i, c0 + j)]);
+    let mut zone = ContactZone::new(block(0, 0), block(m, m));
+    zone.rnt = block(0, m);
+    zone.rtn = block(m, 0);
+    zone.friction = friction;
+    zone.gap = gap;
+    zone.constant.normal = (0..m).map(|i| load(0, i)).collect();
+    zone.constant.tangential = (0..m).map(|i| load(1, i)).collect();
+    zone.variable.normal = (0..m).map(|i| load(2, i)).collect();
+    zone.variable.tangential = (0..m).map(|i| load(3, i)).collect();
+    zone
+}
