@@ -369,7 +369,10 @@ mod tests {
                 what: "q",
                 index: "2".into(),
             },
-            LcpError::Settings("covering must be positive".into()),
+            LcpError::Settings(unilateral_lcp::SettingsError::Covering {
+                entry: 0,
+                value: 0.0,
+            }),
             LcpError::Empty,
         ] {
             check(lcp_failure(&file(), &e), 2);

@@ -1,81 +1,11 @@
 //! The standard LCP `w = M z + q` by Lemke's method with a covering vector, with fallbacks.
 
-use faer::Mat;
-
-use crate::basis::Basis;
-use crate::columns::Columns;
-use crate::enumerate::enumerate_first;
-use crate::pivot::{max_abs, Ending, Pivoter, Tolerances};
-use crate::prepare::{check_matrix, check_vector, Prepared};
-use crate::{Lcp, LcpError, Residual, Settings};
-
-/// How a standard LCP solve ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LcpStatus {
-    /// A solution, verified from the original data.
-    Solved,
-    /// Lemke's method ended on a secondary ray with every covering vector tried, and exhaustive
-    /// enumeration (for `n ≤ 16`) found no solution either.
-    Ray,
-    /// The pivot cap was reached.
-    IterationLimit,
-    /// A complementary basis was found but no point of it could be verified from the data
-    /// (its numbers overflow the floating-point range or its residuals are too large): an
-    /// internal failure of the engine, never a claim that no solution exists.
-    NumericalFailure,
-}
-
-impl LcpStatus {
-    /// The status as written in result files (`"solved"`, `"ray"`, `"iteration_limit"`).
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            LcpStatus::Solved => "solved",
-            LcpStatus::Ray => "ray",
-            LcpStatus::IterationLimit => "iteration_limit",
-            LcpStatus::NumericalFailure => "numerical_failure",
-        }
-    }
-}
-
-/// Which strategy produced the answer.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Strategy {
-    /// `q ≥ 0`: `z = 0` solves the problem.
-    Trivial,
-    /// Lemke's method with the named covering vector.
-    Lemke {
-        /// `"ones"`, `"user"`, `"graded"` or `"|q|"`.
-        covering: &'static str,
-    },
-    /// Exhaustive enumeration of complementary bases.
-    Enumeration,
-}
-
-/// A verified solution `(z, w)`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LcpPoint {
-    /// The unknown `z ≥ 0`.
-    pub z: Vec<f64>,
-    /// `w = M z + q ≥ 0`.
-    pub w: Vec<f64>,
-    /// Residuals computed from the original data.
-    pub residual: Residual,
-}
-
-/// The answer of [`solve_lcp`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct LcpSolution {
-    /// How the solve ended.
-    pub status: LcpStatus,
-    /// The solution when `status` is [`LcpStatus::Solved`].
-    pub point: Option<LcpPoint>,
-    /// Pivots over all attempts.
-    pub pivots: usize,
-    /// The strategy that produced the solution (or the last one tried).
-    pub strategy: Strategy,
-    /// What was tried, in order, and how each attempt ended.
-    pub attempts: Vec<String>,
-}
+use crate::pivoting::basis::Basis;
+use crate::pivoting::columns::Columns;
+use crate::pivoting::enumerate::enumerate_first;
+use crate::pivoting::pivot::{max_abs, Ending, Pivoter, Tolerances};
+use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
+use crate::{Lcp, LcpError, LcpPoint, LcpSolution, LcpStatus, Residual, Settings, Strategy};
 
 /// Solves `w = M z + q, w ≥ 0, z ≥ 0, wᵀz = 0`.
 ///
@@ -312,17 +242,4 @@ pub(crate) fn lemke_run(prep: &Prepared, q: &[f64], cov: &[f64], settings: &Sett
         outcome,
         pivots: piv.pivots,
     }
-}
-
-/// `w = q + M z` for a dense `M` (used by fallbacks).
-pub(crate) fn lcp_w(m: &Mat<f64>, q: &[f64], z: &[f64]) -> Vec<f64> {
-    let mut w = q.to_vec();
-    for (j, &zj) in z.iter().enumerate() {
-        if zj != 0.0 {
-            for (i, wi) in w.iter_mut().enumerate() {
-                *wi += m[(i, j)] * zj;
-            }
-        }
-    }
-    w
 }

@@ -5,8 +5,15 @@
 //! * the **standard LCP** `w = M z + q, w ≥ 0, z ≥ 0, wᵀz = 0` by Lemke's method with a covering
 //!   vector ([`solve_lcp`]), and
 //! * the **parametric LCP** `x = q0 + p·d + M z` followed from `p = 0` with the load parameter
-//!   `p` as the driving variable ([`follow_path`]): every pivot is one change of the basis,
-//!   and the result is the whole [`LoadPath`].
+//!   `p` as the driving variable ([`PathSolver`], built once from the problem, its options and
+//!   settings, which it validates and equilibrates): every pivot is one change of the basis,
+//!   the result is the whole [`LoadPath`], and the solver answers for any load on it
+//!   ([`PathSolver::solution_at`]) and shows its tableaux ([`PathSolver::tableaux`]).
+//!
+//! Files: the public types in `problem.rs`, `settings.rs`, `error.rs`, `solution.rs` (standard
+//! LCP) and `path.rs` (load path); the algorithms in `lemke.rs` and `parametric.rs` behind
+//! `solver.rs`; the crate-private pivoting machinery (equilibration, revised basis, ratio test,
+//! enumeration) in `pivoting/`.
 //!
 //! Ties in every ratio test are broken lexicographically, so degenerate problems do not cycle.
 //! The basis is kept in revised form: only the `k × k` kernel of non-slack basic columns is
@@ -31,31 +38,30 @@
 
 #![warn(missing_docs)]
 
-mod basis;
 pub mod binary;
-mod columns;
-mod enumerate;
 mod error;
-mod kernel;
 mod lemke;
 mod parametric;
-mod pivot;
-mod prepare;
+mod path;
+mod pivoting;
 mod problem;
 mod residual;
-mod scaling;
 mod settings;
+mod solution;
+mod solver;
 mod tableau;
 mod var;
 
-pub use error::LcpError;
-pub use lemke::{solve_lcp, LcpPoint, LcpSolution, LcpStatus, Strategy};
-pub use parametric::{
-    follow_path, solution_at, Breakpoint, Follow, LoadPath, MechanismMode, PathOptions, PathPoint,
-    PathStatus, Step, Tightening,
+pub use error::{LcpError, SettingsError};
+pub use lemke::solve_lcp;
+pub use path::{
+    Breakpoint, Follow, LoadPath, MechanismMode, PathOptions, PathPoint, PathStatus, Step,
+    Tightening,
 };
 pub use problem::{Lcp, ParametricLcp};
 pub use residual::Residual;
 pub use settings::{Settings, ACCEPT_RESIDUAL};
-pub use tableau::{tableaux, Tableau};
+pub use solution::{LcpPoint, LcpSolution, LcpStatus, Strategy};
+pub use solver::{follow_path, solution_at, tableaux, PathSolver};
+pub use tableau::Tableau;
 pub use var::Var;

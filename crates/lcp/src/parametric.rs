@@ -1,243 +1,20 @@
 //! The parametric Lemke method: the load parameter `p` is the driving variable
-//! (`formulation.md` §4), and the removal of the artificial tightening.
+//! (`formulation.md` §4), and the removal of the artificial tightening. The entry points are the
+//! methods of [`crate::PathSolver`], which validates and prepares the data once.
 
-use crate::basis::Basis;
-use crate::columns::Columns;
-use crate::enumerate::enumerate_first;
 use crate::lemke::{lemke_run, solve_lcp, LemkeOutcome};
-use crate::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
-use crate::prepare::{check_matrix, check_vector, Prepared};
-use crate::{Lcp, LcpError, LcpStatus, ParametricLcp, Residual, Settings, Var};
+use crate::pivoting::basis::Basis;
+use crate::pivoting::columns::Columns;
+use crate::pivoting::enumerate::enumerate_first;
+use crate::pivoting::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
+use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
+use crate::{
+    Breakpoint, Follow, Lcp, LcpError, LcpStatus, LoadPath, MechanismMode, ParametricLcp,
+    PathOptions, PathPoint, PathSolver, PathStatus, Residual, Settings, SettingsError, Step, Var,
+};
 
-/// How far the path is followed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Follow {
-    /// Stop when `p` reaches the target (Criterion 1).
-    #[default]
-    ToTarget,
-    /// Follow the path until a ray, a mechanism, a return to `p = 0` or the pivot cap.
-    ToEnd,
-}
-
-/// An artificial tightening `c·direction` added to `q0` so that the start is feasible; it is
-/// removed from every reported solution.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Tightening {
-    /// The amount `c ≥ 0`.
-    pub amount: f64,
-    /// The direction (all entries `≥ 0`), e.g. all ones.
-    pub direction: Vec<f64>,
-}
-
-/// Options of a path.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PathOptions {
-    /// The target load `p* > 0` at which the solution is reported.
-    pub target: f64,
-    /// How far the path is followed.
-    pub follow: Follow,
-    /// Optional artificial tightening.
-    pub tightening: Option<Tightening>,
-}
-
-impl Default for PathOptions {
-    fn default() -> Self {
-        Self {
-            target: 1.0,
-            follow: Follow::ToTarget,
-            tightening: None,
-        }
-    }
-}
-
-/// How the traced path ended.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PathStatus {
-    /// `p` reached the target (Criterion 1).
-    TargetReached,
-    /// The entering column has no positive entry and `p` grows without bound: the basis (the
-    /// working scheme) no longer changes for larger `p` (Criterion 2a).
-    Ray,
-    /// The entering variable grows without bound while `p` stays fixed: a mechanism forms at
-    /// `p_limit` (Criterion 2b).
-    Mechanism,
-    /// `p` left the basis: the path came back to `p = 0`.
-    ReturnedToZero,
-    /// The pivot cap was reached.
-    IterationLimit,
-    /// The problem at `p = 0` has no solution that Lemke's method (with fallbacks) finds.
-    NoSolutionAtStart,
-    /// A basis became numerically singular.
-    NumericalFailure,
-}
-
-impl PathStatus {
-    /// The status as written in result files.
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            PathStatus::TargetReached => "target_reached",
-            PathStatus::Ray => "ray",
-            PathStatus::Mechanism => "mechanism",
-            PathStatus::ReturnedToZero => "returned_to_zero",
-            PathStatus::IterationLimit => "iteration_limit",
-            PathStatus::NoSolutionAtStart => "no_solution_at_start",
-            PathStatus::NumericalFailure => "numerical_failure",
-        }
-    }
-}
-
-/// One pivot of the path: one change of the working scheme.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Step {
-    /// 1-based step number.
-    pub index: usize,
-    /// The load parameter after the step (with the tightening, as traced).
-    pub p: f64,
-    /// The variable that entered the basis.
-    pub entering: Var,
-    /// The variable that left the basis.
-    pub leaving: Var,
-    /// `p` decreased at this step: a turning point of the load path.
-    pub turning: bool,
-}
-
-/// A solution on the path, free of any tightening, verified from the original data.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PathPoint {
-    /// The load parameter.
-    pub p: f64,
-    /// `x = q0 + p·d + M z`.
-    pub x: Vec<f64>,
-    /// `z`.
-    pub z: Vec<f64>,
-    /// Residuals from the original data.
-    pub residual: Residual,
-    /// How the tightening was removed: `0` when the path's basis was already feasible without it,
-    /// else the number of pivots with the tightening as driving variable.
-    pub tightening_pivots: usize,
-    /// The solution had to be found by a fresh standard solve at this `p` (the path's basis could
-    /// not be freed of the tightening); it may lie on another branch when solutions are not unique.
-    pub fallback: bool,
-}
-
-/// The direction in which a mechanism moves (Criterion 2b), normalised to `max |dz| = 1`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct MechanismMode {
-    /// The variable that grows without bound.
-    pub entering: Var,
-    /// Rate of `z`.
-    pub dz: Vec<f64>,
-    /// Rate of `x`.
-    pub dx: Vec<f64>,
-}
-
-/// A breakpoint of the traced path: the load and the non-zero `z` there (with the tightening).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Breakpoint {
-    /// Load parameter.
-    pub p: f64,
-    /// Non-zero entries of `z`, `(index, value)`.
-    pub z: Vec<(usize, f64)>,
-}
-
-/// The whole load path of a parametric LCP.
-#[derive(Debug, Clone)]
-pub struct LoadPath {
-    /// How the traced path ended.
-    pub status: PathStatus,
-    /// Every pivot, in order.
-    pub steps: Vec<Step>,
-    /// The start (index 0) and the point after every step.
-    pub breakpoints: Vec<Breakpoint>,
-    /// The largest `p` reached on the traced path.
-    pub p_max: f64,
-    /// The limit load for [`PathStatus::Mechanism`].
-    pub p_limit: Option<f64>,
-    /// The mechanism's direction for [`PathStatus::Mechanism`].
-    pub mechanism: Option<MechanismMode>,
-    /// The variable entering on the last segment (for a ray: the one that grows without bound).
-    pub last_entering: Option<Var>,
-    /// The reported solution (at the target when it lies on the path, else at the end of the
-    /// path), without the tightening.
-    pub solution: Option<PathPoint>,
-    /// Pivots of the standard Lemke solve at `p = 0` when `q0` was not feasible.
-    pub start_pivots: usize,
-    /// Fresh factorisations of the basis during the path.
-    pub refactorizations: usize,
-    /// Set when the path traced with an artificial tightening ended in a mechanism at this load
-    /// although the real problem (without tightening) has a solution at the target: the
-    /// mechanism belongs to the tightening, not to the structure. The status is then
-    /// [`PathStatus::TargetReached`] and the solution comes from a fresh solve at the target
-    /// (`fallback` is set on it).
-    pub artificial_mechanism: Option<f64>,
-    pub(crate) start_slots: Vec<usize>,
-    pub(crate) records: Vec<(usize, usize)>,
-    /// The number of steps made before the load first reached the target (the target lies on
-    /// the segment after that many pivots), if it did.
-    pub target_segment: Option<usize>,
-}
-
-impl LoadPath {
-    /// `z` on the traced path (with the tightening) at load `p`, by linear interpolation between
-    /// the first pair of consecutive breakpoints whose loads bracket `p`.
-    pub fn traced_z_at(&self, p: f64, n: usize) -> Option<Vec<f64>> {
-        for w in self.breakpoints.windows(2) {
-            let (a, b) = (&w[0], &w[1]);
-            let (lo, hi) = if a.p <= b.p { (a.p, b.p) } else { (b.p, a.p) };
-            if p >= lo && p <= hi && hi > lo {
-                let s = (p - a.p) / (b.p - a.p);
-                let mut z = vec![0.0; n];
-                for &(i, v) in &a.z {
-                    z[i] += (1.0 - s) * v;
-                }
-                for &(i, v) in &b.z {
-                    z[i] += s * v;
-                }
-                return Some(z);
-            }
-        }
-        None
-    }
-
-    /// Total pivots of the path (without the start and the tightening removal).
-    pub fn pivots(&self) -> usize {
-        self.steps.len()
-    }
-
-    /// Slots (tableau rows → column) after `k` pivots.
-    pub(crate) fn slots_after(&self, k: usize) -> Vec<usize> {
-        let mut slots = self.start_slots.clone();
-        let mut pos = vec![usize::MAX; 2 * slots.len() + 1];
-        for (s, &v) in slots.iter().enumerate() {
-            pos[v] = s;
-        }
-        for &(e, l) in self.records.iter().take(k) {
-            let s = pos[l];
-            slots[s] = e;
-            pos[l] = usize::MAX;
-            pos[e] = s;
-        }
-        slots
-    }
-
-    /// Entering column of segment `k` (the segment after `k` pivots), if known.
-    pub(crate) fn segment_entering(&self, k: usize, n: usize) -> Option<usize> {
-        if k == 0 {
-            return Some(2 * n);
-        }
-        let (_, leaving) = *self.records.get(k - 1)?;
-        if leaving == 2 * n {
-            return None;
-        }
-        Some(if leaving < n {
-            leaving + n
-        } else {
-            leaving - n
-        })
-    }
-}
-
-fn validate(
+/// Checks the problem, the settings and the options; returns the order `n`.
+pub(crate) fn validate(
     problem: &ParametricLcp,
     options: &PathOptions,
     settings: &Settings,
@@ -246,78 +23,35 @@ fn validate(
     check_vector("q0", &problem.q0, n)?;
     check_vector("d", &problem.d, n)?;
     settings.validate(n)?;
-    if !(options.target.is_finite() && options.target > 0.0) {
-        return Err(LcpError::Settings(format!(
-            "target must be a finite number > 0, got {}",
-            options.target
-        )));
-    }
+    PathOptions::check_target(options.target)?;
     if let Some(t) = &options.tightening {
-        if !(t.amount.is_finite() && t.amount >= 0.0) {
-            return Err(LcpError::Settings(format!(
-                "tightening must be a finite number ≥ 0, got {}",
-                t.amount
-            )));
-        }
+        crate::Tightening::check_amount(t.amount)?;
         check_vector("tightening direction", &t.direction, n)?;
         if let Some(i) = t.direction.iter().position(|&v| v < 0.0) {
-            return Err(LcpError::Settings(format!(
-                "tightening direction entry {} is negative",
-                i + 1
-            )));
+            return Err(SettingsError::TighteningDirection(i + 1).into());
         }
     }
     Ok(n)
 }
 
-fn tightening_of(options: &PathOptions, n: usize) -> (f64, Vec<f64>) {
+/// The tightening's amount and direction (zero and a zero direction when there is none).
+pub(crate) fn tightening_of(options: &PathOptions, n: usize) -> (f64, Vec<f64>) {
     match &options.tightening {
         Some(t) if t.amount > 0.0 => (t.amount, t.direction.clone()),
         _ => (0.0, vec![0.0; n]),
     }
 }
 
-/// Follows the load path of `x = q0 + p·d + M z` from `p = 0` (`formulation.md` §4).
-///
-/// The start is the scheme at `p = 0`: the slack basis when `q0 (+ tightening) ≥ 0`, otherwise
-/// the solution of the `p = 0` problem by Lemke's method. Then `p` enters and every pivot is one
-/// change of the working scheme. The reported solution never contains the tightening: the last
-/// basis is evaluated without it, verified, and if needed the tightening is driven to zero by
-/// further pivots at fixed `p`.
-///
-/// ```
-/// use faer::mat;
-/// use unilateral_lcp::{follow_path, Follow, ParametricLcp, PathOptions, PathStatus, Settings, Tightening};
-///
-/// // The paper's Example 1 reduced to its normal rows: three supports, c = 1.
-/// let problem = ParametricLcp {
-///     m: mat![[0.1875, -0.375, 0.1875], [-0.375, 0.75, -0.375], [0.1875, -0.375, 0.1875]],
-///     q0: vec![0.0; 3],
-///     d: vec![-0.09375, 0.6875, 0.40625],
-/// };
-/// let options = PathOptions {
-///     target: 1.0,
-///     follow: Follow::ToEnd,
-///     tightening: Some(Tightening { amount: 1.0, direction: vec![1.0; 3] }),
-/// };
-/// let path = follow_path(&problem, &options, &Settings::default()).unwrap();
-/// assert_eq!(path.status, PathStatus::Ray);
-/// assert!((path.steps[0].p - 1.0 / 0.09375).abs() < 1e-12);
-/// let sol = path.solution.unwrap();
-/// assert!((sol.z[0] - 0.5).abs() < 1e-12 && (sol.x[1] - 0.5).abs() < 1e-12);
-/// ```
-pub fn follow_path(
-    problem: &ParametricLcp,
-    options: &PathOptions,
-    settings: &Settings,
-) -> Result<LoadPath, LcpError> {
-    let n = validate(problem, options, settings)?;
-    let prep = Prepared::new(&problem.m);
-    let (c0, cov) = tightening_of(options, n);
+/// The load path from `p = 0` (see [`PathSolver::follow`]).
+pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
+    let (problem, options, settings) = (solver.problem(), solver.options(), solver.settings());
+    let n = solver.order();
+    let prep = &solver.prep;
+    let (c0, cov) = (solver.c0, &solver.cov);
     let h: Vec<f64> = problem
         .q0
         .iter()
-        .zip(&cov)
+        .zip(cov)
         .map(|(q, c)| q + c0 * c)
         .collect();
     let cols = prep.columns(&h, &problem.d);
@@ -334,10 +68,10 @@ pub fn follow_path(
         (None, Some(c)) => c.clone(),
         (None, None) => vec![1.0; n],
     };
-    let (start_basis, start_pivots) = match start_basis(&prep, problem, &h, &phase1_dir, settings) {
+    let (start_basis, start_pivots) = match start_basis(prep, problem, &h, &phase1_dir, settings) {
         (Some(b), pivots) => (b, pivots),
         (None, start_pivots) => {
-            return Ok(LoadPath {
+            return LoadPath {
                 status: PathStatus::NoSolutionAtStart,
                 steps: vec![],
                 breakpoints: vec![],
@@ -352,7 +86,7 @@ pub fn follow_path(
                 start_slots: (0..n).collect(),
                 records: vec![],
                 target_segment: None,
-            })
+            }
         }
     };
     let start_slots = start_basis.slot_var.clone();
@@ -363,7 +97,7 @@ pub fn follow_path(
         priority,
         settings.refactor_interval,
     );
-    let start_z = basic_z(&prep, &piv.basis.slot_var, &cols.values(&piv.beta));
+    let start_z = basic_z(prep, &piv.basis.slot_var, &cols.values(&piv.beta));
     let mut records: Vec<PivotRecord> = Vec::new();
     let mut crossed = None;
     let stop = options.follow == Follow::ToTarget;
@@ -437,10 +171,10 @@ pub fn follow_path(
                 path.status = PathStatus::Mechanism;
                 let p_lim = piv.driver_value();
                 path.p_limit = Some(p_lim);
-                path.mechanism = Some(mechanism_mode(&prep, &piv, last_entering, &alpha));
+                path.mechanism = Some(mechanism_mode(prep, &piv, last_entering, &alpha));
                 match crossed {
                     Some(j) => Some((j, options.target)),
-                    None => last_segment_containing(&path, p_lim).map(|j| (j, p_lim)),
+                    None => path.last_segment_containing(p_lim).map(|j| (j, p_lim)),
                 }
             }
         }
@@ -448,7 +182,7 @@ pub fn follow_path(
             path.status = PathStatus::ReturnedToZero;
             match crossed {
                 Some(j) => Some((j, options.target)),
-                None => last_segment_containing(&path, 0.0).map(|j| (j, 0.0)),
+                None => path.last_segment_containing(0.0).map(|j| (j, 0.0)),
             }
         }
         Ending::IterationLimit => {
@@ -457,7 +191,7 @@ pub fn follow_path(
                 Some(j) => Some((j, options.target)),
                 None => {
                     let p_end = piv.driver_value();
-                    last_segment_containing(&path, p_end).map(|j| (j, p_end))
+                    path.last_segment_containing(p_end).map(|j| (j, p_end))
                 }
             }
         }
@@ -472,16 +206,16 @@ pub fn follow_path(
                 path.status = PathStatus::TargetReached;
                 path.artificial_mechanism = Some(p_lim);
                 path.solution = Some(pt);
-                return Ok(path);
+                return path;
             }
         }
     }
     if let Some((seg, p)) = report {
         // Only verified, finite points are reported (`solution_on_segment`); none at all when
         // the real problem (without tightening) has no solution there.
-        path.solution = solution_on_segment(problem, &prep, &path, seg, p, c0, &cov, settings);
+        path.solution = solution_on_segment(problem, prep, &path, seg, p, c0, cov, settings);
     }
-    Ok(path)
+    path
 }
 
 /// The complementary basis of the problem at `p = 0`, `x = h + M z` (`h = q0 + c·e`), and the
@@ -564,16 +298,6 @@ fn start_basis(
         }
     }
     (None, pivots)
-}
-
-/// The last segment whose traced loads contain `p` and along which `p` moves.
-fn last_segment_containing(path: &LoadPath, p: f64) -> Option<usize> {
-    let bps = &path.breakpoints;
-    (0..bps.len().saturating_sub(1)).rev().find(|&j| {
-        let (a, b) = (bps[j].p, bps[j + 1].p);
-        let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
-        hi > lo && p >= lo - 1e-12 * hi.abs().max(1.0) && p <= hi + 1e-12 * hi.abs().max(1.0)
-    })
 }
 
 fn basic_z(prep: &Prepared, slots: &[usize], beta: &[f64]) -> Vec<(usize, f64)> {
@@ -784,21 +508,9 @@ fn nonnegative(x: Vec<f64>, z: Vec<f64>, pivots: usize) -> Option<(Vec<f64>, Vec
     Some((x, z, pivots))
 }
 
-/// The solution without tightening at any `p` on a traced path (for example a load below the
-/// target, or a load on the ray's half-line beyond the last event).
-///
-/// Returns `None` when `p` is not on the traced path.
-pub fn solution_at(
-    problem: &ParametricLcp,
-    options: &PathOptions,
-    settings: &Settings,
-    path: &LoadPath,
-    p: f64,
-) -> Result<Option<PathPoint>, LcpError> {
-    let n = validate(problem, options, settings)?;
-    let prep = Prepared::new(&problem.m);
-    let (c0, cov) = tightening_of(options, n);
-    let seg = match last_segment_containing(path, p) {
+/// The solution without tightening at `p` on a traced path (see [`PathSolver::solution_at`]).
+pub(crate) fn point_at(solver: &PathSolver, path: &LoadPath, p: f64) -> Option<PathPoint> {
+    let seg = match path.last_segment_containing(p) {
         Some(j) if path.records.get(j).is_some() || j + 1 < path.breakpoints.len() => Some(j),
         _ => None,
     };
@@ -806,5 +518,16 @@ pub fn solution_at(
         (path.status == PathStatus::Ray && p >= path.breakpoints.last().map_or(0.0, |b| b.p))
             .then_some(path.records.len())
     });
-    Ok(seg.and_then(|j| solution_on_segment(problem, &prep, path, j, p, c0, &cov, settings)))
+    seg.and_then(|j| {
+        solution_on_segment(
+            solver.problem(),
+            &solver.prep,
+            path,
+            j,
+            p,
+            solver.c0,
+            &solver.cov,
+            solver.settings(),
+        )
+    })
 }

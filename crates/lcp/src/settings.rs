@@ -1,6 +1,6 @@
 //! Solver settings. None needs tuning: defaults scale with the data.
 
-use crate::LcpError;
+use crate::{LcpError, SettingsError};
 
 /// Settings of the pivoting methods.
 ///
@@ -42,23 +42,10 @@ impl Default for Settings {
 pub const ACCEPT_RESIDUAL: f64 = 1e-9;
 
 impl Settings {
-    /// Checks the settings against a problem of order `n`.
+    /// Checks the settings against a problem of order `n`: those of
+    /// [`Settings::validate_values`], then the lexicographic order and the covering vector.
     pub fn validate(&self, n: usize) -> Result<(), LcpError> {
-        if let Some(t) = self.pivot_tolerance {
-            if !(t.is_finite() && t > 0.0 && t < 1e-2) {
-                return Err(LcpError::Settings(format!(
-                    "pivot_tolerance must lie in (0, 0.01), got {t}"
-                )));
-            }
-        }
-        if self.max_pivots == Some(0) {
-            return Err(LcpError::Settings("max_pivots must be at least 1".into()));
-        }
-        if self.refactor_interval == 0 {
-            return Err(LcpError::Settings(
-                "refactor_interval must be at least 1".into(),
-            ));
-        }
+        self.validate_values()?;
         if let Some(order) = &self.lexicographic_order {
             let mut seen = vec![false; n];
             if order.len() != n
@@ -66,9 +53,7 @@ impl Settings {
                     .iter()
                     .any(|&i| i >= n || std::mem::replace(&mut seen[i], true))
             {
-                return Err(LcpError::Settings(format!(
-                    "lexicographic_order must be a permutation of 0..{n}"
-                )));
+                return Err(SettingsError::LexicographicOrder(n).into());
             }
         }
         if let Some(c) = &self.covering {
@@ -79,11 +64,30 @@ impl Settings {
                 )));
             }
             if let Some(i) = c.iter().position(|&v| !(v.is_finite() && v > 0.0)) {
-                return Err(LcpError::Settings(format!(
-                    "covering vector entry {i} must be a finite number > 0, got {}",
-                    c[i]
-                )));
+                return Err(SettingsError::Covering {
+                    entry: i,
+                    value: c[i],
+                }
+                .into());
             }
+        }
+        Ok(())
+    }
+
+    /// Checks the settings that do not depend on the problem (`pivot_tolerance`, `max_pivots`,
+    /// `refactor_interval`), in that order: what a caller that supplies the order and the
+    /// covering itself (the contact solve) checks before it has a problem.
+    pub fn validate_values(&self) -> Result<(), SettingsError> {
+        if let Some(t) = self.pivot_tolerance {
+            if !(t.is_finite() && t > 0.0 && t < 1e-2) {
+                return Err(SettingsError::PivotTolerance(t));
+            }
+        }
+        if self.max_pivots == Some(0) {
+            return Err(SettingsError::MaxPivots);
+        }
+        if self.refactor_interval == 0 {
+            return Err(SettingsError::RefactorInterval);
         }
         Ok(())
     }

@@ -3,8 +3,7 @@
 use faer::linalg::solvers::Solve;
 use faer::Mat;
 
-use crate::parametric::{LoadPath, PathOptions, PathStatus};
-use crate::{LcpError, ParametricLcp, Var};
+use crate::{LoadPath, PathSolver, PathStatus, Var};
 
 /// One tableau: rows labelled by the basic variables, columns `x1…xn, z1…zn, p`, the
 /// right-hand side, and the minimum-ratio column of the variable entering next.
@@ -33,19 +32,15 @@ pub struct Tableau {
     pub leaving_row: Option<usize>,
 }
 
-/// All tableaux of a traced path: the initial one, one after each step, and — when the path
-/// ended by Criterion 1 or 2a — the final one with `p` pivoted out of the basis.
-pub fn tableaux(
-    problem: &ParametricLcp,
-    options: &PathOptions,
+/// All tableaux of a traced path (see [`PathSolver::tableaux`]).
+pub(crate) fn tableaux_of(
+    solver: &PathSolver,
     path: &LoadPath,
     max_steps: Option<usize>,
-) -> Result<Vec<Tableau>, LcpError> {
-    let n = problem.m.nrows();
-    let (c0, cov) = match &options.tightening {
-        Some(t) => (t.amount, t.direction.clone()),
-        None => (0.0, vec![0.0; n]),
-    };
+) -> Vec<Tableau> {
+    let problem = solver.problem();
+    let n = solver.order();
+    let (c0, cov) = (solver.c0, &solver.cov);
     let ncol = 2 * n + 1;
     let a = Mat::<f64>::from_fn(n, ncol, |i, j| {
         if j < n {
@@ -123,7 +118,7 @@ pub fn tableaux(
         out.push(build(&slots, title, k, entering, leaving));
     }
     if last == k_total && matches!(path.status, PathStatus::Ray | PathStatus::TargetReached) {
-        let mut slots = path.slots_after(k_total);
+        let mut slots = path.final_slots();
         if let (Some(ds), Some(e)) = (
             slots.iter().position(|&v| v == 2 * n),
             path.segment_entering(k_total, n),
@@ -138,5 +133,5 @@ pub fn tableaux(
             ));
         }
     }
-    Ok(out)
+    out
 }

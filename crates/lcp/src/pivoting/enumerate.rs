@@ -4,8 +4,7 @@ use faer::linalg::solvers::Solve;
 use faer::Mat;
 
 use crate::binary::ldexp;
-use crate::lemke::lcp_w;
-use crate::scaling::Scaling;
+use crate::pivoting::scaling::Scaling;
 use crate::Residual;
 
 /// All `2^n` complementary bases in order of growing support; the first whose solution verifies
@@ -61,4 +60,17 @@ pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<
         }
     }
     None
+}
+
+/// `w = q + M z` for a dense `M`.
+fn lcp_w(m: &Mat<f64>, q: &[f64], z: &[f64]) -> Vec<f64> {
+    let mut w = q.to_vec();
+    for (j, &zj) in z.iter().enumerate() {
+        if zj != 0.0 {
+            for (i, wi) in w.iter_mut().enumerate() {
+                *wi += m[(i, j)] * zj;
+            }
+        }
+    }
+    w
 }

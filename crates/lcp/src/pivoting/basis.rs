@@ -10,8 +10,8 @@
 use faer::linalg::solvers::DenseSolveCore;
 use faer::Mat;
 
-use crate::columns::Columns;
-use crate::kernel::{dot, KernelInverse};
+use crate::pivoting::columns::Columns;
+use crate::pivoting::kernel::{dot, KernelInverse};
 
 /// Revised representation of a complementary basis.
 #[derive(Debug, Clone)]
@@ -363,6 +363,6 @@ fn add_columns(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64], offset: 
         }
     }
     for &(j, y) in chunks.remainder() {
-        crate::kernel::axpy(out, y, part(j));
+        crate::pivoting::kernel::axpy(out, y, part(j));
     }
 }

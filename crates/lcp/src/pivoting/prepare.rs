@@ -2,8 +2,8 @@
 
 use faer::Mat;
 
-use crate::columns::Columns;
-use crate::scaling::Scaling;
+use crate::pivoting::columns::Columns;
+use crate::pivoting::scaling::Scaling;
 use crate::LcpError;
 
 pub(crate) fn check_matrix(m: &Mat<f64>) -> Result<usize, LcpError> {

@@ -1,8 +1,8 @@
 //! Complementary pivoting with one driving variable, shared by the standard and the
 //! parametric Lemke methods.
 
-use crate::basis::{Basis, SingularBasis};
-use crate::columns::Columns;
+use crate::pivoting::basis::{Basis, SingularBasis};
+use crate::pivoting::columns::Columns;
 
 /// Numerical thresholds, all relative to the (equilibrated) data.
 #[derive(Debug, Clone, Copy)]

@@ -1,0 +1,214 @@
+//! The solver object of the parametric method: the problem, its options and settings,
+//! validated and equilibrated once, answering every question about its load path.
+
+use std::fmt;
+
+use crate::parametric::{follow, point_at, tightening_of, validate};
+use crate::pivoting::prepare::Prepared;
+use crate::tableau::tableaux_of;
+use crate::{LcpError, LoadPath, ParametricLcp, PathOptions, PathPoint, Settings, Tableau};
+
+/// A parametric LCP `x = q0 + p·d + M z` prepared for pivoting: built once from the problem, the
+/// path options and the engine settings — which it validates, and whose `M` it equilibrates —
+/// and then asked for the load path ([`PathSolver::follow`]), the solution at any load on it
+/// ([`PathSolver::solution_at`]) and its tableaux ([`PathSolver::tableaux`]) without preparing
+/// anything again.
+///
+/// **Continuation.** A [`LoadPath`] keeps its final basis (the start basis and every pivot), so
+/// a later method — "continue from the end of this path with another direction `d′`", which load
+/// histories need — takes `&LoadPath` and the new direction, starts the pivoting from that basis
+/// with `q0 + p_end·d` as the constant part, and returns a new `LoadPath`; the equilibrated `M`
+/// held here serves it unchanged (the scaling depends on `M` only).
+///
+/// ```
+/// use faer::mat;
+/// use unilateral_lcp::{Follow, ParametricLcp, PathOptions, PathSolver, Settings, Tightening};
+///
+/// // The paper's Example 1 reduced to its normal rows: three supports, c = 1.
+/// let problem = ParametricLcp {
+///     m: mat![[0.1875, -0.375, 0.1875], [-0.375, 0.75, -0.375], [0.1875, -0.375, 0.1875]],
+///     q0: vec![0.0; 3],
+///     d: vec![-0.09375, 0.6875, 0.40625],
+/// };
+/// let options = PathOptions {
+///     target: 1.0,
+///     follow: Follow::ToEnd,
+///     tightening: Some(Tightening { amount: 1.0, direction: vec![1.0; 3] }),
+/// };
+/// let solver = PathSolver::new(problem, options, Settings::default()).unwrap();
+/// let path = solver.follow();
+/// // By hand: at p = 1 the left support has lifted by 0.5 and the middle one carries 0.5.
+/// let at_one = solver.solution_at(&path, 1.0).unwrap().unwrap();
+/// assert!((at_one.z[0] - 0.5).abs() < 1e-12 && (at_one.x[1] - 0.5).abs() < 1e-12);
+/// // Without the tightening the problem is homogeneous in p (q0 = 0): half the answer at p = 1/2.
+/// let half = solver.solution_at(&path, 0.5).unwrap().unwrap();
+/// assert!((half.z[0] - 0.25).abs() < 1e-12 && (half.x[1] - 0.25).abs() < 1e-12);
+/// ```
+pub struct PathSolver {
+    problem: ParametricLcp,
+    options: PathOptions,
+    settings: Settings,
+    n: usize,
+    /// The equilibrated `M` and its scalings.
+    pub(crate) prep: Prepared,
+    /// The tightening's amount (`0` without one).
+    pub(crate) c0: f64,
+    /// The tightening's direction (zeros without one).
+    pub(crate) cov: Vec<f64>,
+}
+
+impl fmt::Debug for PathSolver {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("PathSolver")
+            .field("order", &self.n)
+            .field("options", &self.options)
+            .field("settings", &self.settings)
+            .finish_non_exhaustive()
+    }
+}
+
+impl PathSolver {
+    /// Validates the problem, the options and the settings, and equilibrates `M`.
+    pub fn new(
+        problem: ParametricLcp,
+        options: PathOptions,
+        settings: Settings,
+    ) -> Result<Self, LcpError> {
+        let n = validate(&problem, &options, &settings)?;
+        let prep = Prepared::new(&problem.m);
+        let (c0, cov) = tightening_of(&options, n);
+        Ok(Self {
+            problem,
+            options,
+            settings,
+            n,
+            prep,
+            c0,
+            cov,
+        })
+    }
+
+    /// The problem, as given.
+    pub fn problem(&self) -> &ParametricLcp {
+        &self.problem
+    }
+
+    /// The path options, as given.
+    pub fn options(&self) -> &PathOptions {
+        &self.options
+    }
+
+    /// The engine settings, as given.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// The order `n` of the problem.
+    pub fn order(&self) -> usize {
+        self.n
+    }
+
+    /// Follows the load path from `p = 0` (`formulation.md` §4).
+    ///
+    /// The start is the scheme at `p = 0`: the slack basis when `q0 (+ tightening) ≥ 0`,
+    /// otherwise the solution of the `p = 0` problem by Lemke's method. Then `p` enters and
+    /// every pivot is one change of the working scheme. The reported solution never contains
+    /// the tightening: the last basis is evaluated without it, verified, and if needed the
+    /// tightening is driven to zero by further pivots at fixed `p`.
+    pub fn follow(&self) -> LoadPath {
+        follow(self)
+    }
+
+    /// The solution without tightening at any `p` on a path this solver followed (for example
+    /// a load below the target, or a load on the ray's half-line beyond the last event);
+    /// `Ok(None)` when `p` is not on the traced path.
+    ///
+    /// A path of a problem of another order is refused ([`LcpError::Dimension`]).
+    pub fn solution_at(&self, path: &LoadPath, p: f64) -> Result<Option<PathPoint>, LcpError> {
+        self.check_path(path)?;
+        Ok(point_at(self, path, p))
+    }
+
+    /// All tableaux of a path this solver followed, in the paper's layout: the initial one, one
+    /// after each step (at most `max_steps` steps), and — when the path ended by Criterion 1
+    /// or 2a — the final one with `p` pivoted out of the basis.
+    ///
+    /// A path of a problem of another order is refused ([`LcpError::Dimension`]).
+    pub fn tableaux(
+        &self,
+        path: &LoadPath,
+        max_steps: Option<usize>,
+    ) -> Result<Vec<Tableau>, LcpError> {
+        self.check_path(path)?;
+        Ok(tableaux_of(self, path, max_steps))
+    }
+
+    fn check_path(&self, path: &LoadPath) -> Result<(), LcpError> {
+        if path.order() != self.n {
+            return Err(LcpError::Dimension(format!(
+                "the load path belongs to a problem of order {}, M has order {}",
+                path.order(),
+                self.n
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Follows the load path of `x = q0 + p·d + M z` from `p = 0`: a one-shot convenience for
+/// [`PathSolver::new`] and [`PathSolver::follow`] (it copies the problem; keep a [`PathSolver`]
+/// to ask for solutions at other loads or for tableaux).
+///
+/// ```
+/// use faer::mat;
+/// use unilateral_lcp::{follow_path, Follow, ParametricLcp, PathOptions, PathStatus, Settings, Tightening};
+///
+/// // The paper's Example 1 reduced to its normal rows: three supports, c = 1.
+/// let problem = ParametricLcp {
+///     m: mat![[0.1875, -0.375, 0.1875], [-0.375, 0.75, -0.375], [0.1875, -0.375, 0.1875]],
+///     q0: vec![0.0; 3],
+///     d: vec![-0.09375, 0.6875, 0.40625],
+/// };
+/// let options = PathOptions {
+///     target: 1.0,
+///     follow: Follow::ToEnd,
+///     tightening: Some(Tightening { amount: 1.0, direction: vec![1.0; 3] }),
+/// };
+/// let path = follow_path(&problem, &options, &Settings::default()).unwrap();
+/// assert_eq!(path.status, PathStatus::Ray);
+/// assert!((path.steps[0].p - 1.0 / 0.09375).abs() < 1e-12);
+/// let sol = path.solution.unwrap();
+/// assert!((sol.z[0] - 0.5).abs() < 1e-12 && (sol.x[1] - 0.5).abs() < 1e-12);
+/// ```
+pub fn follow_path(
+    problem: &ParametricLcp,
+    options: &PathOptions,
+    settings: &Settings,
+) -> Result<LoadPath, LcpError> {
+    Ok(PathSolver::new(problem.clone(), options.clone(), settings.clone())?.follow())
+}
+
+/// The solution without tightening at `p` on a traced path: a one-shot convenience for
+/// [`PathSolver::solution_at`] (it validates and equilibrates the problem again on every call;
+/// keep a [`PathSolver`] to ask for many loads). `Ok(None)` when `p` is not on the path.
+pub fn solution_at(
+    problem: &ParametricLcp,
+    options: &PathOptions,
+    settings: &Settings,
+    path: &LoadPath,
+    p: f64,
+) -> Result<Option<PathPoint>, LcpError> {
+    PathSolver::new(problem.clone(), options.clone(), settings.clone())?.solution_at(path, p)
+}
+
+/// All tableaux of a traced path: a one-shot convenience for [`PathSolver::tableaux`] with the
+/// default settings (the tableaux do not depend on them).
+pub fn tableaux(
+    problem: &ParametricLcp,
+    options: &PathOptions,
+    path: &LoadPath,
+    max_steps: Option<usize>,
+) -> Result<Vec<Tableau>, LcpError> {
+    PathSolver::new(problem.clone(), options.clone(), Settings::default())?
+        .tableaux(path, max_steps)
+}
