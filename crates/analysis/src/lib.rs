@@ -245,7 +245,7 @@ pub struct Extremes {
 ///
 /// ```
 /// use unilateral_analysis::{analyze, Outcome, PairState};
-/// use unilateral_contact::{SolveSettings, Trace};
+/// use unilateral_contact::{Follow, SolveSettings};
 /// use unilateral_fem::{ContactPairSpec, FrameSection, Load, LoadGroup, Model};
 ///
 /// // The paper's Example 1: a two-span beam (spans 2, EI = 1, EA = 2) on three unilateral
@@ -260,7 +260,7 @@ pub struct Extremes {
 /// }
 /// model.add_load(LoadGroup::Variable, Load::Nodal { node: n[2], fx: 0.0, fy: -1.0, m: 0.0 });
 ///
-/// let settings = SolveSettings { tightening: 1.0, trace: Trace::End, ..Default::default() };
+/// let settings = SolveSettings { tightening: 1.0, follow: Follow::ToEnd, ..Default::default() };
 /// let a = analyze(&model, &settings)?;
 /// assert!(matches!(a.solution.outcome, Outcome::Ray { .. }));
 /// assert_eq!(a.solution.pairs[0].state, PairState::Open);
@@ -468,9 +468,10 @@ impl Analysis {
     }
 
     /// The pair results (without tightening) and full structural results at another load `p`
-    /// of the traced path.
+    /// of the traced path. A contact error at `p` (forces beyond the floating-point range, or
+    /// the engine's own failure) is [`AnalysisError::Contact`].
     pub fn results_at(&self, p: f64) -> Result<(Vec<PairResult>, Results), AnalysisError> {
-        let Some((pairs, _)) = self.solution.at(p) else {
+        let Some((pairs, _)) = self.solution.at(p)? else {
             let end = match &self.solution.outcome {
                 Outcome::Ray { .. } => "infinity (ray)".to_string(),
                 _ => self

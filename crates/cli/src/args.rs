@@ -172,9 +172,9 @@ impl Overrides {
             settings.target = t;
         }
         if let Some(t) = self.trace {
-            settings.trace = match t {
-                TraceArg::Target => unilateral_contact::Trace::Target,
-                TraceArg::End => unilateral_contact::Trace::End,
+            settings.follow = match t {
+                TraceArg::Target => unilateral_contact::Follow::ToTarget,
+                TraceArg::End => unilateral_contact::Follow::ToEnd,
             };
         }
         if let Some(c) = self.tightening {

@@ -127,6 +127,12 @@ pub(crate) fn report_failure(e: &unilateral_output::ReportError) -> Failure {
     match e {
         unilateral_output::ReportError::Io { .. } => Failure::Input(e.to_string()),
         unilateral_output::ReportError::NonFinite { .. } => Failure::Internal(e.to_string()),
+        // Forces beyond the floating-point range at a load of the path: the user's extreme
+        // values, as at the reported load; anything else the solution refuses is the program's.
+        unilateral_output::ReportError::Contact(unilateral_contact::ContactError::OutOfRange(
+            _,
+        )) => Failure::Input(e.to_string()),
+        unilateral_output::ReportError::Contact(_) => Failure::Internal(e.to_string()),
     }
 }
 
@@ -260,7 +266,7 @@ mod tests {
                 pair: 2,
                 value: -0.1,
             },
-            ContactError::Settings("target must be > 0".into()),
+            ContactError::Settings(unilateral_lcp::SettingsError::Target(0.0)),
             ContactError::OutOfRange("friction × Rnn overflows".into()),
             ContactError::Engine(unilateral_lcp::LcpError::Dimension(
                 "q0 has 2 entries".into(),

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use unilateral_contact::{generate::beam_on_supports, solve, SolveSettings, Trace};
+use unilateral_contact::{generate::beam_on_supports, solve, Follow, SolveSettings};
 
 fn main() {
     let m: usize = std::env::args()
@@ -14,7 +14,7 @@ fn main() {
     let zone = beam_on_supports(m, 7);
     let t = Instant::now();
     let settings = SolveSettings {
-        trace: Trace::End,
+        follow: Follow::ToEnd,
         ..Default::default()
     };
     let sol = solve(&zone, &settings).expect("a valid generated zone");

@@ -81,7 +81,7 @@ pub enum ContactError {
     /// the program, not of the model. The engine's own error is kept, typed.
     #[error("internal failure of the solver (the program's fault, not the model's): {0}")]
     Engine(#[from] unilateral_lcp::LcpError),
-    /// Settings out of range.
+    /// A solve setting out of range, as the engine's check of it says.
     #[error("invalid solve setting: {0}")]
-    Settings(String),
+    Settings(#[from] unilateral_lcp::SettingsError),
 }

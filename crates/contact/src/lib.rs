@@ -4,6 +4,11 @@
 //! `formulation.md` §2) → the `3m` LCP of §3 ([`ContactLcp`]) → the load path of the parametric
 //! Lemke method (`unilateral-lcp`) → pair states and events ([`solve`] → [`ContactSolution`]).
 //!
+//! Files: `zone.rs` (the data), `lcp.rs` (the `3m` LCP), `units.rs` (the normalisation),
+//! `settings.rs` (the solve's settings, embedding the engine's), `solve.rs` (the algorithm),
+//! `solution.rs` (the answer: states, events, outcome, and the solution that keeps the prepared
+//! engine to answer for any load on its path), `error.rs` (the engine's errors nested by type).
+//!
 //! The zone is solved in normalised units: forces divided by a power of two near the data's
 //! largest force, stiffness by one near its largest stiffness, displacements by their ratio
 //! (the `units` module). States, events and (scaled) numbers are therefore the same in N and m,
@@ -18,15 +23,17 @@ mod error;
 pub mod generate;
 mod lcp;
 mod settings;
+mod solution;
 mod solve;
 mod units;
 mod zone;
 
 pub use error::ContactError;
 pub use lcp::ContactLcp;
-pub use settings::{SolveSettings, Trace};
-pub use solve::{
-    pair_results, solve, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult,
-    PairState,
+pub use settings::SolveSettings;
+pub use solution::{
+    pair_results, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult, PairState,
 };
+pub use solve::solve;
+pub use unilateral_lcp::Follow;
 pub use zone::{ContactLoad, ContactZone};

@@ -4,7 +4,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use faer::Mat;
-use unilateral_contact::{ContactError, ContactLoad, ContactZone, SolveSettings, Trace};
+use unilateral_contact::{ContactError, ContactLoad, ContactZone, Follow, SolveSettings};
 use unilateral_lcp::Lcp;
 
 use crate::dat::read_siconos_lcp;
@@ -456,9 +456,9 @@ pub(crate) fn solve_settings(t: &Table) -> Result<SolveSettings, InputError> {
     }
     if let Some(node) = t.get("trace") {
         let v = doc.string(node, &t.child("trace"))?;
-        s.trace = match v {
-            "target" => Trace::Target,
-            "end" => Trace::End,
+        s.follow = match v {
+            "target" => Follow::ToTarget,
+            "end" => Follow::ToEnd,
             other => {
                 let hint = match did_you_mean(other, &["target", "end"]) {
                     Some(k) => format!(" (did you mean \"{k}\"?)"),
@@ -475,19 +475,20 @@ pub(crate) fn solve_settings(t: &Table) -> Result<SolveSettings, InputError> {
         };
     }
     if let Some(node) = t.get("pivot_tolerance") {
-        s.pivot_tolerance = Some(doc.number(node, &t.child("pivot_tolerance"))?);
+        s.engine.pivot_tolerance = Some(doc.number(node, &t.child("pivot_tolerance"))?);
     }
     if let Some(node) = t.get("max_pivots") {
-        s.max_pivots = Some(doc.positive_integer(node, &t.child("max_pivots"))?);
+        s.engine.max_pivots = Some(doc.positive_integer(node, &t.child("max_pivots"))?);
     }
     if let Err(e) = s.validate() {
-        let msg = match &e {
-            ContactError::Settings(m) => m.clone(),
-            other => other.to_string(),
+        // The engine's check names the setting at fault.
+        let (key, msg) = match &e {
+            ContactError::Settings(bad) => (bad.key(), bad.to_string()),
+            other => ("", other.to_string()),
         };
         let key = SOLVE_KEYS
             .iter()
-            .find(|k| msg.starts_with(*k))
+            .find(|k| **k == key)
             .copied()
             .unwrap_or("");
         let pos = t.get(key).and_then(|n| n.pos).or(t.pos);

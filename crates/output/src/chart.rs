@@ -1,7 +1,7 @@
 //! Load-path charts: the forces and mutual displacements of the pairs against the load `p`,
 //! one small panel per pair, events marked and numbered.
 
-use unilateral_contact::{ContactSolution, EventKind, LoadStep, Outcome, PairResult};
+use unilateral_contact::{ContactError, ContactSolution, EventKind, LoadStep, Outcome, PairResult};
 
 use crate::font::{self, Anchor};
 use crate::svg::{nice_range, num, ticks, Svg};
@@ -30,8 +30,10 @@ pub fn end_load(sol: &ContactSolution) -> Option<f64> {
     }
 }
 
-/// Evaluates the solution without tightening at `p = 0`, at every event load and at the end.
-pub fn samples(sol: &ContactSolution) -> PathSamples {
+/// Evaluates the solution without tightening at `p = 0`, at every event load and at the end
+/// (by the engine kept in the solution: nothing is solved or prepared again). A load off the
+/// traced path is skipped; an error of the solution at a load is returned.
+pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
     let mut want: Vec<f64> = vec![0.0];
     want.extend(
         sol.steps
@@ -54,7 +56,7 @@ pub fn samples(sol: &ContactSolution) -> PathSamples {
         {
             continue;
         }
-        if let Some((pairs, _)) = sol.at(p) {
+        if let Some((pairs, _)) = sol.at(p)? {
             out.loads.push(p);
             out.pairs.push(pairs);
         } else if sol
@@ -65,7 +67,7 @@ pub fn samples(sol: &ContactSolution) -> PathSamples {
             out.pairs.push(sol.pairs.clone());
         }
     }
-    out
+    Ok(out)
 }
 
 /// A short label of a step: `3: left.4 opens`.

@@ -86,9 +86,9 @@ pub fn contact_json(sol: &ContactSolution) -> Result<Value, NonFiniteOutput> {
         "p": sol.p,
         "p_limit": p_limit,
         "target": sol.settings.target,
-        "trace": match sol.settings.trace {
-            unilateral_contact::Trace::Target => "target",
-            unilateral_contact::Trace::End => "end",
+        "trace": match sol.settings.follow {
+            unilateral_contact::Follow::ToTarget => "target",
+            unilateral_contact::Follow::ToEnd => "end",
         },
         "tightening": sol.tightening,
         "tightening_pivots": sol.tightening_pivots,

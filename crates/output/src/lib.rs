@@ -95,6 +95,10 @@ pub enum ReportError {
         /// The token found (`NaN`, `inf` or `-inf`).
         token: String,
     },
+    /// The solution could not be evaluated at a load of the charts (its forces leave the
+    /// floating-point range there, or the engine failed); nothing is written.
+    #[error("the load-path charts could not be drawn: {0}")]
+    Contact(#[from] unilateral_contact::ContactError),
 }
 
 /// The first `NaN` or `inf` that a drawing would print as a number, outside the `<title>`
@@ -145,13 +149,16 @@ pub const STRUCTURE_SVG: &str = "structure.svg";
 pub const REPORT_HTML: &str = "report.html";
 
 /// The two load-path charts (forces, mutual displacements) as SVG documents.
-pub fn load_path_svgs(solution: &ContactSolution, options: &ReportOptions) -> (String, String) {
-    let s = chart::samples(solution);
+pub fn load_path_svgs(
+    solution: &ContactSolution,
+    options: &ReportOptions,
+) -> Result<(String, String), ReportError> {
+    let s = chart::samples(solution)?;
     let sel = chart::select(solution, &s, options.pairs.as_deref());
-    (
+    Ok((
         chart::chart(solution, &s, &sel, ChartKind::Forces),
         chart::chart(solution, &s, &sel, ChartKind::Displacements),
-    )
+    ))
 }
 
 /// The structure picture at the reported load as an SVG document.
@@ -219,7 +226,7 @@ fn write_all(
         written.push(path);
         Ok(())
     };
-    let (forces, displacements) = load_path_svgs(solution, options);
+    let (forces, displacements) = load_path_svgs(solution, options)?;
     let structure = match (model, analysis) {
         (Some(m), Some(a)) => Some(structure_svg(m, a, options)),
         _ => None,

@@ -5,7 +5,7 @@
 //! code under test.
 
 use unilateral_analysis::{analyze, AnalysisError, Outcome, PairState};
-use unilateral_contact::{EventKind, SolveSettings, Trace};
+use unilateral_contact::{EventKind, Follow, SolveSettings};
 use unilateral_fem::{ContactPairSpec, FemError, FrameSection, Load, LoadFrame, LoadGroup, Model};
 
 /// Relative closeness: `|a − b| ≤ tol·max(|b|, scale)`.
@@ -77,11 +77,11 @@ fn gap_beam(gap4: f64, gap8: f64) -> (Model, Vec<unilateral_fem::NodeId>) {
     (m, nodes)
 }
 
-fn settings(target: f64, trace: Trace) -> SolveSettings {
+fn settings(target: f64, follow: Follow) -> SolveSettings {
     SolveSettings {
         tightening: 0.0,
         target,
-        trace,
+        follow,
         ..Default::default()
     }
 }
@@ -104,7 +104,7 @@ fn gaps_close_at_the_hand_loads_and_the_results_at_p1_are_the_hand_reactions() {
     assert!((ratio - 0.875).abs() < 1e-12);
 
     let (model, nodes) = gap_beam(0.01, 0.02);
-    let a = analyze(&model, &settings(1.0, Trace::Target)).expect("the gap beam is analysed");
+    let a = analyze(&model, &settings(1.0, Follow::ToTarget)).expect("the gap beam is analysed");
     let loads = a.event_loads();
     assert_eq!(loads.len(), 2, "{:?}", a.solution.steps);
     assert!(close(loads[0], p1, 1e-9, 0.0), "{} vs {p1}", loads[0]);
@@ -174,7 +174,7 @@ fn a_gap_that_never_closes_leaves_the_simply_supported_beam() {
     // pairs stay open by 1 − 0.111746, carry nothing, and the beam is simply supported:
     // end reactions q L / 2 = 60 kN each.
     let (model, nodes) = gap_beam(1.0, 1.0);
-    let a = analyze(&model, &settings(1.0, Trace::Target)).expect("analysed");
+    let a = analyze(&model, &settings(1.0, Follow::ToTarget)).expect("analysed");
     assert!(a.event_loads().is_empty(), "{:?}", a.solution.steps);
     let w0 = udl_deflection(4.0) * BEAM_Q / BEAM_EI;
     for pr in &a.solution.pairs {
@@ -221,7 +221,7 @@ fn node_to_node_pair_with_a_gap() {
     let c = 8.0 / 9.0;
     let g = 0.4;
     let (model, tips) = two_cantilevers(g, [0.0, 1.0]);
-    let a = analyze(&model, &settings(1.0, Trace::Target)).expect("analysed");
+    let a = analyze(&model, &settings(1.0, Follow::ToTarget)).expect("analysed");
     let pc = g / c;
     let loads = a.event_loads();
     assert_eq!(loads.len(), 1, "{:?}", a.solution.steps);
@@ -240,7 +240,7 @@ fn node_to_node_pair_with_a_gap() {
     // The normal reversed: the load now opens the pair; it never closes, the opening is
     // g + n·(u_B − u_A) = g + (−1)·(−c) = g + c, and the lower cantilever carries nothing.
     let (model, tips) = two_cantilevers(g, [0.0, -1.0]);
-    let a = analyze(&model, &settings(1.0, Trace::Target)).expect("analysed");
+    let a = analyze(&model, &settings(1.0, Follow::ToTarget)).expect("analysed");
     let pr = &a.solution.pairs[0];
     assert_eq!(pr.state, PairState::Open);
     assert!(close(pr.z_n, g + c, 1e-9, 0.0), "{}", pr.z_n);
@@ -305,7 +305,7 @@ fn the_heated_beam_gives_the_same_answer_in_any_units() {
             let what = format!("lengths ×{len:e}, forces ×{force:e}");
             let a = match analyze(
                 &heated_beam_in(8, len, force),
-                &settings(1.0, Trace::Target),
+                &settings(1.0, Follow::ToTarget),
             ) {
                 Ok(a) => a,
                 Err(e) => {
@@ -351,7 +351,7 @@ fn a_determinate_contact_support_gives_the_same_answer_for_every_mesh() {
     let slip = 1.2e-5 * 50.0 * 10.0 - 0.3 * 1.25e6 * 10.0 / 2.1e9;
     for div in [1, 2, 4, 5, 8, 10, 20] {
         let model = heated_beam(div);
-        let a = analyze(&model, &settings(1.0, Trace::Target))
+        let a = analyze(&model, &settings(1.0, Follow::ToTarget))
             .unwrap_or_else(|e| panic!("{div} divisions: {e}"));
         assert_eq!(a.zone.rnn[(0, 0)], 0.0, "{div} divisions: Rnn is round-off");
         let loads = a.event_loads();
@@ -402,7 +402,7 @@ fn slider(len: f64, e: f64, area: f64, inertia: f64, w: f64) -> Model {
 /// f·W: p = 12, and with both pairs slipping the slider is a mechanism: p_lim = 12.
 fn check_slider(model: &Model, what: &str) {
     let a =
-        analyze(model, &settings(20.0, Trace::Target)).unwrap_or_else(|e| panic!("{what}: {e}"));
+        analyze(model, &settings(20.0, Follow::ToTarget)).unwrap_or_else(|e| panic!("{what}: {e}"));
     let loads = a.event_loads();
     assert_eq!(loads.len(), 2, "{what}: {:?}", a.solution.steps);
     assert!(close(loads[0], 6.0, 1e-9, 0.0), "{what}: {loads:?}");
@@ -551,7 +551,7 @@ fn the_gap_beam_gives_the_same_answer_in_any_units() {
             same_zone(&z, &base, force / len, force, &what);
             assert!(close(z.gap[0], 0.01 * len, 1e-15, 0.0));
             assert!(close(z.gap[1], 0.02 * len, 1e-15, 0.0));
-            match analyze(&m, &settings(1.0, Trace::Target)) {
+            match analyze(&m, &settings(1.0, Follow::ToTarget)) {
                 Err(e) => failed.push(format!("{what}: {e}")),
                 Ok(a) => {
                     let loads = a.event_loads();

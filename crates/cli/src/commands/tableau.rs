@@ -11,7 +11,9 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
     let problem = unilateral_io::read_contact_zone(&file).map_err(input_failure)?;
     let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
         .map_err(|e| contact_failure(&file, &e, ZoneOrigin::File))?;
-    let tables = sol.tableaux(steps);
+    let tables = sol
+        .tableaux(steps)
+        .map_err(|e| contact_failure(&file, &e, ZoneOrigin::File))?;
     let label = |v| sol.lcp.label(v);
     if let Some(out) = &json {
         write_json(out, &unilateral_output::tableaux_json(&tables, &label)?)?;

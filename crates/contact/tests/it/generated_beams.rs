@@ -5,7 +5,7 @@
 //! a too tight tie test once ended these paths in false mechanisms.
 
 use unilateral_contact::{
-    generate::beam_on_supports, solve, ContactLcp, Outcome, SolveSettings, Trace,
+    generate::beam_on_supports, solve, ContactLcp, Follow, Outcome, SolveSettings,
 };
 use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings};
 
@@ -37,7 +37,7 @@ fn paths_to_the_end_verify_and_never_end_in_a_false_mechanism() {
         let sol = solve(
             &zone,
             &SolveSettings {
-                trace: Trace::End,
+                follow: Follow::ToEnd,
                 ..Default::default()
             },
         )
@@ -59,7 +59,10 @@ fn paths_to_the_end_verify_and_never_end_in_a_false_mechanism() {
         }
         // Every breakpoint of the traced path is a solution at its load.
         for step in sol.steps.iter().step_by(7) {
-            let (pairs, res) = sol.at(step.p).expect("breakpoints lie on the path");
+            let (pairs, res) = sol
+                .at(step.p)
+                .expect("the engine answers")
+                .expect("breakpoints lie on the path");
             assert_eq!(pairs.len(), m);
             assert!(
                 res.max() <= 1e-9,

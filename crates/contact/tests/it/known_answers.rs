@@ -5,7 +5,7 @@
 
 use faer::Mat;
 use unilateral_contact::{
-    solve, ContactLcp, ContactZone, EventKind, Outcome, PairState, SolveSettings, Trace,
+    solve, ContactLcp, ContactZone, EventKind, Follow, Outcome, PairState, SolveSettings,
 };
 use unilateral_oracle as oracle;
 
@@ -85,7 +85,7 @@ fn pressed_bar_slips_node_by_node_from_the_free_end() {
     let (m, k, n, f, force) = (4, 100.0, 10.0, 0.25, 1.0);
     let zone = pulled_bar(m, k, n, f, force);
     let settings = SolveSettings {
-        trace: Trace::End,
+        follow: Follow::ToEnd,
         target: 12.0,
         ..Default::default()
     };
@@ -118,7 +118,7 @@ fn pressed_bar_slips_node_by_node_from_the_free_end() {
     assert!((sol.pairs[0].z_t - clamp_force / k).abs() < 1e-10);
     assert_matches_enumeration(&zone, p, &sol.pairs);
     // Between events: two nodes slip at p = 2.5·fN/F.
-    let (pairs, res) = sol.at(2.5 * f * n / force).unwrap();
+    let (pairs, res) = sol.at(2.5 * f * n / force).unwrap().unwrap();
     assert!(res.max() < 1e-12);
     let slipping: Vec<_> = pairs.iter().map(|p| p.state).collect();
     assert_eq!(
@@ -163,7 +163,7 @@ fn gaps_close_one_after_the_other() {
     let sol = solve(
         &zone,
         &SolveSettings {
-            trace: Trace::End,
+            follow: Follow::ToEnd,
             target: 2.0,
             ..Default::default()
         },
@@ -216,7 +216,7 @@ fn sliding_block_becomes_a_mechanism() {
     let sol = solve(
         &zone,
         &SolveSettings {
-            trace: Trace::End,
+            follow: Follow::ToEnd,
             target: 10.0,
             ..Default::default()
         },
@@ -267,7 +267,7 @@ fn path_turns_back() {
     let sol = solve(
         &zone,
         &SolveSettings {
-            trace: Trace::End,
+            follow: Follow::ToEnd,
             ..Default::default()
         },
     )

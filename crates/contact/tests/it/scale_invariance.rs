@@ -10,7 +10,7 @@
 
 use faer::{mat, Mat};
 use proptest::prelude::*;
-use unilateral_contact::{solve, ContactSolution, ContactZone, Outcome, SolveSettings, Trace};
+use unilateral_contact::{solve, ContactSolution, ContactZone, Follow, Outcome, SolveSettings};
 
 fn rescaled(zone: &ContactZone, f: f64, u: f64) -> ContactZone {
     let k = f / u;
@@ -156,7 +156,7 @@ fn example1() -> (ContactZone, SolveSettings) {
     let settings = SolveSettings {
         tightening: 1.0,
         target: 1.0,
-        trace: Trace::End,
+        follow: Follow::ToEnd,
         ..SolveSettings::default()
     };
     (zone, settings)
@@ -222,7 +222,7 @@ proptest! {
         let settings = SolveSettings {
             tightening: c,
             target: 2.0,
-            trace: Trace::End,
+            follow: Follow::ToEnd,
             ..SolveSettings::default()
         };
         if let Err(e) = check(&zone, &settings, f, u) {

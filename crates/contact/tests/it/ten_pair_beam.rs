@@ -5,7 +5,7 @@
 //! become a mechanism below the load, Lemke must end on a ray (two methods that must agree).
 
 use unilateral_contact::{
-    generate::beam_on_supports, solve, ContactLcp, Outcome, SolveSettings, Trace,
+    generate::beam_on_supports, solve, ContactLcp, Follow, Outcome, SolveSettings,
 };
 use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings, Strategy};
 
@@ -18,7 +18,7 @@ fn ten_pair_frictional_beams_are_solved_by_lemke_itself() {
         let path = solve(
             &zone,
             &SolveSettings {
-                trace: Trace::End,
+                follow: Follow::ToEnd,
                 ..Default::default()
             },
         )

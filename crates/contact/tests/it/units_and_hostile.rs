@@ -5,8 +5,8 @@
 
 use faer::{mat, Mat};
 use unilateral_contact::{
-    solve, ContactError, ContactLcp, ContactZone, EventKind, Outcome, PairState, SolveSettings,
-    Trace,
+    solve, ContactError, ContactLcp, ContactZone, EventKind, Follow, Outcome, PairState,
+    SolveSettings,
 };
 use unilateral_oracle as oracle;
 
@@ -32,7 +32,7 @@ fn slider(w: f64) -> ContactZone {
 fn end_settings(target: f64) -> SolveSettings {
     SolveSettings {
         target,
-        trace: Trace::End,
+        follow: Follow::ToEnd,
         ..SolveSettings::default()
     }
 }

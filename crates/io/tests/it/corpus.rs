@@ -282,7 +282,7 @@ fn check_one(reader: Reader, path: &Path, out_dir: &Path) -> Result<(), Broken> 
     let out = |e: &dyn std::fmt::Display| Broken::Output(e.to_string());
     let zone = |pb: unilateral_io::ContactZoneProblem| -> Result<(), Broken> {
         let mut settings = pb.settings.clone();
-        settings.max_pivots = Some(settings.max_pivots.unwrap_or(500).min(500));
+        settings.engine.max_pivots = Some(settings.engine.max_pivots.unwrap_or(500).min(500));
         // An error of the solver is the engine's answer to the data, not a reader's concern.
         if let Ok(sol) = unilateral_contact::solve(&pb.zone, &settings) {
             contact_json(&sol).map_err(|e| out(&e))?;
@@ -301,7 +301,8 @@ fn check_one(reader: Reader, path: &Path, out_dir: &Path) -> Result<(), Broken> 
                     return Ok(());
                 }
                 let mut settings = pb.settings.clone();
-                settings.max_pivots = Some(settings.max_pivots.unwrap_or(500).min(500));
+                settings.engine.max_pivots =
+                    Some(settings.engine.max_pivots.unwrap_or(500).min(500));
                 if let Ok(a) = unilateral_analysis::analyze(&pb.model, &settings) {
                     structural_json(&a).map_err(|e| out(&e))?;
                     structural_summary(&a, "t").map_err(|e| out(&e))?;

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use common::{siconos, siconos_files};
 
 use faer::Mat;
-use unilateral_contact::{ContactZone, Trace};
+use unilateral_contact::{ContactZone, Follow};
 use unilateral_io::{read_contact_zone, read_fc2d, read_lcp, read_matrix_market};
 
 fn good(name: &str) -> PathBuf {
@@ -80,7 +80,7 @@ fn example1_in_toml_json_and_matrix_market_reads_the_same() {
     assert_eq!(z.pair_names, vec!["1", "2", "3"]);
     assert_eq!(toml.settings.tightening, 1.0);
     assert_eq!(toml.settings.target, 1.0);
-    assert_eq!(toml.settings.trace, Trace::End);
+    assert_eq!(toml.settings.follow, Follow::ToEnd);
 
     assert_zone_eq(&toml.zone, &json.zone);
     assert_zone_eq(&toml.zone, &mtx.zone);
@@ -119,9 +119,9 @@ fn every_key_is_read() {
     let s = &p.settings;
     assert_eq!(s.tightening, 0.0);
     assert_eq!(s.target, 2.5);
-    assert_eq!(s.trace, Trace::Target);
-    assert_eq!(s.pivot_tolerance, Some(1e-10));
-    assert_eq!(s.max_pivots, Some(500));
+    assert_eq!(s.follow, Follow::ToTarget);
+    assert_eq!(s.engine.pivot_tolerance, Some(1e-10));
+    assert_eq!(s.engine.max_pivots, Some(500));
 }
 
 #[test]

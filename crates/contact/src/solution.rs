@@ -1,0 +1,380 @@
+//! The answer of a contact solve in the language of the structure: pair states, events, load
+//! steps, the outcome, and the solution that answers for any load on its path.
+
+use std::fmt;
+use std::sync::Arc;
+
+use unilateral_lcp::{LoadPath, PathOptions, PathPoint, PathSolver, PathStatus, Residual, Tableau};
+
+use crate::lcp::ContactLcp;
+use crate::units::Units;
+use crate::{ContactError, SolveSettings};
+
+/// The state of a contact pair in a solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PairState {
+    /// No compression: the points separate (or just touch without force).
+    Open,
+    /// Closed, `|x_t| ≤ f·x_n`, no slip.
+    Stick,
+    /// Closed and slipping with `z_t > 0` (`x_t = −f·x_n`).
+    SlipPlus,
+    /// Closed and slipping with `z_t < 0` (`x_t = +f·x_n`).
+    SlipMinus,
+}
+
+impl PairState {
+    /// `"open"`, `"stick"`, `"slip+"`, `"slip-"`.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            PairState::Open => "open",
+            PairState::Stick => "stick",
+            PairState::SlipPlus => "slip+",
+            PairState::SlipMinus => "slip-",
+        }
+    }
+}
+
+impl fmt::Display for PairState {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// What happens to a pair at an event of the load path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EventKind {
+    /// Its normal force reached zero: the pair opens.
+    Opens,
+    /// Its opening reached zero: the pair closes.
+    Closes,
+    /// Friction reached its limit with slip in the `+` direction.
+    StartsSlippingPlus,
+    /// Friction reached its limit with slip in the `−` direction.
+    StartsSlippingMinus,
+    /// The slip stopped: the pair sticks again.
+    Sticks,
+}
+
+/// A change of the working scheme at one pair.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Event {
+    /// 0-based pair index.
+    pub pair: usize,
+    /// The pair's name.
+    pub name: String,
+    /// What happens.
+    pub kind: EventKind,
+    /// A friction event of a pair that is open at the time: it only uses up the sideways
+    /// capacity that the artificial tightening gives an open pair (no force is transmitted).
+    pub while_open: bool,
+}
+
+impl fmt::Display for Event {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let what = match self.kind {
+            EventKind::Opens => "opens",
+            EventKind::Closes => "closes",
+            EventKind::StartsSlippingPlus => "starts to slip in the + direction",
+            EventKind::StartsSlippingMinus => "starts to slip in the − direction",
+            EventKind::Sticks => "sticks again",
+        };
+        write!(f, "pair {} {what}", self.name)?;
+        if self.while_open {
+            f.write_str(" (while open: within the tightening only)")?;
+        }
+        Ok(())
+    }
+}
+
+/// One step of the load path: the load at which the working scheme changed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadStep {
+    /// 1-based step number.
+    pub index: usize,
+    /// The load parameter (with the tightening, as traced).
+    pub p: f64,
+    /// Label of the entering variable (`z_n1`, `p`, …).
+    pub entering: String,
+    /// Label of the leaving variable.
+    pub leaving: String,
+    /// The events the step stands for.
+    pub events: Vec<Event>,
+    /// `p` decreased at this step (a turning point: solutions may be non-unique).
+    pub turning: bool,
+}
+
+/// Forces, mutual displacements and state of one pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairResult {
+    /// The pair's name.
+    pub name: String,
+    /// Normal force, compression positive.
+    pub x_n: f64,
+    /// Tangential force.
+    pub x_t: f64,
+    /// Normal mutual displacement, opening positive.
+    pub z_n: f64,
+    /// Tangential mutual displacement (slip).
+    pub z_t: f64,
+    /// The state.
+    pub state: PairState,
+}
+
+/// How the load path ended, in the language of the structure.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    /// The target load was reached (Criterion 1).
+    TargetReached,
+    /// The working scheme no longer changes for `p ≥ p_from` (Criterion 2a).
+    Ray {
+        /// The load of the last event.
+        p_from: f64,
+    },
+    /// The structure becomes a mechanism at `p_limit` (Criterion 2b).
+    Mechanism {
+        /// The limit load.
+        p_limit: f64,
+        /// Rates of `(z_n, z_t)` per pair in the mechanism, normalised to a largest rate of 1.
+        mode: Vec<(f64, f64)>,
+    },
+    /// The path came back to `p = 0`.
+    ReturnedToZero,
+    /// The pivot cap was reached.
+    IterationLimit,
+    /// No solution at `p = 0` was found.
+    NoSolutionAtStart,
+    /// A numerically singular basis stopped the path: an internal failure of the solver.
+    NumericalFailure,
+}
+
+impl Outcome {
+    /// The engine's status of this ending.
+    pub fn path_status(&self) -> PathStatus {
+        match self {
+            Outcome::TargetReached => PathStatus::TargetReached,
+            Outcome::Ray { .. } => PathStatus::Ray,
+            Outcome::Mechanism { .. } => PathStatus::Mechanism,
+            Outcome::ReturnedToZero => PathStatus::ReturnedToZero,
+            Outcome::IterationLimit => PathStatus::IterationLimit,
+            Outcome::NoSolutionAtStart => PathStatus::NoSolutionAtStart,
+            Outcome::NumericalFailure => PathStatus::NumericalFailure,
+        }
+    }
+
+    /// The `status` key of result files (the engine's [`PathStatus::as_str`]).
+    pub fn status(&self) -> &'static str {
+        self.path_status().as_str()
+    }
+
+    /// A sentence for engineers.
+    pub fn reading(&self, target: f64) -> String {
+        match self {
+            Outcome::TargetReached => {
+                format!("the load reached the target p* = {target} (Criterion 1)")
+            }
+            Outcome::Ray { p_from } => format!(
+                "the working scheme no longer changes for p ≥ {p_from:.6} (Criterion 2a: ray)"
+            ),
+            Outcome::Mechanism { p_limit, .. } => {
+                format!("the structure becomes a mechanism at p_lim = {p_limit:.6} (Criterion 2b)")
+            }
+            Outcome::ReturnedToZero => "the load path turned back to p = 0".into(),
+            Outcome::IterationLimit => "the pivot cap was reached before the path ended".into(),
+            Outcome::NoSolutionAtStart => {
+                "the problem has no solution at p = 0 (the constant load alone)".into()
+            }
+            Outcome::NumericalFailure => {
+                "the solver failed: a basis became numerically singular and the path stopped \
+                 (an internal failure of the program, not a fault of the model)"
+                    .into()
+            }
+        }
+    }
+}
+
+/// The answer of [`crate::solve`].
+#[derive(Debug, Clone)]
+pub struct ContactSolution {
+    /// How the path ended.
+    pub outcome: Outcome,
+    /// The load of the reported solution (`None` when there is none).
+    pub p: Option<f64>,
+    /// The tightening `c` used.
+    pub tightening: f64,
+    /// The settings used.
+    pub settings: SolveSettings,
+    /// Every step of the load path with its events.
+    pub steps: Vec<LoadStep>,
+    /// Number of steps made before the target was reached (the rest lie beyond `p*`).
+    pub steps_before_target: usize,
+    /// Per pair, at the reported load (empty when there is no solution).
+    pub pairs: Vec<PairResult>,
+    /// Verified residuals of the reported solution.
+    pub residual: Option<Residual>,
+    /// Remarks for the reader (dependence on `c`, turning points, fallbacks).
+    pub notes: Vec<String>,
+    /// Pivots spent removing the tightening from the reported solution.
+    pub tightening_pivots: usize,
+    /// The LCP that was solved.
+    pub lcp: ContactLcp,
+    /// The engine's load path (breakpoints and mechanism rates in the user's units).
+    pub path: LoadPath,
+    /// The prepared normalised problem that was solved, shared by the clones of the solution:
+    /// it answers for other loads without preparing anything again.
+    pub(crate) engine: Arc<Engine>,
+}
+
+/// What a solution keeps of its solve to answer for other loads: the engine prepared on the
+/// normalised problem (module `units`), the scales back to the user's units, the pair names.
+#[derive(Debug)]
+pub(crate) struct Engine {
+    /// The solver of the normalised `3m` LCP, validated and equilibrated once.
+    pub solver: PathSolver,
+    /// The scales of the normalisation.
+    pub units: Units,
+    /// The pair names.
+    pub names: Vec<String>,
+}
+
+impl Engine {
+    /// Reads the normalised point `sol` as pair results in the user's units.
+    pub fn read_point(&self, sol: &PathPoint) -> Result<Vec<PairResult>, ContactError> {
+        let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, 1.0, 1.0);
+        for r in &mut pairs {
+            r.x_n = self.units.user_force(r.x_n);
+            r.x_t = self.units.user_force(r.x_t);
+            r.z_n = self.units.user_displacement(r.z_n);
+            r.z_t = self.units.user_displacement(r.z_t);
+            if ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()) {
+                return Err(ContactError::OutOfRange(format!(
+                    "the forces and displacements of pair {} at p = {} exceed the \
+                     floating-point range (about 1.8e308): express the model in other units",
+                    r.name, sol.p
+                )));
+            }
+        }
+        Ok(pairs)
+    }
+}
+
+impl ContactSolution {
+    /// Reads the normalised point `sol` as the reported solution.
+    pub(crate) fn set_point(&mut self, sol: &PathPoint) -> Result<(), ContactError> {
+        self.pairs = self.engine.read_point(sol)?;
+        self.p = Some(sol.p);
+        self.residual = Some(sol.residual);
+        self.tightening_pivots = sol.tightening_pivots;
+        Ok(())
+    }
+
+    /// The solution without tightening at another load `p` on the traced path, in the user's
+    /// units; `Ok(None)` when `p` is not on it. Nothing is prepared again: the engine kept from
+    /// the solve evaluates the path's basis at `p`. An error when the answer leaves the
+    /// floating-point range ([`ContactError::OutOfRange`]) or the engine refuses the path
+    /// ([`ContactError::Engine`], a fault of the program).
+    pub fn at(&self, p: f64) -> Result<Option<(Vec<PairResult>, Residual)>, ContactError> {
+        let Some(pt) = self.engine.solver.solution_at(&self.path, p)? else {
+            return Ok(None);
+        };
+        Ok(Some((self.engine.read_point(&pt)?, pt.residual)))
+    }
+
+    /// The tableaux of the path in the paper's layout and the user's units (at most
+    /// `max_steps` steps). They are computed from [`ContactSolution::lcp`], the problem in the
+    /// user's units, which is checked on the way ([`ContactError::Engine`] if the engine
+    /// refuses it).
+    pub fn tableaux(&self, max_steps: Option<usize>) -> Result<Vec<Tableau>, ContactError> {
+        let options = PathOptions {
+            target: self.settings.target,
+            follow: self.settings.follow,
+            tightening: self.lcp.tightening(self.settings.tightening),
+        };
+        let solver = PathSolver::new(
+            self.lcp.problem.clone(),
+            options,
+            self.engine.solver.settings().clone(),
+        )?;
+        Ok(solver.tableaux(&self.path, max_steps)?)
+    }
+}
+
+/// Pair results from the LCP's `x` and `z`.
+///
+/// Round-off is judged relative to the largest force and displacement of the solution itself;
+/// [`crate::solve`] judges it relative to the scale of the data as well.
+pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
+    pair_results_scaled(x, z, names, 0.0, 0.0)
+}
+
+/// Pair results with round-off judged relative to `max(‖x‖∞, force_scale)` for forces and
+/// `max(‖z‖∞, displacement_scale)` for displacements: a normal force of `4e-16` in a zone whose
+/// loads are of order one is round-off of zero, and the pair is open (touching), not stuck.
+fn pair_results_scaled(
+    x: &[f64],
+    z: &[f64],
+    names: &[String],
+    force_scale: f64,
+    displacement_scale: f64,
+) -> Vec<PairResult> {
+    let m = names.len();
+    let xmax = x.iter().fold(force_scale, |a, b| a.max(b.abs()));
+    let zmax = z.iter().fold(displacement_scale, |a, b| a.max(b.abs()));
+    let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
+    (0..m)
+        .map(|i| {
+            let x_n = x[i];
+            let x_t = (x[m + i] - x[2 * m + i]) / 2.0;
+            let z_n = z[i];
+            let z_t = (z[m + i] - z[2 * m + i]) / 2.0;
+            let state = if z_n > tz || x_n <= tx {
+                PairState::Open
+            } else if z[m + i] > tz && z[m + i] > z[2 * m + i] {
+                PairState::SlipPlus
+            } else if z[2 * m + i] > tz {
+                PairState::SlipMinus
+            } else {
+                PairState::Stick
+            };
+            // Round-off of the friction rows of an open pair is not a force.
+            let x_t = if state == PairState::Open && x_t.abs() <= tx {
+                0.0
+            } else {
+                x_t
+            };
+            PairResult {
+                name: names[i].clone(),
+                x_n,
+                x_t,
+                z_n,
+                z_t,
+                state,
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // Reference: the definition of the states (formulation: open ⇔ no compression). A normal
+    // force of 4e-16 in a zone whose forces are of order one is round-off of zero: the pair
+    // touches without force (open/grazing), it does not stick.
+    #[test]
+    fn round_off_compression_is_open_not_stick() {
+        let names = vec!["1".to_string()];
+        let x = [4e-16, 0.0, 0.0];
+        let z = [0.0; 3];
+        assert_eq!(
+            pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
+            PairState::Open
+        );
+        // A real compression of the zone's scale sticks.
+        let x = [0.5, 0.2, 0.2];
+        assert_eq!(
+            pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
+            PairState::Stick
+        );
+    }
+}
