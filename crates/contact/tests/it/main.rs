@@ -5,5 +5,6 @@ mod common;
 mod generated_beams;
 mod known_answers;
 mod scale_invariance;
+mod solution_engine;
 mod ten_pair_beam;
 mod units_and_hostile;

@@ -7,4 +7,5 @@ mod contact_path;
 mod degenerate;
 mod hostile;
 mod paper_example1;
+mod solver;
 mod units;
