@@ -55,7 +55,7 @@ pub struct LcpPoint {
     pub residual: Residual,
 }
 
-/// The answer of [`solve_lcp`].
+/// The answer of [`crate::solve_lcp`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct LcpSolution {
     /// How the solve ended.
