@@ -27,6 +27,7 @@ mod json;
 mod model;
 mod mtx;
 mod reader;
+mod scan;
 mod text;
 mod toml_tree;
 mod tree;
