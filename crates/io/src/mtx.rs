@@ -10,7 +10,7 @@ use std::path::Path;
 use faer::Mat;
 
 use crate::error::{InputError, InputErrorKind, Pos};
-use crate::scan::{Scanner, Source, Token};
+use crate::scan::{Scan, Scanner, Source, Token};
 
 /// Largest dense matrix built from a Matrix Market file (rows × columns).
 pub(crate) const MAX_DENSE_ENTRIES: usize = 1 << 26;
@@ -40,7 +40,7 @@ struct Header {
 
 /// The next word of the data, skipping comment lines (a line whose first word starts with
 /// `%`) and blank lines.
-fn data_word<'s>(s: &'s mut Scanner<'_>) -> Result<Option<Token<'s>>, InputError> {
+fn data_word<'s>(s: &'s mut Scanner<'_>) -> Scan<Option<Token<'s>>> {
     loop {
         match s.peek_first_on_line()? {
             None => return Ok(None),
@@ -182,22 +182,29 @@ fn banner(path: &Path, s: &mut Scanner<'_>) -> Result<Header, InputError> {
 }
 
 /// A number of the data: finite, and whole when the banner says `integer`.
-fn value(path: &Path, w: &Token<'_>, integer: bool) -> Result<f64, InputError> {
-    let syntax = |msg: String| InputError::at(path, Some(w.pos), InputErrorKind::Syntax, msg);
+fn value(path: &Path, w: &Token<'_>, integer: bool) -> Scan<f64> {
+    let syntax = |msg: String| {
+        Box::new(InputError::at(
+            path,
+            Some(w.pos),
+            InputErrorKind::Syntax,
+            msg,
+        ))
+    };
     let v: f64 = w
         .text
         .parse()
         .map_err(|_| syntax(format!("expected a number, found `{}`", w.text)))?;
     if !v.is_finite() {
-        return Err(InputError::at(
+        return Err(Box::new(InputError::at(
             path,
             Some(w.pos),
             InputErrorKind::Value,
             format!("`{}` is not a finite number", w.text),
-        ));
+        )));
     }
     if integer && v.fract() != 0.0 {
-        return Err(InputError::at(
+        return Err(Box::new(InputError::at(
             path,
             Some(w.pos),
             InputErrorKind::Value,
@@ -205,20 +212,20 @@ fn value(path: &Path, w: &Token<'_>, integer: bool) -> Result<f64, InputError> {
                 "the banner says `integer`, but `{}` is not a whole number (declare the file `real`)",
                 w.text
             ),
-        ));
+        )));
     }
     Ok(v)
 }
 
 /// A 1-based index in `1..=n`, as a 0-based one.
-fn index(path: &Path, w: &Token<'_>, n: usize, row: bool) -> Result<usize, InputError> {
+fn index(path: &Path, w: &Token<'_>, n: usize, row: bool) -> Scan<usize> {
     let i = w
         .text
         .parse::<usize>()
         .ok()
         .filter(|&i| (1..=n).contains(&i));
     i.map(|i| i - 1).ok_or_else(|| {
-        InputError::at(
+        Box::new(InputError::at(
             path,
             Some(w.pos),
             InputErrorKind::Value,
@@ -227,7 +234,7 @@ fn index(path: &Path, w: &Token<'_>, n: usize, row: bool) -> Result<usize, Input
                 if row { "row" } else { "column" },
                 w.text
             ),
-        )
+        ))
     })
 }
 
@@ -292,17 +299,15 @@ pub(crate) fn parse_mtx(path: &Path, source: Source<'_>) -> Result<Mat<f64>, Inp
     };
     let size_line = first.pos.line;
     let mut size_words = vec![Kept::of(&first)];
-    while s.peek_line()? == Some(size_line) {
-        if let Some(w) = s.next_word()? {
-            size_words.push(if size_words.len() < 3 {
-                Kept::of(&w)
-            } else {
-                Kept {
-                    text: String::new(),
-                    pos: w.pos,
-                }
-            });
-        }
+    while let Some(w) = s.next_on_line()? {
+        size_words.push(if size_words.len() < 3 {
+            Kept::of(&w)
+        } else {
+            Kept {
+                text: String::new(),
+                pos: w.pos,
+            }
+        });
     }
     let expected = if format == Format::Coordinate { 3 } else { 2 };
     let what = if format == Format::Coordinate {
@@ -384,8 +389,7 @@ pub(crate) fn parse_mtx(path: &Path, source: Source<'_>) -> Result<Mat<f64>, Inp
                 let mut j = None;
                 let mut v = None;
                 let mut count = 1;
-                while s.peek_line()? == Some(line_no) {
-                    let Some(w) = s.next_word()? else { break };
+                while let Some(w) = s.next_on_line()? {
                     count += 1;
                     match count {
                         2 => j = Some(index(path, &w, cols, false)),
@@ -506,25 +510,17 @@ fn entry_line(
     let mut s = source.scanner(path)?;
     banner(path, &mut s)?;
     // Skip the size line.
-    let Some(first) = data_word(&mut s)? else {
+    if data_word(&mut s)?.is_none() {
         return Ok(None);
-    };
-    let size_line = first.pos.line;
-    while s.peek_line()? == Some(size_line) {
-        s.next_word()?;
     }
+    while s.next_on_line()?.is_some() {}
     let target =
         |r: usize, c: usize| (r, c) == (i + 1, j + 1) || symmetric && (c, r) == (i + 1, j + 1);
     while let Some(w) = data_word(&mut s)? {
-        let (line, pos) = (w.pos.line, w.pos);
+        let pos = w.pos;
         let r = w.text.parse::<usize>().ok();
-        let c = match s.peek_line()? {
-            Some(l) if l == line => s.next_word()?.and_then(|w| w.text.parse::<usize>().ok()),
-            _ => None,
-        };
-        while s.peek_line()? == Some(line) {
-            s.next_word()?;
-        }
+        let c = s.next_on_line()?.and_then(|w| w.text.parse::<usize>().ok());
+        while s.next_on_line()?.is_some() {}
         if let (Some(r), Some(c)) = (r, c) {
             if target(r, c) {
                 return Ok(Some(pos));
@@ -545,11 +541,8 @@ pub(crate) fn entry_place(path: &Path, i: usize, j: usize) -> Option<Pos> {
         Format::Coordinate => entry_line(path, source, i, j, header.symmetric).ok()?,
         Format::Array => {
             let first = data_word(&mut s).ok()??;
-            let size_line = first.pos.line;
             let rows: usize = first.text.parse().ok()?;
-            while s.peek_line().ok()? == Some(size_line) {
-                s.next_word().ok()?;
-            }
+            while s.next_on_line().ok()?.is_some() {}
             let (i, j) = if header.symmetric && i < j {
                 (j, i)
             } else {

@@ -18,6 +18,10 @@ use std::path::Path;
 use crate::error::{InputError, InputErrorKind, Pos};
 use crate::text::{open_file, MAX_FILE_BYTES};
 
+/// The scanner's results: the error is boxed so that the words of the hot loop move as two
+/// machine words, not as a whole [`InputError`].
+pub(crate) type Scan<T> = Result<T, Box<InputError>>;
+
 /// Bytes read per block.
 const BLOCK: usize = 1 << 20;
 
@@ -55,28 +59,29 @@ pub(crate) struct Token<'s> {
     pub pos: Pos,
 }
 
-/// The scanner: one block buffer, the place of the next byte, and the counters that give
-/// every word its line and column.
+/// The scanner: the text of the current block, the place of the next character, and the
+/// counters that give every word its line and column.
 pub(crate) struct Scanner<'a> {
     path: &'a Path,
     reader: Box<dyn Read + 'a>,
     /// The file's length as found when it was opened (for size estimates).
     len: u64,
-    buf: Vec<u8>,
-    /// Next byte to look at.
+    /// Validated text of the current block (and of a word that runs on from the last one).
+    text: String,
+    /// Bytes read but not yet moved into `text`: a character cut by the block's end.
+    raw: Vec<u8>,
+    /// Next byte of `text` to look at.
     at: usize,
-    /// Bytes of `buf` known to be whole UTF-8 characters.
-    valid: usize,
-    /// Bytes of `buf` filled.
-    end: usize,
     /// The reader has no more bytes.
     eof: bool,
-    /// An invalid UTF-8 byte at this index of `buf` (the scan stops there with an error).
-    bad: Option<usize>,
-    /// File offset of `buf[0]`.
+    /// The byte that follows `text` is not UTF-8: the scan stops there with an error.
+    bad: Option<u8>,
+    /// File offset of `text[0]`.
     base: u64,
     /// Total bytes read (for the size limit).
     read: u64,
+    /// Bytes asked of the reader per read.
+    block: usize,
     /// The line of the next byte (1-based).
     line: usize,
     /// File offset of the first byte of the current line.
@@ -104,14 +109,14 @@ impl<'a> Scanner<'a> {
             path,
             reader,
             len,
-            buf: vec![0; BLOCK],
+            text: String::with_capacity(BLOCK),
+            raw: Vec::with_capacity(BLOCK),
             at: 0,
-            valid: 0,
-            end: 0,
             eof: false,
             bad: None,
             base: 0,
             read: 0,
+            block: BLOCK,
             line: 1,
             line_start: 0,
             line_continuations: 0,
@@ -129,24 +134,24 @@ impl<'a> Scanner<'a> {
     }
 
     /// The file had no byte (after a byte-order mark).
-    pub(crate) fn is_empty(&mut self) -> Result<bool, InputError> {
+    pub(crate) fn is_empty(&mut self) -> Scan<bool> {
         self.start()?;
         Ok(!self.any)
     }
 
-    /// The file's length in bytes and the offset of the next byte, for bounds on what the rest
-    /// of the file can hold.
+    /// An upper bound on the bytes after the next one, for bounds on what the rest of the file
+    /// can hold.
     pub(crate) fn remaining_bytes(&self) -> u64 {
         self.len.saturating_sub(self.base + self.at as u64)
     }
 
-    fn io_error(&self, e: std::io::Error) -> InputError {
-        InputError::at(
+    fn io_error(&self, e: std::io::Error) -> Box<InputError> {
+        Box::new(InputError::at(
             self.path,
             None,
             InputErrorKind::Io,
             format!("cannot read the file: {e}"),
-        )
+        ))
     }
 
     /// The place of the next byte.
@@ -159,95 +164,79 @@ impl<'a> Scanner<'a> {
     }
 
     /// Reads the first block and skips a byte-order mark.
-    fn start(&mut self) -> Result<(), InputError> {
-        if self.started {
-            return Ok(());
-        }
-        self.started = true;
-        while self.end < 3 && !self.eof {
-            self.fill()?;
-        }
-        if self.buf[..self.end].starts_with("\u{feff}".as_bytes()) {
-            // The mark is not part of the text: columns and offsets start after it, as in
-            // `text::decode`.
-            self.buf.copy_within(3..self.end, 0);
-            self.end -= 3;
-            self.valid = self.valid.saturating_sub(3);
-            if let Some(b) = &mut self.bad {
-                *b -= 3;
+    #[inline]
+    fn start(&mut self) -> Scan<()> {
+        if !self.started {
+            self.started = true;
+            while self.text.len() < 3 && self.fill()? {}
+            if self.text.starts_with('\u{feff}') {
+                // The mark is not part of the text: columns and offsets start after it, as in
+                // `text::decode`.
+                self.text.drain(..3);
+                self.bom = true;
             }
-            self.bom = true;
-            self.validate();
+            self.any = !self.text.is_empty() || self.bad.is_some();
         }
-        self.any = self.end > 0;
         Ok(())
     }
 
-    /// Moves the unread bytes to the front and reads more; returns whether bytes were added.
-    fn fill(&mut self) -> Result<bool, InputError> {
-        if self.eof {
-            return Ok(false);
-        }
+    /// Drops the text before `at`, reads more and moves its whole characters into `text`;
+    /// returns whether text was added.
+    fn fill(&mut self) -> Scan<bool> {
         if self.at > 0 {
-            self.buf.copy_within(self.at..self.end, 0);
+            self.text.drain(..self.at);
             self.base += self.at as u64;
-            self.valid -= self.at;
-            self.end -= self.at;
-            if let Some(b) = &mut self.bad {
-                *b -= self.at;
-            }
             self.at = 0;
         }
-        if self.end == self.buf.len() {
-            // A word longer than the buffer: grow it (the file's size limit bounds this).
-            self.buf.resize(self.buf.len() * 2, 0);
-        }
-        let n = loop {
-            match self.reader.read(&mut self.buf[self.end..]) {
-                Ok(n) => break n,
-                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
-                Err(e) => return Err(self.io_error(e)),
-            }
-        };
-        self.read += n as u64;
-        if self.read > MAX_FILE_BYTES {
-            return Err(InputError::at(
-                self.path,
-                None,
-                InputErrorKind::Io,
-                format!("the file has more than the {MAX_FILE_BYTES} bytes this program reads"),
-            ));
-        }
-        self.end += n;
-        if n == 0 {
-            self.eof = true;
-        }
-        self.validate();
-        Ok(n > 0)
-    }
-
-    /// Extends `valid` over the whole characters of `buf[valid..end]`; marks the first
-    /// invalid byte.
-    fn validate(&mut self) {
-        if self.bad.is_some() {
-            return;
-        }
-        match std::str::from_utf8(&self.buf[self.valid..self.end]) {
-            Ok(_) => self.valid = self.end,
-            Err(e) => {
-                let upto = self.valid + e.valid_up_to();
-                self.valid = upto;
-                // An incomplete character at the end of the block waits for the next block,
-                // unless the file ends there.
-                if e.error_len().is_some() || self.eof {
-                    self.bad = Some(upto);
+        let before = self.text.len();
+        while self.text.len() == before && !self.eof && self.bad.is_none() {
+            let have = self.raw.len();
+            self.raw.resize(have + self.block, 0);
+            let n = loop {
+                match self.reader.read(&mut self.raw[have..]) {
+                    Ok(n) => break n,
+                    Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+                    Err(e) => {
+                        self.raw.truncate(have);
+                        return Err(self.io_error(e));
+                    }
                 }
+            };
+            self.raw.truncate(have + n);
+            self.read += n as u64;
+            if self.read > MAX_FILE_BYTES {
+                return Err(Box::new(InputError::at(
+                    self.path,
+                    None,
+                    InputErrorKind::Io,
+                    format!("the file has more than the {MAX_FILE_BYTES} bytes this program reads"),
+                )));
             }
+            self.eof = n == 0;
+            let (good, bad) = match std::str::from_utf8(&self.raw) {
+                Ok(t) => {
+                    self.text.push_str(t);
+                    (self.raw.len(), false)
+                }
+                Err(e) => {
+                    let good = e.valid_up_to();
+                    let t = std::str::from_utf8(&self.raw[..good]).unwrap_or_default();
+                    self.text.push_str(t);
+                    // A character cut by the block's end waits for the next block, unless the
+                    // file ends there.
+                    (good, e.error_len().is_some() || self.eof)
+                }
+            };
+            if bad {
+                self.bad = Some(self.raw[good]);
+            }
+            self.raw.drain(..good);
         }
+        Ok(self.text.len() > before)
     }
 
-    /// The error for the invalid byte at the scan's place.
-    fn encoding_error(&self) -> InputError {
+    /// The error for the invalid byte that follows the text.
+    fn encoding_error(&self) -> Box<InputError> {
         // Offsets and the first line's columns count the byte-order mark here, as the
         // in-memory decoder (which looks at the bytes before dropping the mark) does.
         let mark = if self.bom { 3 } else { 0 };
@@ -256,83 +245,66 @@ impl<'a> Scanner<'a> {
         if self.bom && pos.line == 1 {
             pos.col += 1;
         }
-        InputError::at(
+        Box::new(InputError::at(
             self.path,
             Some(pos),
             InputErrorKind::Encoding,
             format!(
                 "the file is not UTF-8 text (byte 0x{:02x} at offset {offset}); is it a binary file?",
-                self.buf[self.at]
+                self.bad.unwrap_or(0)
             ),
-        )
+        ))
     }
 
-    /// Ensures a whole character is available at `at`: `Ok(false)` at the end of the file.
-    fn ensure(&mut self) -> Result<bool, InputError> {
-        while self.at >= self.valid {
-            if self.bad == Some(self.at) {
-                return Err(self.encoding_error());
-            }
-            if !self.fill()? {
-                if self.bad == Some(self.at) {
-                    return Err(self.encoding_error());
-                }
-                return Ok(false);
-            }
+    /// Makes text available at `at`: `Ok(false)` at the end of the file.
+    fn more(&mut self) -> Scan<bool> {
+        if self.fill()? {
+            return Ok(true);
         }
-        Ok(true)
-    }
-
-    /// The character at `at` (a whole one is available) and its length in bytes.
-    fn char_at(&self) -> (char, usize) {
-        let b = self.buf[self.at];
-        if b < 0x80 {
-            return (b as char, 1);
+        if self.bad.is_some() {
+            return Err(self.encoding_error());
         }
-        let len = match b {
-            0xC0..=0xDF => 2,
-            0xE0..=0xEF => 3,
-            _ => 4,
-        };
-        let s = std::str::from_utf8(&self.buf[self.at..self.at + len]).unwrap_or("\u{fffd}");
-        (s.chars().next().unwrap_or('\u{fffd}'), len)
+        Ok(false)
     }
 
-    /// Steps over one character at `at` (available), keeping the line counters.
-    fn advance(&mut self, c: char, len: usize) {
-        self.at += len;
-        if c == '\n' {
-            self.line += 1;
-            self.line_start = self.base + self.at as u64;
-            self.line_continuations = 0;
-            self.new_line = true;
-        } else {
-            self.line_continuations += len as u64 - 1;
-        }
+    /// The character at `at` (a non-ASCII one).
+    fn char_at(&self) -> char {
+        self.text[self.at..].chars().next().unwrap_or('\u{fffd}')
     }
 
-    /// Skips white space; `Ok(false)` at the end of the file.
-    fn skip_space(&mut self) -> Result<bool, InputError> {
+    /// Skips white space; `Ok(false)` at the end of the file. With `in_line`, stops after the
+    /// end of a line as well (returns `Ok(false)` there).
+    #[inline]
+    fn skip_space(&mut self, in_line: bool) -> Scan<bool> {
         self.start()?;
         loop {
-            // The fast path: ASCII white space within the valid bytes.
-            while self.at < self.valid {
-                let b = self.buf[self.at];
+            let bytes = self.text.as_bytes();
+            while self.at < bytes.len() {
+                let b = bytes[self.at];
                 if b == b'\n' {
-                    self.advance('\n', 1);
+                    self.at += 1;
+                    self.line += 1;
+                    self.line_start = self.base + self.at as u64;
+                    self.line_continuations = 0;
+                    self.new_line = true;
+                    if in_line {
+                        return Ok(false);
+                    }
                 } else if is_ascii_space(b) {
                     self.at += 1;
                 } else if b < 0x80 {
                     return Ok(true);
                 } else {
-                    let (c, len) = self.char_at();
+                    let c = self.char_at();
                     if !c.is_whitespace() {
                         return Ok(true);
                     }
-                    self.advance(c, len);
+                    let len = c.len_utf8();
+                    self.at += len;
+                    self.line_continuations += len as u64 - 1;
                 }
             }
-            if !self.ensure()? {
+            if !self.more()? {
                 return Ok(false);
             }
         }
@@ -340,93 +312,104 @@ impl<'a> Scanner<'a> {
 
     /// Whether a next word exists and starts a new line: `None` at the end of the file.
     /// The word is not consumed.
-    pub(crate) fn peek_first_on_line(&mut self) -> Result<Option<bool>, InputError> {
-        Ok(self.skip_space()?.then_some(self.new_line))
+    pub(crate) fn peek_first_on_line(&mut self) -> Scan<Option<bool>> {
+        Ok(self.skip_space(false)?.then_some(self.new_line))
     }
 
     /// The first byte of the next word, after a `peek_*` call found one.
     pub(crate) fn peek_byte(&self) -> Option<u8> {
-        (self.at < self.valid).then(|| self.buf[self.at])
+        self.text.as_bytes().get(self.at).copied()
     }
 
     /// The line of the next word (`None` at the end of the file). The word is not consumed.
-    pub(crate) fn peek_line(&mut self) -> Result<Option<usize>, InputError> {
-        Ok(self.skip_space()?.then_some(self.line))
+    pub(crate) fn peek_line(&mut self) -> Scan<Option<usize>> {
+        Ok(self.skip_space(false)?.then_some(self.line))
     }
 
     /// The next word, or `None` at the end of the file.
-    pub(crate) fn next_word(&mut self) -> Result<Option<Token<'_>>, InputError> {
-        if !self.skip_space()? {
+    pub(crate) fn next_word(&mut self) -> Scan<Option<Token<'_>>> {
+        if !self.skip_space(false)? {
             return Ok(None);
         }
+        self.word().map(Some)
+    }
+
+    /// The next word if it is on the current line; `None` at the end of the line (which is
+    /// then consumed) or of the file.
+    pub(crate) fn next_on_line(&mut self) -> Scan<Option<Token<'_>>> {
+        if self.new_line || !self.skip_space(true)? {
+            return Ok(None);
+        }
+        self.word().map(Some)
+    }
+
+    /// The word that starts at `at` (after white space was skipped).
+    fn word(&mut self) -> Scan<Token<'_>> {
         let pos = self.here();
         self.new_line = false;
-        let mut start = self.at;
         let mut i = self.at;
         loop {
+            let bytes = self.text.as_bytes();
             // The fast path over ASCII bytes of the word.
-            while i < self.valid {
-                let b = self.buf[i];
+            while i < bytes.len() {
+                let b = bytes[i];
                 if b < 0x80 {
                     if is_ascii_space(b) {
                         break;
                     }
                     i += 1;
                 } else {
-                    self.at = i;
-                    let (c, len) = self.char_at();
+                    let c = self.text[i..].chars().next().unwrap_or(' ');
                     if c.is_whitespace() {
                         break;
                     }
+                    let len = c.len_utf8();
                     self.line_continuations += len as u64 - 1;
                     i += len;
                 }
             }
-            if i < self.valid {
+            if i < self.text.len() {
                 break;
             }
             // The word may go on in the next block: keep its bytes.
-            self.at = start;
-            let offset = i - start;
-            if self.bad == Some(i) {
-                self.at = i;
-                return Err(self.encoding_error());
-            }
+            let offset = i - self.at;
             let more = self.fill()?;
-            start = self.at;
-            i = start + offset;
+            i = self.at + offset;
             if !more {
-                if self.bad == Some(i) {
+                if self.bad.is_some() {
                     self.at = i;
                     return Err(self.encoding_error());
                 }
                 break;
             }
         }
+        let start = self.at;
         self.at = i;
         self.last = Some(pos);
-        // `buf[start..i]` lies within the validated bytes.
-        let text = std::str::from_utf8(&self.buf[start..i]).unwrap_or("");
-        Ok(Some(Token { text, pos }))
+        Ok(Token {
+            text: &self.text[start..i],
+            pos,
+        })
     }
 
     /// Skips the rest of the current line (a comment).
-    pub(crate) fn skip_line(&mut self) -> Result<(), InputError> {
+    pub(crate) fn skip_line(&mut self) -> Scan<()> {
         loop {
-            while self.at < self.valid {
-                let b = self.buf[self.at];
+            let bytes = self.text.as_bytes();
+            while self.at < bytes.len() {
+                let b = bytes[self.at];
                 if b == b'\n' {
-                    self.advance('\n', 1);
-                    return Ok(());
+                    return self.skip_space(true).map(|_| ());
                 }
                 if b < 0x80 {
                     self.at += 1;
                 } else {
-                    let (c, len) = self.char_at();
-                    self.advance(c, len);
+                    let len = self.char_at().len_utf8();
+                    self.at += len;
+                    self.line_continuations += len as u64 - 1;
                 }
             }
-            if !self.ensure()? {
+            if !self.more()? {
                 return Ok(());
             }
         }
@@ -434,7 +417,7 @@ impl<'a> Scanner<'a> {
 
     /// Reads to the end and returns the number of lines as [`str::lines`] counts them, and the
     /// number of words met on the way.
-    pub(crate) fn finish(&mut self) -> Result<(usize, usize), InputError> {
+    pub(crate) fn finish(&mut self) -> Scan<(usize, usize)> {
         let mut words = 0;
         while self.next_word()?.is_some() {
             words += 1;
@@ -459,7 +442,7 @@ mod tests {
     fn scan(text: &str, block: usize) -> Vec<(String, usize, usize, bool)> {
         let path = Path::new("t.dat");
         let mut s = Scanner::new(path, Box::new(text.as_bytes()), text.len() as u64);
-        s.buf = vec![0; block];
+        s.block = block;
         let mut out = Vec::new();
         while let Some(first) = s.peek_first_on_line().unwrap() {
             let t = s.next_word().unwrap().unwrap();
@@ -519,7 +502,7 @@ mod tests {
         let want = crate::text::decode(Path::new("t"), bytes.clone()).unwrap_err();
         for block in [1, 2, 4, 1 << 10] {
             let mut s = Scanner::new(Path::new("t"), Box::new(&bytes[..]), 0);
-            s.buf = vec![0; block];
+            s.block = block;
             let got = loop {
                 match s.next_word() {
                     Ok(Some(_)) => {}
