@@ -392,6 +392,33 @@ impl<'a> Scanner<'a> {
         })
     }
 
+    /// The rest of the current line from its next word on, as written (a quoted name with
+    /// spaces), without trailing white space; the line's end is consumed. `None` when the
+    /// line has no more words.
+    pub(crate) fn rest_of_line(&mut self) -> Scan<Option<(String, Pos)>> {
+        if self.new_line || !self.skip_space(true)? {
+            return Ok(None);
+        }
+        let pos = self.here();
+        self.new_line = false;
+        let mut out = String::new();
+        loop {
+            let end = self.text[self.at..].find('\n').map(|k| self.at + k);
+            let stop = end.unwrap_or(self.text.len());
+            let piece = &self.text[self.at..stop];
+            self.line_continuations += piece.bytes().filter(|&b| b & 0xC0 == 0x80).count() as u64;
+            out.push_str(piece);
+            self.at = stop;
+            if end.is_some() || !self.more()? {
+                break;
+            }
+        }
+        self.skip_space(true)?;
+        self.last = Some(pos);
+        out.truncate(out.trim_end().len());
+        Ok(Some((out, pos)))
+    }
+
     /// Skips the rest of the current line (a comment).
     pub(crate) fn skip_line(&mut self) -> Scan<()> {
         loop {
