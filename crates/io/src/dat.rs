@@ -6,7 +6,7 @@ use faer::Mat;
 use unilateral_lcp::Lcp;
 
 use crate::error::{InputError, InputErrorKind, Pos};
-use crate::text::{read_text, words as line_words, Word};
+use crate::scan::{Scanner, Source};
 
 /// A 2D frictional contact problem in Siconos' "local" form: find contact forces `r` and
 /// relative velocities `u = W r + q` satisfying Coulomb's law per contact with friction `mu`.
@@ -28,58 +28,79 @@ impl Fc2dProblem {
     }
 }
 
-/// Every word of the file, line by line.
-fn words(text: &str) -> Vec<Word<'_>> {
-    text.lines()
-        .enumerate()
-        .flat_map(|(l, line)| line_words(line, l + 1))
-        .collect()
+/// A bound on the values still to be read, set when a header has fixed how many must follow:
+/// if the file ends early, the error says so at the header, with the count it holds.
+struct Needed {
+    /// Where the size was written.
+    at: Pos,
+    /// Values the header asks for.
+    count: usize,
+    /// What they are (`M and the vectors`).
+    name: String,
+    /// Values read since.
+    read: usize,
 }
 
-/// A cursor over the words of a `.dat` file.
+/// A cursor over the words of a `.dat` file, read as a stream (the file is never held whole).
 struct Cursor<'a> {
     path: &'a Path,
-    words: Vec<Word<'a>>,
-    at: usize,
-    /// Where the last word was, for "the file ends here" messages.
-    last: Option<Pos>,
+    words: Scanner<'a>,
+    needed: Option<Needed>,
+    /// The problem size of the matrix block (for the messages of the size guard).
+    n: usize,
 }
 
 impl<'a> Cursor<'a> {
-    fn new(path: &'a Path, text: &'a str) -> Self {
-        let words = words(text);
-        let last = words.last().map(|w| w.pos);
-        Self {
+    fn new(path: &'a Path, source: Source<'a>) -> Result<Self, InputError> {
+        Ok(Self {
             path,
-            words,
-            at: 0,
-            last,
-        }
-    }
-
-    fn remaining(&self) -> usize {
-        self.words.len() - self.at
+            words: source.scanner(path)?,
+            needed: None,
+            n: 0,
+        })
     }
 
     fn end_err(&self, what: &str) -> InputError {
-        let msg = if self.words.is_empty() {
+        let msg = if self.words.last().is_none() {
             format!("the file is empty: expected {what}")
         } else {
             format!("the file ends before {what} (truncated file?)")
         };
-        InputError::at(self.path, self.last, InputErrorKind::Syntax, msg)
+        InputError::at(self.path, self.words.last(), InputErrorKind::Syntax, msg)
+    }
+
+    /// The error of a header that asks for more values than the file holds (`remaining`).
+    fn short_err(
+        &self,
+        at: Pos,
+        needed: Option<usize>,
+        name: &str,
+        remaining: usize,
+    ) -> InputError {
+        InputError::at(
+            self.path,
+            Some(at),
+            InputErrorKind::Size,
+            format!(
+                "the header says n = {}, so {name} and the vectors need {} numbers, but the file holds only {remaining} more values (wrong header or truncated file?)",
+                self.n,
+                needed.map_or_else(|| "more than 2^64".to_string(), |k| k.to_string()),
+            ),
+        )
     }
 
     /// A whole number of the header.
     fn header(&mut self, what: &str) -> Result<(usize, Pos), InputError> {
-        let Some(w) = self.words.get(self.at) else {
+        let path = self.path;
+        let Some(w) = self.words.next_word()? else {
             return Err(self.end_err(what));
         };
+        let pos = w.pos;
         let v = w.text.parse::<usize>().map_err(|_| {
             let big = w.text.bytes().all(|b| b.is_ascii_digit());
             InputError::at(
-                self.path,
-                Some(w.pos),
+                path,
+                Some(pos),
                 InputErrorKind::Syntax,
                 if big {
                     format!("{what}: `{}` is too large", w.text)
@@ -88,19 +109,27 @@ impl<'a> Cursor<'a> {
                 },
             )
         })?;
-        self.at += 1;
-        Ok((v, w.pos))
+        Ok((v, pos))
     }
 
-    /// A finite number of the data; `key` names it in errors (e.g. `M[2][3]`).
-    fn number(&mut self, key: impl Fn() -> String, what: &str) -> Result<f64, InputError> {
-        let Some(w) = self.words.get(self.at) else {
-            return Err(self.end_err(what).with_key(key()));
+    /// A finite number of the data and its place; `key` names it in errors (e.g. `M[2][3]`).
+    fn number(
+        &mut self,
+        key: impl Fn() -> String,
+        what: impl Fn() -> String,
+    ) -> Result<(f64, Pos), InputError> {
+        let path = self.path;
+        let Some(w) = self.words.next_word()? else {
+            if let Some(n) = &self.needed {
+                return Err(self.short_err(n.at, Some(n.count), &n.name, n.read));
+            }
+            return Err(self.end_err(&what()).with_key(key()));
         };
+        let pos = w.pos;
         let v: f64 = w.text.parse().map_err(|_| {
             InputError::at(
-                self.path,
-                Some(w.pos),
+                path,
+                Some(pos),
                 InputErrorKind::Syntax,
                 format!("expected a number, found `{}`", w.text),
             )
@@ -108,15 +137,17 @@ impl<'a> Cursor<'a> {
         })?;
         if !v.is_finite() {
             return Err(InputError::at(
-                self.path,
-                Some(w.pos),
+                path,
+                Some(pos),
                 InputErrorKind::Value,
                 format!("`{}` is not a finite number", w.text),
             )
             .with_key(key()));
         }
-        self.at += 1;
-        Ok(v)
+        if let Some(n) = &mut self.needed {
+            n.read += 1;
+        }
+        Ok((v, pos))
     }
 
     /// Checks the header value `got` against `want`.
@@ -168,56 +199,65 @@ impl<'a> Cursor<'a> {
             let (v, p) = self.header(&format!("{what} of {name}"))?;
             self.expect_eq(v, p, n, &format!("{what} of {name}"), "the problem size")?;
         }
-        // Guard against absurd headers before allocating.
+        // Guard against absurd headers before allocating: every value takes at least two
+        // bytes (a digit and a separator) but the last, so the rest of the file bounds their
+        // number; beyond that bound the file is counted to say how many it holds.
+        self.n = n;
         let needed = n.checked_mul(n).and_then(|nn| nn.checked_add(extra));
+        let most = self.words.remaining_bytes().div_ceil(2);
         match needed {
-            Some(k) if k <= self.remaining() => {}
+            Some(k) if k as u64 <= most => {}
             _ => {
-                return Err(InputError::at(
-                    self.path,
-                    Some(n_pos),
-                    InputErrorKind::Size,
-                    format!(
-                        "the header says n = {n}, so {name} and the vectors need {} numbers, but the file holds only {} more values (wrong header or truncated file?)",
-                        needed.map_or_else(|| "more than 2^64".to_string(), |k| k.to_string()),
-                        self.remaining()
-                    ),
-                ));
+                let (_, remaining) = self.words.finish()?;
+                if needed.is_none_or(|k| k > remaining) {
+                    return Err(self.short_err(n_pos, needed, name, remaining));
+                }
             }
         }
+        self.needed = needed.map(|count| Needed {
+            at: n_pos,
+            count,
+            name: name.to_string(),
+            read: 0,
+        });
         let mut m = Mat::<f64>::zeros(n, n);
         for j in 0..n {
             for i in 0..n {
-                m[(i, j)] = self.number(
-                    || format!("{name}[{}][{}]", i + 1, j + 1),
-                    &format!("entry ({}, {}) of {name}", i + 1, j + 1),
-                )?;
+                m[(i, j)] = self
+                    .number(
+                        || format!("{name}[{}][{}]", i + 1, j + 1),
+                        || format!("entry ({}, {}) of {name}", i + 1, j + 1),
+                    )?
+                    .0;
             }
         }
         Ok(m)
     }
 
-    fn vector(&mut self, n: usize, name: &str) -> Result<Vec<f64>, InputError> {
-        (0..n)
-            .map(|i| {
-                self.number(
-                    || format!("{name}[{}]", i + 1),
-                    &format!("entry {} of {name} (it has {n} entries)", i + 1),
-                )
-            })
-            .collect()
+    /// `n` values and where each is written.
+    fn vector(&mut self, n: usize, name: &str) -> Result<(Vec<f64>, Vec<Pos>), InputError> {
+        let mut values = Vec::with_capacity(n);
+        let mut places = Vec::with_capacity(n);
+        for i in 0..n {
+            let (v, p) = self.number(
+                || format!("{name}[{}]", i + 1),
+                || format!("entry {} of {name} (it has {n} entries)", i + 1),
+            )?;
+            values.push(v);
+            places.push(p);
+        }
+        Ok((values, places))
     }
 }
 
 /// Reads a dense LCP in Siconos `.dat` format: `n`, storage type `0`, `n`, `n`, `n n`, the
 /// `n²` entries of `M` column by column, then `q`. Anything after `q` is a comment.
 pub fn read_siconos_lcp(path: &Path) -> Result<Lcp, InputError> {
-    let text = read_text(path)?;
-    parse_lcp_dat(path, &text)
+    parse_lcp_dat(path, Source::File(path))
 }
 
-pub(crate) fn parse_lcp_dat(path: &Path, text: &str) -> Result<Lcp, InputError> {
-    let mut c = Cursor::new(path, text);
+pub(crate) fn parse_lcp_dat(path: &Path, source: Source<'_>) -> Result<Lcp, InputError> {
+    let mut c = Cursor::new(path, source)?;
     let (n, n_pos) = c.header("the problem size n")?;
     if n == 0 {
         return Err(InputError::at(
@@ -228,7 +268,7 @@ pub(crate) fn parse_lcp_dat(path: &Path, text: &str) -> Result<Lcp, InputError> 
         ));
     }
     let m = c.dense_block(n, n_pos, n, "M")?;
-    let q = c.vector(n, "q")?;
+    let (q, _) = c.vector(n, "q")?;
     Ok(Lcp { m, q })
 }
 
@@ -236,12 +276,11 @@ pub(crate) fn parse_lcp_dat(path: &Path, text: &str) -> Result<Lcp, InputError> 
 /// number of contacts `nc`, storage type `0`, `n`, `n`, `n n` (with `n = 2·nc`), the `n²`
 /// entries of `W` column by column, then `q` (`n` values) and `mu` (`nc` values).
 pub fn read_fc2d(path: &Path) -> Result<Fc2dProblem, InputError> {
-    let text = read_text(path)?;
-    parse_fc2d(path, &text)
+    parse_fc2d(path, Source::File(path))
 }
 
-pub(crate) fn parse_fc2d(path: &Path, text: &str) -> Result<Fc2dProblem, InputError> {
-    let mut c = Cursor::new(path, text);
+pub(crate) fn parse_fc2d(path: &Path, source: Source<'_>) -> Result<Fc2dProblem, InputError> {
+    let mut c = Cursor::new(path, source)?;
     let (dim, d_pos) = c.header("the dimension (2)")?;
     if dim != 2 {
         return Err(InputError::at(
@@ -269,14 +308,12 @@ pub(crate) fn parse_fc2d(path: &Path, text: &str) -> Result<Fc2dProblem, InputEr
         ));
     };
     let w = c.dense_block(n, nc_pos, n + nc, "W")?;
-    let q = c.vector(n, "q")?;
-    let mu = c.vector(nc, "mu")?;
+    let (q, _) = c.vector(n, "q")?;
+    let (mu, places) = c.vector(nc, "mu")?;
     if let Some(i) = mu.iter().position(|&f| f < 0.0) {
-        // Find where mu[i] was written: the last nc words read.
-        let pos = c.words.get(c.at - nc + i).map(|w| w.pos);
         return Err(InputError::at(
             path,
-            pos,
+            Some(places[i]),
             InputErrorKind::Value,
             format!("friction must be ≥ 0, but contact {} has {}", i + 1, mu[i]),
         )
@@ -290,7 +327,7 @@ mod tests {
     use super::*;
 
     fn lcp(s: &str) -> Result<Lcp, InputError> {
-        parse_lcp_dat(Path::new("x.dat"), s)
+        parse_lcp_dat(Path::new("x.dat"), Source::Text(s))
     }
 
     #[test]
@@ -336,17 +373,17 @@ mod tests {
     fn fc2d_small() {
         let p = parse_fc2d(
             Path::new("f.dat"),
-            "2\n1\n0\n2\n2\n2 2\n1 2\n3 4\n-1 0\n0.3\n",
+            Source::Text("2\n1\n0\n2\n2\n2 2\n1 2\n3 4\n-1 0\n0.3\n"),
         )
         .unwrap();
         assert_eq!(p.w[(1, 0)], 2.0);
         assert_eq!(p.q, vec![-1.0, 0.0]);
         assert_eq!(p.mu, vec![0.3]);
-        let e = parse_fc2d(Path::new("f.dat"), "3\n1\n").unwrap_err();
+        let e = parse_fc2d(Path::new("f.dat"), Source::Text("3\n1\n")).unwrap_err();
         assert!(e.message.contains("dimension 3"));
         let e = parse_fc2d(
             Path::new("f.dat"),
-            "2\n1\n0\n2\n2\n2 2\n1 2\n3 4\n-1 0\n-0.3\n",
+            Source::Text("2\n1\n0\n2\n2\n2 2\n1 2\n3 4\n-1 0\n-0.3\n"),
         )
         .unwrap_err();
         assert_eq!(e.key.as_deref(), Some("mu[1]"));

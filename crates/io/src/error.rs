@@ -158,3 +158,9 @@ impl InputError {
         Self::new(Location::at(file, pos), kind, message)
     }
 }
+
+impl From<Box<InputError>> for InputError {
+    fn from(e: Box<InputError>) -> Self {
+        *e
+    }
+}

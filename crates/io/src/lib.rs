@@ -6,6 +6,7 @@
 //!   Matrices may be written inline or as Matrix Market files ([`read_matrix_market`]).
 //! * [`read_lcp`]: a plain LCP `w = Mz + q` (Siconos `.dat`, `.toml` or `.json`).
 //! * [`read_fc2d`]: a 2D frictional contact problem in Siconos `.dat` "local" form.
+//! * [`read_gmsh`]: a Gmsh mesh (MSH 4.1 or 2.2 ASCII) as the file writes it.
 //!
 //! Every reader returns an [`InputError`] for bad input and never panics, whatever the bytes
 //! of the file. Its `Display` reads like a compiler message:
@@ -25,8 +26,10 @@ mod dat;
 mod error;
 mod json;
 mod model;
+mod msh;
 mod mtx;
 mod reader;
+mod scan;
 mod text;
 mod toml_tree;
 mod tree;
@@ -35,5 +38,8 @@ mod zone;
 pub use dat::{read_fc2d, read_siconos_lcp, Fc2dProblem};
 pub use error::{InputError, InputErrorKind, Location};
 pub use model::*;
+pub use msh::{
+    read_gmsh, GmshMesh, MshElement, MshElementType, MshNode, MshVersion, PhysicalGroup,
+};
 pub use mtx::read_matrix_market;
 pub use zone::{read_contact_zone, read_lcp, ContactZoneProblem};

@@ -1,13 +1,12 @@
 //! Reading typed values out of a [`Node`] tree with errors that name the file, the line and
 //! column, and the key path.
 
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use faer::Mat;
 
 use crate::error::{InputError, InputErrorKind, Location, Pos};
-use crate::mtx::read_mtx;
+use crate::mtx::{entry_place, read_matrix_market};
 use crate::text::read_text;
 use crate::tree::{did_you_mean, short, Entry, Node, Value};
 
@@ -264,7 +263,7 @@ impl<'a> Doc<'a> {
         let dir = self.path.parent().unwrap_or(Path::new(""));
         let file = dir.join(name);
         let from = Location::at(self.path, node.pos);
-        let read = read_mtx(&file).map_err(|mut e| {
+        let read = read_matrix_market(&file).map_err(|mut e| {
             if e.kind == InputErrorKind::Io {
                 // The file named is not there: the error belongs to the problem file.
                 self.err(
@@ -284,14 +283,10 @@ impl<'a> Doc<'a> {
             }
         })?;
         Ok(MatrixInput {
-            mat: read.mat,
+            mat: read,
             key: key.to_string(),
             pos: node.pos,
-            source: MatrixSource::File {
-                file,
-                from,
-                entry_pos: read.entry_pos,
-            },
+            source: MatrixSource::File { file, from },
         })
     }
 }
@@ -300,12 +295,9 @@ impl<'a> Doc<'a> {
 pub(crate) enum MatrixSource {
     /// Inline: the position of entry `[i][j]`.
     Inline(Vec<Vec<Option<Pos>>>),
-    /// A Matrix Market file, named at `from`.
-    File {
-        file: PathBuf,
-        from: Location,
-        entry_pos: HashMap<(usize, usize), Pos>,
-    },
+    /// A Matrix Market file, named at `from`; the place of an entry is looked up in the file
+    /// when an error needs it.
+    File { file: PathBuf, from: Location },
 }
 
 /// A matrix read from a problem file, with where it came from.
@@ -339,13 +331,8 @@ impl MatrixInput {
                 let p = pos.get(i).and_then(|r| r.get(j)).copied().flatten();
                 doc.err(p.or(self.pos), &key, kind, msg)
             }
-            MatrixSource::File {
-                file,
-                from,
-                entry_pos,
-            } => {
-                let mut e =
-                    InputError::at(file, entry_pos.get(&(i, j)).copied(), kind, msg).with_key(key);
+            MatrixSource::File { file, from } => {
+                let mut e = InputError::at(file, entry_place(file, i, j), kind, msg).with_key(key);
                 e.referenced_from = Some(Box::new(from.clone()));
                 e
             }

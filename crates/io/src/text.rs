@@ -7,10 +7,11 @@ use crate::error::{InputError, InputErrorKind, Pos};
 
 /// Files larger than this are refused before reading (a contact zone of this size would not
 /// fit a dense solver anyway).
-const MAX_FILE_BYTES: u64 = 1 << 30;
+pub(crate) const MAX_FILE_BYTES: u64 = 1 << 30;
 
-/// Reads `path` as UTF-8 text. A leading byte-order mark is dropped.
-pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
+/// Opens `path` for reading after checking that it is a regular file within the size limit;
+/// returns the file and its length.
+pub(crate) fn open_file(path: &Path) -> Result<(std::fs::File, u64), InputError> {
     let io_err = |e: std::io::Error| {
         InputError::at(
             path,
@@ -37,24 +38,39 @@ pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
             "this is not a regular file (a device, a pipe or a socket?)",
         ));
     }
-    let too_large = |len: u64| {
-        InputError::at(
-            path,
-            None,
-            InputErrorKind::Io,
-            format!("the file has {len} bytes, more than the {MAX_FILE_BYTES} this program reads"),
-        )
-    };
     if meta.len() > MAX_FILE_BYTES {
-        return Err(too_large(meta.len()));
+        return Err(too_large(path, meta.len()));
     }
+    let file = std::fs::File::open(path).map_err(io_err)?;
+    Ok((file, meta.len()))
+}
+
+fn too_large(path: &Path, len: u64) -> InputError {
+    InputError::at(
+        path,
+        None,
+        InputErrorKind::Io,
+        format!("the file has {len} bytes, more than the {MAX_FILE_BYTES} this program reads"),
+    )
+}
+
+/// Reads `path` as UTF-8 text. A leading byte-order mark is dropped.
+pub(crate) fn read_text(path: &Path) -> Result<String, InputError> {
+    let (file, len) = open_file(path)?;
     // The file may grow after the size was looked at: read no more than the limit allows.
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes))
-        .map_err(io_err)?;
+    let mut bytes = Vec::with_capacity(len as usize);
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| {
+            InputError::at(
+                path,
+                None,
+                InputErrorKind::Io,
+                format!("cannot read the file: {e}"),
+            )
+        })?;
     if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(too_large(bytes.len() as u64));
+        return Err(too_large(path, bytes.len() as u64));
     }
     decode(path, bytes)
 }
@@ -159,45 +175,6 @@ impl<'a> LineIndex<'a> {
             col: col + 1,
         }
     }
-}
-
-/// A whitespace-separated word and where it starts.
-pub(crate) struct Word<'a> {
-    pub text: &'a str,
-    pub pos: Pos,
-}
-
-/// The words of one line (`line_no` is 1-based), with their columns counted in characters.
-pub(crate) fn words(line: &str, line_no: usize) -> Vec<Word<'_>> {
-    let mut out = Vec::new();
-    let mut start: Option<(usize, usize)> = None; // (byte, char column)
-    let mut col = 0;
-    for (i, c) in line.char_indices() {
-        col += 1;
-        if c.is_whitespace() {
-            if let Some((s, sc)) = start.take() {
-                out.push(Word {
-                    text: &line[s..i],
-                    pos: Pos {
-                        line: line_no,
-                        col: sc,
-                    },
-                });
-            }
-        } else if start.is_none() {
-            start = Some((i, col));
-        }
-    }
-    if let Some((s, sc)) = start {
-        out.push(Word {
-            text: &line[s..],
-            pos: Pos {
-                line: line_no,
-                col: sc,
-            },
-        });
-    }
-    out
 }
 
 #[cfg(test)]

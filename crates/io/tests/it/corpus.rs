@@ -20,8 +20,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Duration;
 
 use unilateral_io::{
-    read_contact_zone, read_fc2d, read_lcp, read_matrix_market, read_problem, read_siconos_lcp,
-    InputError, Problem,
+    read_contact_zone, read_fc2d, read_gmsh, read_lcp, read_matrix_market, read_problem,
+    read_siconos_lcp, InputError, Problem,
 };
 use unilateral_output::{
     contact_json, contact_summary, lcp_json, lcp_summary, structural_json, structural_summary,
@@ -45,6 +45,8 @@ enum Reader {
     Fc2d,
     /// `read_matrix_market`.
     Mtx,
+    /// `read_gmsh`.
+    Gmsh,
 }
 
 /// A seed: a file name (its extension chooses the format), its bytes and its reader.
@@ -79,6 +81,9 @@ fn seeds() -> Vec<Seed> {
     }
     for name in ["example1_rnn.mtx", "example1_rtt.mtx"] {
         add(good.join(name), Reader::Mtx);
+    }
+    for name in ["disc_on_plate_41.msh", "disc_on_plate_22.msh"] {
+        add(repo().join("tests/data/gmsh").join(name), Reader::Gmsh);
     }
     for name in [
         "example1-beam.toml",
@@ -335,6 +340,10 @@ fn check_one(reader: Reader, path: &Path, out_dir: &Path) -> Result<(), Broken> 
             Ok(_) => Ok(()),
             Err(e) => refused(e),
         },
+        Reader::Gmsh => match read_gmsh(path) {
+            Ok(_) => Ok(()),
+            Err(e) => refused(e),
+        },
     }
 }
 
@@ -347,6 +356,7 @@ fn reader_of_finding(name: &str) -> Option<Reader> {
         "lcp" => Reader::Lcp,
         "fc2d" => Reader::Fc2d,
         "mtx" => Reader::Mtx,
+        "gmsh" => Reader::Gmsh,
         _ => return None,
     })
 }

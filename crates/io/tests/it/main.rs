@@ -4,6 +4,7 @@
 mod bad_inputs;
 mod common;
 mod corpus;
+mod gmsh;
 mod layouts;
 mod model_bad;
 mod model_read;
