@@ -1,5 +1,6 @@
 //! Follows the load path of the generated beam on `m` frictional supports to its end and prints
-//! what happened: `cargo run --release -p unilateral-contact --example beam_path -- 300`.
+//! what happened: `cargo run --release -p unilateral-contact --example beam_path -- 300`; a
+//! second argument is the tightening `c` (default 0), e.g. `-- 300 1`.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -11,10 +12,15 @@ fn main() {
         .nth(1)
         .and_then(|s| s.parse().ok())
         .unwrap_or(100);
+    let tightening: f64 = std::env::args()
+        .nth(2)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0.0);
     let zone = beam_on_supports(m, 7);
     let t = Instant::now();
     let settings = SolveSettings {
         follow: Follow::ToEnd,
+        tightening,
         ..Default::default()
     };
     let sol = solve(&zone, &settings).expect("a valid generated zone");

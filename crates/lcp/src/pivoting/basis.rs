@@ -221,27 +221,6 @@ impl Basis {
         out
     }
 
-    /// Row of `B⁻¹` belonging to `slot` (a dense vector over the rows of the problem).
-    pub fn inverse_row(&self, cols: &Columns, slot: usize) -> Vec<f64> {
-        let n = self.n;
-        let var = self.slot_var[slot];
-        let mut rho = vec![0.0; n];
-        if var < n {
-            // Slack row: ρ = e_i − (A[i, S] K⁻¹) on R.
-            rho[var] = 1.0;
-            let ai: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(var, c)).collect();
-            for (b, &r) in self.r_rows.iter().enumerate() {
-                rho[r] -= dot(&ai, self.kinv.col(b));
-            }
-        } else {
-            let a = self.s_pos[var];
-            for (b, &r) in self.r_rows.iter().enumerate() {
-                rho[r] = self.kinv.get(a, b);
-            }
-        }
-        rho
-    }
-
     /// What [`Basis::inverse_entry`] needs of a slot: for a slack row, `A[i, S]`.
     pub fn inverse_row_data(&self, cols: &Columns, slot: usize) -> Vec<f64> {
         let var = self.slot_var[slot];

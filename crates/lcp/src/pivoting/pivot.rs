@@ -57,7 +57,8 @@ pub(crate) struct Pivoter<'a> {
     pub priority: Vec<usize>,
     /// The start basis (slot → column) against which lexicographic rows are measured.
     start: Vec<usize>,
-    start_is_slack: bool,
+    /// The largest entry of the start's structural columns (1 for the slack start).
+    start_scale: f64,
     pub refactor_interval: usize,
     since_refactor: usize,
     pub pivots: usize,
@@ -79,7 +80,16 @@ impl<'a> Pivoter<'a> {
     ) -> Self {
         let beta = basis.solve(cols, &cols.h);
         let start = basis.slot_var.clone();
-        let start_is_slack = start.iter().enumerate().all(|(i, &v)| i == v);
+        let n = cols.n;
+        let mut col = vec![0.0; n];
+        let start_scale = start
+            .iter()
+            .filter(|&&c| c >= n)
+            .map(|&c| {
+                cols.col_into(c, &mut col);
+                max_abs(&col)
+            })
+            .fold(1.0f64, f64::max);
         let value_scale = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
         Self {
             cols,
@@ -88,7 +98,7 @@ impl<'a> Pivoter<'a> {
             tol,
             priority,
             start,
-            start_is_slack,
+            start_scale,
             refactor_interval: refactor_interval.max(1),
             since_refactor: 0,
             pivots: 0,
@@ -125,74 +135,49 @@ impl<'a> Pivoter<'a> {
         (0..alpha.len()).filter(|&i| alpha[i] > thr).collect()
     }
 
-    /// Lexicographic vector of a slot: row of `B⁻¹ B_start` in priority order, over `alpha_i`.
-    fn lex_vector(&self, slot: usize, alpha_i: f64) -> Vec<f64> {
-        let rho = self.basis.inverse_row(self.cols, slot);
-        let n = self.cols.n;
-        let mut out = Vec::with_capacity(n);
-        let mut col = vec![0.0; n];
-        for &s in &self.priority {
-            let v = if self.start_is_slack {
-                rho[s]
-            } else {
-                let c = self.start[s];
-                if c < n {
-                    rho[c]
-                } else {
-                    self.cols.col_into(c, &mut col);
-                    rho.iter().zip(&col).map(|(a, b)| a * b).sum()
-                }
-            };
-            out.push(v / alpha_i);
-        }
-        out
-    }
-
-    /// Among tied candidate slots, the lexicographically smallest (or largest) row.
+    /// Among tied candidate slots, the lexicographically smallest (or largest) row of
+    /// `B⁻¹ B_start / α` in the start's priority order.
+    ///
+    /// The rows are never formed: the entries are computed one priority column at a time, for
+    /// the candidates still tied, so a tie usually costs a few entries. The column of
+    /// `B⁻¹ B_start` for a start column `c` is a unit vector while `c` is basic, an entry of
+    /// `B⁻¹` (`O(k)` each) when `c` is a slack, and one solve `B⁻¹ A[:, c]` shared by all
+    /// candidates when `c` is a structural column that has left the basis. From the slack start
+    /// (the tableau of the paper) only the second case occurs.
     fn lex_pick(&self, ties: &[usize], alpha: &[f64], largest: bool) -> usize {
         if ties.len() == 1 {
             return ties[0];
         }
-        if self.start_is_slack {
-            return self.lex_pick_lazy(ties, alpha, largest);
-        }
-        let mut best = ties[0];
-        let mut best_vec = self.lex_vector(best, alpha[best]);
-        for &s in &ties[1..] {
-            let v = self.lex_vector(s, alpha[s]);
-            let ord = lex_compare(&v, &best_vec);
-            let better = if largest {
-                ord == std::cmp::Ordering::Greater
-            } else {
-                ord == std::cmp::Ordering::Less
-            };
-            if better {
-                best = s;
-                best_vec = v;
-            }
-        }
-        best
-    }
-
-    /// [`Pivoter::lex_pick`] from the slack start: entries of `B⁻¹` are computed one priority
-    /// column at a time, for the candidates still tied, so a tie usually costs a few `O(k)` dots
-    /// instead of a whole row of `B⁻¹` per candidate.
-    fn lex_pick_lazy(&self, ties: &[usize], alpha: &[f64], largest: bool) -> usize {
+        let n = self.cols.n;
         let mut alive: Vec<(usize, Vec<f64>)> = ties
             .iter()
             .map(|&s| (s, self.basis.inverse_row_data(self.cols, s)))
             .collect();
-        // Entries are equal when they differ by round-off of the rows they belong to.
+        // Entries are equal when they differ by round-off of the rows they belong to (times the
+        // size of the start's structural columns they are applied to).
         let thr = 1e-9
+            * self.start_scale
             * alive
                 .iter()
                 .map(|(s, data)| self.basis.inverse_row_scale(*s, data) / alpha[*s].abs())
                 .fold(0.0f64, f64::max);
         for &r in &self.priority {
-            let vals: Vec<f64> = alive
-                .iter()
-                .map(|(s, data)| self.basis.inverse_entry(*s, r, data) / alpha[*s])
-                .collect();
+            let c = self.start[r];
+            let vals: Vec<f64> = if self.basis.is_basic(c) {
+                let t = self.basis.var_slot[c];
+                alive
+                    .iter()
+                    .map(|(s, _)| if *s == t { 1.0 / alpha[*s] } else { 0.0 })
+                    .collect()
+            } else if c < n {
+                alive
+                    .iter()
+                    .map(|(s, data)| self.basis.inverse_entry(*s, c, data) / alpha[*s])
+                    .collect()
+            } else {
+                let col = self.basis.ftran(self.cols, c);
+                alive.iter().map(|(s, _)| col[*s] / alpha[*s]).collect()
+            };
             if max_abs(&vals) <= thr {
                 continue;
             }
@@ -466,15 +451,4 @@ impl<'a> Pivoter<'a> {
 
 pub(crate) fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
-}
-
-/// Lexicographic comparison with a relative tolerance per entry.
-fn lex_compare(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
-    let scale = max_abs(a).max(max_abs(b)).max(f64::MIN_POSITIVE);
-    for (x, y) in a.iter().zip(b) {
-        if (x - y).abs() > 1e-9 * scale {
-            return x.total_cmp(y);
-        }
-    }
-    std::cmp::Ordering::Equal
 }

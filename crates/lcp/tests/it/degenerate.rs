@@ -464,3 +464,85 @@ fn parametric_zero_row_ends_in_a_true_mechanism() {
     assert!((sol.p - 2.0).abs() < 1e-12);
     check_path_point(&m, &q0, &d, &sol, TOL).unwrap();
 }
+
+#[test]
+fn parametric_degenerate_removal_of_the_tightening() {
+    // The tightening is removed from the path's last basis, which is not the slack basis: with a
+    // duplicated row of [M | q0 | d] the removal's ratio tests tie, and the lexicographic rule
+    // measured against that start basis must break them. References: the oracle's exact path of
+    // the tightened problem (q0 + c·e) for the events, and the exact enumeration of the problem
+    // without tightening for the reported solution (equal to it when unique; otherwise the
+    // solution is checked exactly against the original data).
+    let mut g = Lcg(41);
+    let mut removed = 0;
+    for case in 0..80 {
+        let n = 2 + case % 5;
+        let mut m = g.p_matrix(n);
+        // q0 ≤ 0 somewhere: the start needs the tightening.
+        let mut q0 = g.vector(n, -3, 1);
+        let mut d = g.vector(n, -3, 3);
+        let i = g.int(0, n as i64 - 1) as usize;
+        let j = (i + 1 + g.int(0, n as i64 - 2) as usize) % n;
+        m[j] = m[i].clone();
+        q0[j] = q0[i];
+        d[j] = d[i];
+        let c = 4.0;
+        let problem = ParametricLcp {
+            m: to_mat(&m),
+            q0: q0.clone(),
+            d: d.clone(),
+        };
+        let opts = PathOptions {
+            target: 1.5,
+            follow: Follow::ToEnd,
+            tightening: Some(unilateral_lcp::Tightening {
+                amount: c,
+                direction: vec![1.0; n],
+            }),
+        };
+        let path = follow_path(&problem, &opts, &Settings::default()).unwrap();
+        let tightened: Vec<f64> = q0.iter().map(|q| q + c).collect();
+        let exact = oracle::parametric_path(&m, &tightened, &d, None, None);
+        // The events on the way up to the target (after a turning point, a return to p = 0
+        // may tie between the driver and another row, which the engine gives to the driver by
+        // design).
+        fn rising(v: Vec<(oracle::Var, oracle::Var, f64)>) -> Vec<(oracle::Var, oracle::Var, f64)> {
+            let mut last = 0.0;
+            v.into_iter()
+                .take_while(|s| {
+                    let ok = s.2 >= last && s.2 <= 1.5;
+                    last = s.2;
+                    ok
+                })
+                .collect()
+        }
+        let e = rising(
+            path.steps
+                .iter()
+                .map(|s| (oracle_var(s.entering), oracle_var(s.leaving), s.p))
+                .collect(),
+        );
+        let o = rising(
+            exact
+                .steps
+                .iter()
+                .map(|s| (s.entering, s.leaving, s.p_f64()))
+                .collect(),
+        );
+        let same = e.len() == o.len()
+            && e.iter().zip(&o).all(|(a, b)| {
+                a.0 == b.0 && a.1 == b.1 && (a.2 - b.2).abs() <= 1e-9 * b.2.abs().max(1.0)
+            });
+        assert!(same, "case {case}:\n  engine {e:?}\n  oracle {o:?}");
+        let Some(sol) = &path.solution else { continue };
+        removed += usize::from(sol.tightening_pivots > 0);
+        check_path_point(&m, &q0, &d, sol, TOL).unwrap_or_else(|e| panic!("case {case}: {e}"));
+        let sols = oracle::enumerate_parametric(&m, &q0, &d, sol.p);
+        if sols.len() == 1 && sols[0].singular_sets.is_empty() {
+            assert_close("z", &sol.z, &sols[0].z_f64(), 1e-9)
+                .unwrap_or_else(|e| panic!("case {case}: {e}"));
+        }
+    }
+    // The family exercises the removal (not only starts that were feasible without it).
+    assert!(removed >= 20, "only {removed} removals");
+}
