@@ -158,7 +158,7 @@ fn the_same_from_f64_data() {
     assert_eq!(ray.dz_f64()[0], 0.5);
     // At p = 1 (target): x = e + d, z = 0.
     let s = path.solution_at_f64(1.0).unwrap();
-    assert_eq!(s.x_f64()[0], 1.0 - 0.09375);
+    assert_eq!(s.x_f64()[0], 1.0 + example1::RV_N[0]);
     assert!(s.z_f64().iter().all(|&v| v == 0.0));
 }
 
