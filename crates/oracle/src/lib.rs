@@ -19,7 +19,9 @@
 //!   lexicographic ratio test;
 //! * [`parametric_path`]: the parametric Lemke method of `docs/formulation.md` §4 on a full rational
 //!   tableau `[E | −M | −d | q0]`, with the events (steps), the final status, the breakpoint
-//!   solutions and [`Path::solution_at`] to evaluate the piecewise-linear path at any `p`.
+//!   solutions and [`Path::solution_at`] to evaluate the piecewise-linear path at any `p`;
+//! * [`fixtures`]: the test data the workspace's tests share — the paper's Example 1 with its
+//!   derivation and answers, the frictional `3m` LCP built by hand, one seeded generator.
 //!
 //! Inputs given as `f64` are converted **exactly** to rationals ([`rat`]): `0.6_f64` is the
 //! rational `5404319552844595/9007199254740992`, not `3/5`. Every function also has an `_exact`
@@ -46,6 +48,7 @@
 #![warn(missing_docs)]
 
 mod enumerate;
+pub mod fixtures;
 mod lemke;
 mod linalg;
 mod parametric;

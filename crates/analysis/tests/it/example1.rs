@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use unilateral_analysis::{analyze_named, Names, Outcome, PairState};
 use unilateral_contact::EventKind;
 use unilateral_io::{read_problem, Problem, StructuralProblem};
+use unilateral_oracle::fixtures::example1 as ex1;
 
 fn example(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -35,12 +36,7 @@ fn example1_structural_reproduces_the_paper() {
     let a = analyze_named(&p.model, &p.settings, &names(&p)).unwrap();
 
     // The condensed matrices are the paper's.
-    let rnn = [
-        [0.1875, -0.375, 0.1875],
-        [-0.375, 0.75, -0.375],
-        [0.1875, -0.375, 0.1875],
-    ];
-    let rtt = [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]];
+    let (rnn, rtt) = (ex1::RNN, ex1::RTT);
     for i in 0..3 {
         for j in 0..3 {
             assert!((a.zone.rnn[(i, j)] - rnn[i][j]).abs() < 1e-12);
@@ -49,7 +45,7 @@ fn example1_structural_reproduces_the_paper() {
             assert!(a.zone.rtn[(i, j)].abs() < 1e-12);
         }
     }
-    let rv = [-0.09375, 0.6875, 0.40625];
+    let rv = ex1::RV_N;
     for i in 0..3 {
         assert!((a.zone.variable.normal[i] - rv[i]).abs() < 1e-12);
         assert!(a.zone.variable.tangential[i].abs() < 1e-12);
@@ -60,7 +56,7 @@ fn example1_structural_reproduces_the_paper() {
     let Outcome::Ray { p_from } = a.solution.outcome else {
         panic!("expected a ray, got {:?}", a.solution.outcome)
     };
-    assert!((p_from - 1.0 / 0.09375).abs() < 1e-9, "{p_from}");
+    assert!((p_from - ex1::FIRST_EVENT_P).abs() < 1e-9, "{p_from}");
     assert_eq!(a.solution.steps[0].events[0].kind, EventKind::Opens);
     assert_eq!(a.solution.steps[0].events[0].name, "support.1");
 

@@ -14,6 +14,7 @@ use unilateral_analysis::{analyze_named, Analysis, Names, Outcome, PairState};
 use unilateral_contact::{EventKind, PairResult};
 use unilateral_fem::{Element, SupportDof};
 use unilateral_io::{read_problem, Problem, StructuralProblem};
+use unilateral_oracle::fixtures::example1 as ex1;
 
 /// Relative tolerance of the comparisons with hand values (the hand values are exact for the
 /// elements used: frames are exact for nodal loads, consistent loads and temperatures; plane
@@ -1023,7 +1024,7 @@ fn solve_tightening_moves_the_events_of_a_homogeneous_problem() {
     let Outcome::Ray { p_from } = a.solution.outcome else {
         panic!("expected a ray, got {:?}", a.solution.outcome)
     };
-    close(p_from, 2.5 / 0.09375, 1.0, "ray");
+    close(p_from, 2.5 / -ex1::RV_N[0], 1.0, "ray");
     close(a.solution.pairs[0].z_n, 0.5, 0.5, "uplift");
 }
 
@@ -1050,5 +1051,5 @@ fn solve_max_pivots_and_pivot_tolerance() {
     let Outcome::Ray { p_from } = a.solution.outcome else {
         panic!("expected a ray, got {:?}", a.solution.outcome)
     };
-    close(p_from, 1.0 / 0.09375, 1.0, "ray");
+    close(p_from, ex1::FIRST_EVENT_P, 1.0, "ray");
 }

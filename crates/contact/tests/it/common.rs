@@ -2,6 +2,18 @@
 
 use faer::Mat;
 use unilateral_contact::ContactZone;
+use unilateral_oracle::fixtures::example1;
+
+/// The paper's Example 1 in contact-zone form (formulation.md §5, the oracle's fixture; the data
+/// of examples/example1-contact-zone.toml): three pairs, `f = 0.6`, the variable normal load
+/// only.
+pub fn example1_zone() -> ContactZone {
+    let mat = |a: [[f64; 3]; 3]| Mat::<f64>::from_fn(3, 3, |i, j| a[i][j]);
+    let mut zone = ContactZone::new(mat(example1::RNN), mat(example1::RTT));
+    zone.friction = vec![example1::FRICTION; example1::PAIRS];
+    zone.variable.normal = example1::RV_N.to_vec();
+    zone
+}
 
 /// A contact zone of `m` pairs whose full stiffness `[[Rnn, Rnt], [Rtn, Rtt]]` is the symmetric
 /// positive definite `B Bᵀ + I/4` for the `2m × 2m` matrix `B` given entry by entry (`b(i, j)`).

@@ -8,7 +8,7 @@
 //! tightening alone scaled by `λ` (stiffness unchanged): the answer is linear in them, so
 //! `x → λx`, `z → λz`. Factors from 1e-12 to 1e12, not only powers of two.
 
-use faer::{mat, Mat};
+use faer::Mat;
 use proptest::prelude::*;
 use unilateral_contact::{solve, ContactSolution, ContactZone, Follow, Outcome, SolveSettings};
 
@@ -143,16 +143,7 @@ fn check(zone: &ContactZone, settings: &SolveSettings, f: f64, u: f64) -> Result
 
 /// The paper's Example 1 in contact-zone form (examples/example1-contact-zone.toml).
 fn example1() -> (ContactZone, SolveSettings) {
-    let mut zone = ContactZone::new(
-        mat![
-            [0.1875, -0.375, 0.1875],
-            [-0.375, 0.75, -0.375],
-            [0.1875, -0.375, 0.1875]
-        ],
-        mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
-    );
-    zone.friction = vec![0.6; 3];
-    zone.variable.normal = vec![-0.09375, 0.6875, 0.40625];
+    let zone = crate::common::example1_zone();
     let settings = SolveSettings {
         tightening: 1.0,
         target: 1.0,

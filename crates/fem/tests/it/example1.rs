@@ -2,27 +2,28 @@
 #![allow(clippy::needless_range_loop)]
 
 use unilateral_fem::{ContactPairSpec, ContactSolution, FrameSection, Load, LoadGroup, Model};
+use unilateral_oracle::fixtures::example1::{self as ex1, beam};
 
 fn example1() -> Model {
     // spans of 2 m, EI = 1, EA = 2 (L³/EI = 8, EA/L = 1), pairs at x = 0, 2, 4, unit load at 3.
     let mut model = Model::new();
-    let n: Vec<_> = [0.0, 2.0, 3.0, 4.0]
+    let n: Vec<_> = beam::NODE_X
         .iter()
         .map(|&x| model.add_node(x, 0.0))
         .collect();
-    let section = FrameSection::new(1.0, 2.0, 1.0);
+    let section = FrameSection::new(beam::E, beam::AREA, beam::INERTIA);
     for w in n.windows(2) {
         model.add_frame(w[0], w[1], section);
     }
-    for &i in &[n[0], n[1], n[3]] {
-        model.add_contact_pair(ContactPairSpec::to_ground(i, [0.0, 1.0]).friction(0.6));
+    for i in beam::SUPPORTED_NODES.map(|k| n[k]) {
+        model.add_contact_pair(ContactPairSpec::to_ground(i, beam::NORMAL).friction(ex1::FRICTION));
     }
     model.add_load(
         LoadGroup::Variable,
         Load::Nodal {
-            node: n[2],
+            node: n[beam::LOADED_NODE],
             fx: 0.0,
-            fy: -1.0,
+            fy: beam::LOAD_FY,
             m: 0.0,
         },
     );
@@ -32,12 +33,7 @@ fn example1() -> Model {
 #[test]
 fn example1_csm_and_clv() {
     let c = example1().condense().unwrap();
-    let rnn = [
-        [0.1875, -0.375, 0.1875],
-        [-0.375, 0.75, -0.375],
-        [0.1875, -0.375, 0.1875],
-    ];
-    let rtt = [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]];
+    let (rnn, rtt) = (ex1::RNN, ex1::RTT);
     for i in 0..3 {
         for j in 0..3 {
             assert!(
@@ -54,7 +50,7 @@ fn example1_csm_and_clv() {
             assert!(c.rtn[(i, j)].abs() < 1e-12);
         }
     }
-    let rv = [-0.09375, 0.6875, 0.40625];
+    let rv = ex1::RV_N;
     for i in 0..3 {
         assert!(
             (c.variable.normal[i] - rv[i]).abs() < 1e-12,
@@ -64,7 +60,7 @@ fn example1_csm_and_clv() {
         assert!(c.variable.tangential[i].abs() < 1e-12);
         assert_eq!(c.constant.normal[i], 0.0);
     }
-    assert_eq!(c.friction, vec![0.6; 3]);
+    assert_eq!(c.friction, vec![ex1::FRICTION; 3]);
     assert_eq!(c.pair_names, vec!["1", "2", "3"]);
 }
 
@@ -74,9 +70,9 @@ fn example1_recovery_of_the_paper_solution() {
     let c = example1().condense().unwrap();
     let sol = ContactSolution {
         p: 1.0,
-        x_n: vec![0.0, 0.5, 0.5],
+        x_n: ex1::X_AT_TARGET[..3].to_vec(),
         x_t: vec![0.0; 3],
-        z_n: vec![0.5, 0.0, 0.0],
+        z_n: ex1::Z_AT_TARGET[..3].to_vec(),
         z_t: vec![0.0; 3],
     };
     let r = c.recover(&sol).unwrap();

@@ -5,6 +5,7 @@ use unilateral_fem::{
     ContactSolution, Endpoint, FrameSection, Load, LoadFrame, LoadGroup, Model, Releases, Results,
     Spring, SpringKind, SupportDof,
 };
+use unilateral_oracle::fixtures::example1 as ex1;
 
 fn solve(model: &Model, p: f64) -> Results {
     let c = model.condense().unwrap();
@@ -137,8 +138,14 @@ fn fixed_end_moments_uniform_and_linear_load() {
 #[test]
 fn two_span_continuous_beam_reactions() {
     // spans of 2, unit downward load in the middle of the right span: R = −3/32, 11/16, 13/32
+    // (three-moment equation; Example 1's Rv_n, the oracle's fixture)
     let mut m = Model::new();
-    let ids = beam(&mut m, 4.0, 4, FrameSection::new(1.0, 2.0, 1.0));
+    let ids = beam(
+        &mut m,
+        4.0,
+        4,
+        FrameSection::new(ex1::beam::E, ex1::beam::AREA, ex1::beam::INERTIA),
+    );
     m.pin(ids[0]);
     m.add_support(ids[2], SupportDof::Uy);
     m.add_support(ids[4], SupportDof::Uy);
@@ -152,9 +159,9 @@ fn two_span_continuous_beam_reactions() {
         },
     );
     let r = solve(&m, 1.0);
-    close(reaction(&r, 0, SupportDof::Uy), -0.09375, 1e-12);
-    close(reaction(&r, 2, SupportDof::Uy), 0.6875, 1e-12);
-    close(reaction(&r, 4, SupportDof::Uy), 0.40625, 1e-12);
+    close(reaction(&r, 0, SupportDof::Uy), ex1::RV_N[0], 1e-12);
+    close(reaction(&r, 2, SupportDof::Uy), ex1::RV_N[1], 1e-12);
+    close(reaction(&r, 4, SupportDof::Uy), ex1::RV_N[2], 1e-12);
 }
 
 #[test]

@@ -13,6 +13,7 @@ use common::{siconos, siconos_files};
 use faer::Mat;
 use unilateral_contact::{ContactZone, Follow};
 use unilateral_io::{read_contact_zone, read_fc2d, read_lcp, read_matrix_market};
+use unilateral_oracle::fixtures::example1 as ex1;
 
 fn good(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -57,24 +58,13 @@ fn example1_in_toml_json_and_matrix_market_reads_the_same() {
 
     let z = &toml.zone;
     assert_eq!(z.pairs(), 3);
-    assert_mat_eq(
-        &z.rnn,
-        &mat(&[
-            &[0.1875, -0.375, 0.1875],
-            &[-0.375, 0.75, -0.375],
-            &[0.1875, -0.375, 0.1875],
-        ]),
-        "Rnn",
-    );
-    assert_mat_eq(
-        &z.rtt,
-        &mat(&[&[1.0, -1.0, 0.0], &[-1.0, 2.0, -1.0], &[0.0, -1.0, 1.0]]),
-        "Rtt",
-    );
+    // The file holds the paper's Example 1 (formulation.md §5, the oracle's fixture).
+    assert_mat_eq(&z.rnn, &Mat::from_fn(3, 3, |i, j| ex1::RNN[i][j]), "Rnn");
+    assert_mat_eq(&z.rtt, &Mat::from_fn(3, 3, |i, j| ex1::RTT[i][j]), "Rtt");
     assert_mat_eq(&z.rnt, &Mat::zeros(3, 3), "Rnt");
-    assert_eq!(z.friction, vec![0.6; 3]);
+    assert_eq!(z.friction, vec![ex1::FRICTION; 3]);
     assert_eq!(z.gap, vec![0.0; 3]);
-    assert_eq!(z.variable.normal, vec![-0.09375, 0.6875, 0.40625]);
+    assert_eq!(z.variable.normal, ex1::RV_N.to_vec());
     assert_eq!(z.variable.tangential, vec![0.0; 3]);
     assert_eq!(z.constant.normal, vec![0.0; 3]);
     assert_eq!(z.pair_names, vec!["1", "2", "3"]);
@@ -91,8 +81,8 @@ fn example1_in_toml_json_and_matrix_market_reads_the_same() {
 #[test]
 fn matrix_market_fixtures() {
     let rnn = read_matrix_market(&good("example1_rnn.mtx")).unwrap();
-    assert_eq!(rnn[(0, 2)], 0.1875);
-    assert_eq!(rnn[(2, 0)], 0.1875);
+    assert_eq!(rnn[(0, 2)], ex1::RNN[0][2]);
+    assert_eq!(rnn[(2, 0)], ex1::RNN[2][0]);
     let rtt = read_matrix_market(&good("example1_rtt.mtx")).unwrap();
     assert_eq!(rtt[(1, 2)], -1.0);
     assert_eq!(rtt[(0, 2)], 0.0);

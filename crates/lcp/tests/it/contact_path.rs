@@ -25,18 +25,8 @@ use unilateral_lcp::{
     Tightening,
 };
 use unilateral_oracle as oracle;
-
-struct Lcg(u64);
-
-impl Lcg {
-    fn int(&mut self, lo: i64, hi: i64) -> i64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        lo + ((self.0 >> 33) % (hi - lo + 1) as u64) as i64
-    }
-}
+use unilateral_oracle::fixtures::example1 as ex1;
+use unilateral_oracle::fixtures::random::Lcg;
 
 /// One contact problem: `M`, `d` of formulation.md §3 (`q_c = 0`), the tightening direction
 /// and the lexicographic order.
@@ -47,7 +37,8 @@ struct Contact {
     order: Vec<usize>,
 }
 
-/// `M` and `d` of §3 with `Rnt = Rtn = 0`.
+/// `M` and `d` of §3 with `Rnt = Rtn = 0` (the oracle's hand-built assembly), the tightening
+/// direction with `max(1, f)` on the tangential rows, and the tangential rows first.
 fn contact_from(
     rnn: &[Vec<f64>],
     rtt: &[Vec<f64>],
@@ -56,33 +47,12 @@ fn contact_from(
     rvt: &[f64],
 ) -> Contact {
     let mp = f.len();
-    let n = 3 * mp;
-    let mut m = vec![vec![0.0; n]; n];
-    for i in 0..mp {
-        for j in 0..mp {
-            m[i][j] = rnn[i][j];
-            m[mp + i][j] = f[i] * rnn[i][j];
-            m[2 * mp + i][j] = f[i] * rnn[i][j];
-            m[mp + i][mp + j] = rtt[i][j] / 2.0;
-            m[mp + i][2 * mp + j] = -rtt[i][j] / 2.0;
-            m[2 * mp + i][mp + j] = -rtt[i][j] / 2.0;
-            m[2 * mp + i][2 * mp + j] = rtt[i][j] / 2.0;
-        }
-    }
-    let mut d = vec![0.0; n];
-    let mut direction = vec![1.0; n];
-    for i in 0..mp {
-        d[i] = rvn[i];
-        d[mp + i] = f[i] * rvn[i] + rvt[i];
-        d[2 * mp + i] = f[i] * rvn[i] - rvt[i];
-        direction[mp + i] = f[i].max(1.0);
-        direction[2 * mp + i] = f[i].max(1.0);
-    }
-    let order = (mp..n).chain(0..mp).collect();
+    let lcp = oracle::fixtures::frictional_lcp(rnn, rtt, f, rvn, rvt);
+    let order = (mp..3 * mp).chain(0..mp).collect();
     Contact {
-        m,
-        d,
-        direction,
+        m: lcp.m,
+        d: lcp.d,
+        direction: lcp.direction,
         order,
     }
 }
@@ -203,7 +173,7 @@ fn check_case(name: &str, c: &Contact, tally: &mut Tally) {
 
 #[test]
 fn contact_paths_never_end_in_a_false_mechanism() {
-    let mut g = Lcg(5);
+    let mut g = Lcg::new(5);
     let mut tally = Tally::default();
     for (mp, cases) in [(1usize, 80usize), (2, 60), (3, 16)] {
         for case in 0..cases {
@@ -220,18 +190,9 @@ fn contact_paths_never_end_in_a_false_mechanism() {
 #[test]
 fn example1_with_tightening_max_1_f_and_tangential_rows_first() {
     // The paper's Example 1 (formulation.md §5) through the same checks.
-    let rnn = vec![
-        vec![0.1875, -0.375, 0.1875],
-        vec![-0.375, 0.75, -0.375],
-        vec![0.1875, -0.375, 0.1875],
-    ];
-    let rtt = vec![
-        vec![1.0, -1.0, 0.0],
-        vec![-1.0, 2.0, -1.0],
-        vec![0.0, -1.0, 1.0],
-    ];
-    for f in [0.6, 1.25] {
-        let c = contact_from(&rnn, &rtt, &[f; 3], &[-0.09375, 0.6875, 0.40625], &[0.0; 3]);
+    let (rnn, rtt) = (ex1::rows(&ex1::RNN), ex1::rows(&ex1::RTT));
+    for f in [ex1::FRICTION, 1.25] {
+        let c = contact_from(&rnn, &rtt, &[f; 3], &ex1::RV_N, &ex1::RV_T);
         let mut tally = Tally::default();
         check_case(&format!("Example 1, f = {f}"), &c, &mut tally);
         assert_eq!(tally.ray, 1);

@@ -11,6 +11,7 @@ use unilateral_lcp::{
     PathStatus, Settings, Strategy,
 };
 use unilateral_oracle as oracle;
+use unilateral_oracle::fixtures::random::Lcg;
 
 const TOL: f64 = 1e-10;
 
@@ -64,35 +65,6 @@ fn check_against_enumeration(name: &str, m: &[Vec<f64>], q: &[f64]) -> LcpSoluti
     sol
 }
 
-/// A small deterministic generator (64-bit LCG), for reproducible families of cases.
-struct Lcg(u64);
-
-impl Lcg {
-    fn int(&mut self, lo: i64, hi: i64) -> i64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        lo + ((self.0 >> 33) % (hi - lo + 1) as u64) as i64
-    }
-
-    fn square(&mut self, n: usize, lo: i64, hi: i64) -> Vec<Vec<f64>> {
-        (0..n)
-            .map(|_| (0..n).map(|_| self.int(lo, hi) as f64).collect())
-            .collect()
-    }
-
-    fn vector(&mut self, n: usize, lo: i64, hi: i64) -> Vec<f64> {
-        (0..n).map(|_| self.int(lo, hi) as f64).collect()
-    }
-
-    fn p_matrix(&mut self, n: usize) -> Vec<Vec<f64>> {
-        let a = self.square(n, -2, 2);
-        let b = self.square(n, -2, 2);
-        psd_plus_skew(&a, &b, 1.0)
-    }
-}
-
 // ---------------------------------------------------------------------------------------------
 // Standard LCP
 
@@ -114,7 +86,7 @@ fn duplicate_rows_hand_case() {
 fn duplicate_rows_family() {
     // P-matrices with row i of [M | q] copied into row j (and, every other case, also column
     // i into column j, which makes z_i and z_j interchangeable: a continuum of solutions).
-    let mut g = Lcg(7);
+    let mut g = Lcg::new(7);
     let mut statuses = [0usize; 2];
     for case in 0..60 {
         let n = 2 + case % 5;
@@ -173,7 +145,7 @@ fn zero_row_and_column() {
 fn zero_rows_family() {
     // Random P-matrices with one or two rows zeroed, random q: Ray exactly when enumeration
     // finds nothing.
-    let mut g = Lcg(11);
+    let mut g = Lcg::new(11);
     let mut seen = [0usize; 2];
     for case in 0..60 {
         let n = 2 + case % 6;
@@ -389,7 +361,7 @@ fn parametric_duplicate_rows_tie_at_the_first_step() {
         assert!((path.steps[0].p - 1.0).abs() < 1e-12);
     }
     // A family: P-matrices with a duplicated row, q0 ≥ 0 with zeros, every end status.
-    let mut g = Lcg(23);
+    let mut g = Lcg::new(23);
     for case in 0..60 {
         let n = 2 + case % 5;
         let mut m = g.p_matrix(n);

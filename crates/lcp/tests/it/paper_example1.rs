@@ -1,45 +1,21 @@
 //! The paper's Example 1 (formulation.md §5): the `3m` LCP built by hand from its data, its
 //! path and Tables 1–3.
 
-use faer::Mat;
+use crate::common::to_mat;
 use unilateral_lcp::{
     follow_path, tableaux, Follow, ParametricLcp, PathOptions, PathStatus, Settings, Tightening,
     Var,
 };
+use unilateral_oracle::fixtures::example1 as ex1;
 
-/// `M`, `d` of formulation.md §3 for Example 1 (f = 0.6, Rnt = Rtn = 0).
+/// `M`, `d` of formulation.md §3 for Example 1 (f = 0.6, Rnt = Rtn = 0), from the shared
+/// fixture.
 fn example1() -> ParametricLcp {
-    let rnn = [
-        [0.1875, -0.375, 0.1875],
-        [-0.375, 0.75, -0.375],
-        [0.1875, -0.375, 0.1875],
-    ];
-    let rtt = [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]];
-    let rvn = [-0.09375, 0.6875, 0.40625];
-    let f = 0.6;
-    let m = Mat::<f64>::from_fn(9, 9, |i, j| {
-        let (bi, ii) = (i / 3, i % 3);
-        let (bj, jj) = (j / 3, j % 3);
-        let n = rnn[ii][jj];
-        let t = rtt[ii][jj];
-        match (bi, bj) {
-            (0, 0) => n,
-            (0, _) => 0.0,
-            (1, 0) | (2, 0) => f * n,
-            (1, 1) => t / 2.0,
-            (1, 2) => -t / 2.0,
-            (2, 1) => -t / 2.0,
-            (2, 2) => t / 2.0,
-            _ => unreachable!(),
-        }
-    });
-    let d = (0..9)
-        .map(|i| if i < 3 { rvn[i] } else { f * rvn[i % 3] })
-        .collect();
+    let lcp = ex1::lcp();
     ParametricLcp {
-        m,
+        m: to_mat(&lcp.m),
         q0: vec![0.0; 9],
-        d,
+        d: lcp.d,
     }
 }
 
@@ -60,14 +36,13 @@ fn path_is_one_event_then_a_ray() {
     let path = follow_path(&problem, &options(Follow::ToEnd), &Settings::default()).unwrap();
     assert_eq!(path.status, PathStatus::Ray);
     assert_eq!(path.steps.len(), 1);
-    assert!((path.steps[0].p - 32.0 / 3.0).abs() < 1e-12);
+    assert!((path.steps[0].p - ex1::FIRST_EVENT_P).abs() < 1e-12);
     assert_eq!(path.steps[0].entering, Var::Driver);
     assert_eq!(path.steps[0].leaving, Var::X(0));
     assert_eq!(path.last_entering, Some(Var::Z(0)));
     let sol = path.solution.as_ref().unwrap();
     assert_eq!(sol.p, 1.0);
-    let expect_z = [0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
-    let expect_x = [0.0, 0.5, 0.5, 0.0, 0.3, 0.3, 0.0, 0.3, 0.3];
+    let (expect_z, expect_x) = (ex1::Z_AT_TARGET, ex1::X_AT_TARGET);
     for i in 0..9 {
         assert!(
             (sol.z[i] - expect_z[i]).abs() < 1e-12,
@@ -107,18 +82,17 @@ fn tables_1_2_3() {
     let t = tableaux(&problem, &opts, &path, None).unwrap();
     assert_eq!(t.len(), 3);
     // Table 1: p column = -d, rhs = 1, ratio 10.6667 for x_n1 and 17.7778 for x_t1±.
-    assert!((t[0].entries[0][18] - 0.09375).abs() < 1e-12);
+    assert!((t[0].entries[0][18] + ex1::RV_N[0]).abs() < 1e-12);
     assert!((t[0].ratios[0].unwrap() - 10.0 - 2.0 / 3.0).abs() < 1e-9);
     assert!((t[0].ratios[3].unwrap() - 17.0 - 7.0 / 9.0).abs() < 1e-9);
     assert_eq!(t[0].leaving_row, Some(0));
     // Table 2: p row
     assert_eq!(t[1].basis[0], Var::Driver);
-    assert!((t[1].rhs[0] - 32.0 / 3.0).abs() < 1e-9);
+    assert!((t[1].rhs[0] - ex1::FIRST_EVENT_P).abs() < 1e-9);
     assert!((t[1].entries[0][9] + 2.0).abs() < 1e-9);
     assert!(t[1].ratios.iter().all(|r| r.is_none()));
     // Table 3: rhs and p column
-    let rhs3 = [-16.0 / 3.0, 3.0, 0.0, 0.4, 2.2, 0.4, 0.4, 2.2, 0.4];
-    let pcol = [-0.5, -0.5, -0.5, 0.0, -0.3, -0.3, 0.0, -0.3, -0.3];
+    let (rhs3, pcol) = (ex1::TABLE3_RHS, ex1::TABLE3_P_COLUMN);
     for i in 0..9 {
         assert!(
             (t[2].rhs[i] - rhs3[i]).abs() < 1e-9,

@@ -2,12 +2,13 @@
 
 #![allow(clippy::needless_range_loop)] // index notation mirrors the formulas
 
+use unilateral_oracle::fixtures::example1;
 use unilateral_oracle::{
     enumerate_parametric_exact, frac, is_lcp_solution, mz_plus_q, parametric_path,
     parametric_path_exact, PathStatus, Rat, Step, Var, DEFAULT_MAX_STEPS,
 };
 
-const N: usize = 3;
+const N: usize = example1::PAIRS;
 
 /// Labels of Example 1 (0-based pair `i`).
 fn xn(i: usize) -> Var {
@@ -23,75 +24,17 @@ fn zn(i: usize) -> Var {
     Var::Z(i)
 }
 
-/// M and d of formulation.md §3 with Rnt = Rtn = 0, in any number type.
-fn assemble<T: Clone>(
-    rnn: &[[T; N]; N],
-    rtt_half: &[[T; N]; N],
-    rv_n: &[T; N],
-    f: &T,
-    zero: T,
-    mul: impl Fn(&T, &T) -> T,
-    neg: impl Fn(&T) -> T,
-) -> (Vec<Vec<T>>, Vec<T>) {
-    let mut m = vec![vec![zero.clone(); 3 * N]; 3 * N];
-    let mut d = vec![zero; 3 * N];
-    for i in 0..N {
-        for j in 0..N {
-            let fr = mul(f, &rnn[i][j]);
-            m[i][j] = rnn[i][j].clone();
-            m[N + i][j] = fr.clone();
-            m[2 * N + i][j] = fr;
-            let t = &rtt_half[i][j];
-            m[N + i][N + j] = t.clone();
-            m[N + i][2 * N + j] = neg(t);
-            m[2 * N + i][N + j] = neg(t);
-            m[2 * N + i][2 * N + j] = t.clone();
-        }
-        d[i] = rv_n[i].clone();
-        d[N + i] = mul(f, &rv_n[i]);
-        d[2 * N + i] = mul(f, &rv_n[i]);
-    }
-    (m, d)
-}
-
-/// Example 1 exactly: f = 3/5, c = 1 (so q0 = e, as max(1, f)·c = 1).
+/// Example 1 exactly: f = 3/5, c = 1 (so q0 = e, as max(1, f)·c = 1); M and d of
+/// formulation.md §3 with Rnt = Rtn = 0, from the shared fixture.
 fn exact() -> (Vec<Vec<Rat>>, Vec<Rat>, Vec<Rat>) {
-    let r = |a: i64, b: i64| frac(a, b);
-    let rnn = [
-        [r(3, 16), r(-3, 8), r(3, 16)],
-        [r(-3, 8), r(3, 4), r(-3, 8)],
-        [r(3, 16), r(-3, 8), r(3, 16)],
-    ];
-    let rtt_half = [
-        [r(1, 2), r(-1, 2), r(0, 1)],
-        [r(-1, 2), r(1, 1), r(-1, 2)],
-        [r(0, 1), r(-1, 2), r(1, 2)],
-    ];
-    let rv_n = [r(-3, 32), r(11, 16), r(13, 32)];
-    let (m, d) = assemble(
-        &rnn,
-        &rtt_half,
-        &rv_n,
-        &r(3, 5),
-        r(0, 1),
-        |a, b| a * b,
-        |a| -a,
-    );
-    (m, vec![r(1, 1); 3 * N], d)
+    let lcp = example1::lcp_exact();
+    (lcp.m, vec![frac(1, 1); 3 * N], lcp.d)
 }
 
 /// Example 1 from the `f64` data as a user would type it.
 fn floating() -> (Vec<Vec<f64>>, Vec<f64>, Vec<f64>) {
-    let rnn = [
-        [0.1875, -0.375, 0.1875],
-        [-0.375, 0.75, -0.375],
-        [0.1875, -0.375, 0.1875],
-    ];
-    let rtt = [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]];
-    let rtt_half = rtt.map(|row| row.map(|v| v / 2.0));
-    let rv_n = [-0.09375, 0.6875, 0.40625];
-    let (m, d) = assemble(&rnn, &rtt_half, &rv_n, &0.6, 0.0, |a, b| a * b, |a| -a);
-    (m, vec![1.0; 3 * N], d)
+    let lcp = example1::lcp();
+    (lcp.m, vec![1.0; 3 * N], lcp.d)
 }
 
 #[test]
@@ -114,7 +57,7 @@ fn path_is_one_step_then_criterion_2a() {
         vec![Step {
             entering: Var::P,
             leaving: xn(0),
-            p: frac(32, 3),
+            p: example1::first_event_p_exact(),
             p_decreased: false,
         }]
     );
@@ -122,41 +65,13 @@ fn path_is_one_step_then_criterion_2a() {
     assert_eq!(path.final_entering, Some(zn(0)));
     let ray = path.ray.as_ref().expect("a ray");
     assert_eq!(ray.entering, zn(0));
-    assert_eq!(ray.p_entry, frac(-2, 1));
+    assert_eq!(ray.p_entry, frac(-2, 1)); // Table 2: p's entry in z_n1's column
     assert_eq!(ray.dp, frac(1, 1));
 
     // Per unit of p along the ray = the c = 0 solution at p = 1 (Table 3's p column, negated).
-    let h = frac(1, 2);
-    let t = frac(3, 10);
     let o = frac(0, 1);
-    assert_eq!(
-        ray.dz,
-        vec![
-            h.clone(),
-            o.clone(),
-            o.clone(),
-            o.clone(),
-            o.clone(),
-            o.clone(),
-            o.clone(),
-            o.clone(),
-            o.clone()
-        ]
-    );
-    assert_eq!(
-        ray.dx,
-        vec![
-            o.clone(),
-            h.clone(),
-            h.clone(),
-            o.clone(),
-            t.clone(),
-            t.clone(),
-            o.clone(),
-            t.clone(),
-            t.clone()
-        ]
-    );
+    assert_eq!(ray.dz, example1::z_at_target_exact());
+    assert_eq!(ray.dx, example1::x_at_target_exact());
     // The c = 0 solution at p = 1 solves the real (homogeneous) problem exactly.
     let zero_q: Vec<Rat> = d.clone();
     assert!(is_lcp_solution(&m, &zero_q, &ray.dz, &ray.dx));
@@ -169,17 +84,21 @@ fn path_is_one_step_then_criterion_2a() {
     assert!(b.z.iter().all(|v| *v == o));
 
     // Table 3's rhs column: the basic values extrapolated to p = 0 along the final basis.
-    let table3_rhs = [
-        (zn(0), frac(-16, 3)),
-        (xn(1), frac(3, 1)),
-        (xn(2), frac(0, 1)),
-        (xtp(0), frac(2, 5)),
-        (xtp(1), frac(11, 5)),
-        (xtp(2), frac(2, 5)),
-        (xtm(0), frac(2, 5)),
-        (xtm(1), frac(11, 5)),
-        (xtm(2), frac(2, 5)),
+    let basis = [
+        zn(0),
+        xn(1),
+        xn(2),
+        xtp(0),
+        xtp(1),
+        xtp(2),
+        xtm(0),
+        xtm(1),
+        xtm(2),
     ];
+    let table3_rhs: Vec<(Var, Rat)> = basis
+        .into_iter()
+        .zip(example1::table3_rhs_exact())
+        .collect();
     for p in [frac(32, 3), frac(12, 1), frac(100, 1)] {
         let s = path.solution_at(&p).expect("on the ray");
         for (v, rhs) in &table3_rhs {
@@ -233,14 +152,13 @@ fn the_same_from_f64_data() {
     let ray = path.ray.as_ref().unwrap();
     assert_eq!(ray.entering, zn(0));
     assert_eq!(ray.p_entry, frac(-2, 1));
-    let expected = [0.0, 0.5, 0.5, 0.0, 0.3, 0.3, 0.0, 0.3, 0.3];
-    for (a, b) in ray.dx_f64().iter().zip(expected) {
+    for (a, b) in ray.dx_f64().iter().zip(example1::X_AT_TARGET) {
         assert!((a - b).abs() < 1e-15, "{a} vs {b}");
     }
     assert_eq!(ray.dz_f64()[0], 0.5);
     // At p = 1 (target): x = e + d, z = 0.
     let s = path.solution_at_f64(1.0).unwrap();
-    assert_eq!(s.x_f64()[0], 1.0 - 0.09375);
+    assert_eq!(s.x_f64()[0], 1.0 + example1::RV_N[0]);
     assert!(s.z_f64().iter().all(|&v| v == 0.0));
 }
 
@@ -257,24 +175,8 @@ fn without_tightening_enumeration_gives_the_papers_answer() {
         start.elapsed()
     );
     assert_eq!(sols.len(), 1);
-    let (h, t, o) = (frac(1, 2), frac(3, 10), frac(0, 1));
-    let mut z = vec![o.clone(); 3 * N];
-    z[0] = h.clone();
-    assert_eq!(sols[0].z, z);
-    assert_eq!(
-        sols[0].w,
-        vec![
-            o.clone(),
-            h.clone(),
-            h,
-            o.clone(),
-            t.clone(),
-            t.clone(),
-            o,
-            t.clone(),
-            t
-        ]
-    );
+    assert_eq!(sols[0].z, example1::z_at_target_exact());
+    assert_eq!(sols[0].w, example1::x_at_target_exact());
 }
 
 #[test]

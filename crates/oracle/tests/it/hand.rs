@@ -1,5 +1,6 @@
 //! Small cases checked by hand, and degenerate cases that must terminate cleanly.
 
+use unilateral_oracle::fixtures::random::Lcg;
 use unilateral_oracle::{
     enumerate, enumerate_exact, frac, has_solution, is_lcp_solution, lemke, lemke_exact,
     parametric_path, parametric_path_exact, LemkeStatus, PathStatus, Rat, Step, Var,
@@ -329,13 +330,8 @@ fn parametric_degenerate_zero_rows_terminate() {
 #[test]
 fn size_ten_with_f64_data() {
     let n = 10;
-    let mut seed = 12345u64;
-    let mut next = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((seed >> 33) as f64 / (1u64 << 31) as f64) - 0.5 // in [−0.5, 0.5)
-    };
+    let mut g = Lcg::new(12345);
+    let mut next = || g.uniform(-0.5, 0.5);
     // Strictly diagonally dominant with a positive diagonal: a P-matrix.
     let mut m: Vec<Vec<f64>> = (0..n)
         .map(|_| (0..n).map(|_| next() * 0.3).collect())

@@ -2,5 +2,6 @@
 //! link for all of them (a binary per file costs minutes on a two-core machine).
 
 mod example1;
+mod fixtures;
 mod hand;
 mod random;

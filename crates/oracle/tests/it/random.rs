@@ -2,6 +2,7 @@
 //! with the exact definition of a solution.
 
 use proptest::prelude::*;
+use unilateral_oracle::fixtures::random::psd_plus_skew;
 use unilateral_oracle::{
     enumerate_exact, enumerate_parametric_exact, frac, has_solution_exact, is_lcp_solution,
     lemke_exact, parametric_path_exact, parametric_q, LemkeStatus, PathStatus, Rat,
@@ -15,22 +16,6 @@ fn to_rat(m: &[Vec<i64>]) -> Vec<Vec<Rat>> {
 
 fn iv(v: &[i64]) -> Vec<Rat> {
     v.iter().map(|&x| frac(x, 1)).collect()
-}
-
-/// `AᵀA + s·I + (B − Bᵀ)`: positive semidefinite (s = 0) or positive definite (s = 1, a
-/// P-matrix), non-symmetric through the skew part.
-fn psd(a: &[Vec<i64>], b: &[Vec<i64>], s: i64) -> Vec<Vec<i64>> {
-    let n = a.len();
-    (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| {
-                    let ata: i64 = (0..n).map(|k| a[k][i] * a[k][j]).sum();
-                    ata + if i == j { s } else { 0 } + b[i][j] - b[j][i]
-                })
-                .collect()
-        })
-        .collect()
 }
 
 fn square(n: usize, lo: i64, hi: i64) -> impl Strategy<Value = Vec<Vec<i64>>> {
@@ -58,7 +43,7 @@ proptest! {
     /// P-matrix: exactly one solution; Lemke finds it with any covering vector.
     #[test]
     fn p_matrix_enumeration_and_lemke_agree((a, b, q, cover) in problem(6)) {
-        let m = to_rat(&psd(&a, &b, 1));
+        let m = to_rat(&psd_plus_skew(&a, &b, 1));
         let q = iv(&q);
         let sols = enumerate_exact(&m, &q);
         prop_assert_eq!(sols.len(), 1);
@@ -74,7 +59,7 @@ proptest! {
     /// when there is no solution, which the enumeration (with its singular-set LPs) decides.
     #[test]
     fn psd_lemke_ray_iff_no_solution((a, b, q, cover) in problem(5)) {
-        let m = to_rat(&psd(&a, &b, 0));
+        let m = to_rat(&psd_plus_skew(&a, &b, 0));
         let q = iv(&q);
         let r = lemke_exact(&m, &q, &iv(&cover), 10_000);
         prop_assert_ne!(r.status, LemkeStatus::IterationCap);
@@ -127,7 +112,7 @@ proptest! {
             0i64..=20,
         ))
     ) {
-        let m = to_rat(&psd(&a, &b, 1));
+        let m = to_rat(&psd_plus_skew(&a, &b, 1));
         let (q0, d) = (iv(&q0), iv(&d));
         let target = frac(target, 2);
         let path = parametric_path_exact(&m, &q0, &d, Some(&target), None, 10_000);

@@ -20,22 +20,8 @@ pub fn to_f64_matrix(m: &[Vec<i64>]) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// `Aᵀ A + s·I + (B − Bᵀ)` for a `k × n` matrix `A` and an `n × n` matrix `B`: positive
-/// semidefinite for `s = 0`, positive definite (hence a P-matrix) for `s > 0`; non-symmetric
-/// through the skew part.
-pub fn psd_plus_skew(a: &[Vec<f64>], b: &[Vec<f64>], s: f64) -> Vec<Vec<f64>> {
-    let n = b.len();
-    (0..n)
-        .map(|i| {
-            (0..n)
-                .map(|j| {
-                    let ata: f64 = a.iter().map(|row| row[i] * row[j]).sum();
-                    ata + if i == j { s } else { 0.0 } + b[i][j] - b[j][i]
-                })
-                .collect()
-        })
-        .collect()
-}
+/// `Aᵀ A + s·I + (B − Bᵀ)`: the oracle's shared construction of (semi)definite test matrices.
+pub use oracle::fixtures::random::psd_plus_skew;
 
 /// `|a − b| ≤ tol · max(1, scale)` entrywise, with a readable error.
 pub fn assert_close(what: &str, got: &[f64], want: &[f64], tol: f64) -> Result<(), String> {
