@@ -445,7 +445,7 @@ fn parametric_degenerate_removal_of_the_tightening() {
     // the tightened problem (q0 + c·e) for the events, and the exact enumeration of the problem
     // without tightening for the reported solution (equal to it when unique; otherwise the
     // solution is checked exactly against the original data).
-    let mut g = Lcg(41);
+    let mut g = Lcg::new(41);
     let mut removed = 0;
     for case in 0..80 {
         let n = 2 + case % 5;
