@@ -1,7 +1,8 @@
 //! Fixtures shared by the contact tests.
 
 use faer::Mat;
-use unilateral_contact::ContactZone;
+use unilateral_contact::{ContactLcp, ContactZone};
+use unilateral_oracle as oracle;
 use unilateral_oracle::fixtures::example1;
 
 /// The paper's Example 1 in contact-zone form (formulation.md §5, the oracle's fixture; the data
@@ -43,4 +44,47 @@ pub fn definite_zone(
     zone.variable.normal = (0..m).map(|i| load(2, i)).collect();
     zone.variable.tangential = (0..m).map(|i| load(3, i)).collect();
     zone
+}
+
+/// A matrix as rows (the oracle's layout).
+pub fn rows(m: &Mat<f64>) -> Vec<Vec<f64>> {
+    (0..m.nrows())
+        .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
+        .collect()
+}
+
+/// Every solution of the zone's LCP at load `p`, by exhaustive enumeration (exact).
+pub fn enumerated(zone: &ContactZone, p: f64) -> Vec<(Vec<f64>, Vec<f64>)> {
+    let lcp = ContactLcp::build(zone);
+    oracle::enumerate_parametric(&rows(&lcp.problem.m), &lcp.problem.q0, &lcp.problem.d, p)
+        .into_iter()
+        .map(|s| (s.w_f64(), s.z_f64()))
+        .collect()
+}
+
+/// The reported pair values agree with one of the enumerated solutions at the reported load.
+pub fn assert_matches_enumeration(
+    zone: &ContactZone,
+    p: f64,
+    pairs: &[unilateral_contact::PairResult],
+) {
+    let m = zone.pairs();
+    let sols = enumerated(zone, p);
+    assert!(!sols.is_empty(), "enumeration finds no solution at p = {p}");
+    let found = sols.iter().any(|(x, z)| {
+        (0..m).all(|i| {
+            let xt = (x[m + i] - x[2 * m + i]) / 2.0;
+            let zt = (z[m + i] - z[2 * m + i]) / 2.0;
+            let scale = 1.0 + x[i].abs() + z[i].abs();
+            (pairs[i].x_n - x[i]).abs() <= 1e-9 * scale
+                && (pairs[i].z_n - z[i]).abs() <= 1e-9 * scale
+                && (pairs[i].x_t - xt).abs() <= 1e-9 * scale
+                && (pairs[i].z_t - zt).abs() <= 1e-9 * scale
+        })
+    });
+    assert!(
+        found,
+        "reported solution at p = {p} is none of the {} enumerated",
+        sols.len()
+    );
 }

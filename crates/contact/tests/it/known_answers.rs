@@ -9,47 +9,7 @@ use unilateral_contact::{
 };
 use unilateral_oracle as oracle;
 
-fn rows(m: &Mat<f64>) -> Vec<Vec<f64>> {
-    (0..m.nrows())
-        .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
-        .collect()
-}
-
-/// Every solution of the zone's LCP at load `p`, by exhaustive enumeration (exact).
-fn enumerated(zone: &ContactZone, p: f64) -> Vec<(Vec<f64>, Vec<f64>)> {
-    let lcp = ContactLcp::build(zone);
-    oracle::enumerate_parametric(&rows(&lcp.problem.m), &lcp.problem.q0, &lcp.problem.d, p)
-        .into_iter()
-        .map(|s| (s.w_f64(), s.z_f64()))
-        .collect()
-}
-
-/// The reported pair values agree with one of the enumerated solutions at the reported load.
-fn assert_matches_enumeration(
-    zone: &ContactZone,
-    p: f64,
-    pairs: &[unilateral_contact::PairResult],
-) {
-    let m = zone.pairs();
-    let sols = enumerated(zone, p);
-    assert!(!sols.is_empty(), "enumeration finds no solution at p = {p}");
-    let found = sols.iter().any(|(x, z)| {
-        (0..m).all(|i| {
-            let xt = (x[m + i] - x[2 * m + i]) / 2.0;
-            let zt = (z[m + i] - z[2 * m + i]) / 2.0;
-            let scale = 1.0 + x[i].abs() + z[i].abs();
-            (pairs[i].x_n - x[i]).abs() <= 1e-9 * scale
-                && (pairs[i].z_n - z[i]).abs() <= 1e-9 * scale
-                && (pairs[i].x_t - xt).abs() <= 1e-9 * scale
-                && (pairs[i].z_t - zt).abs() <= 1e-9 * scale
-        })
-    });
-    assert!(
-        found,
-        "reported solution at p = {p} is none of the {} enumerated",
-        sols.len()
-    );
-}
+use crate::common::{assert_matches_enumeration, enumerated, rows};
 
 /// A bar of `m` nodes on a rigid base, clamped at its far end, pressed by a constant force `N` at
 /// every node and pulled by `F·p` at the free end (the discrete form of the paper's Example 2).

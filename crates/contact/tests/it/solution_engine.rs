@@ -1,16 +1,10 @@
 //! The solution keeps the engine of its solve: it answers for any load of the path and shows the
 //! tableaux; the solve's settings are checked by the engine, in the words they always had.
 
-use faer::Mat;
-use unilateral_contact::{solve, ContactError, ContactLcp, Follow, Outcome, SolveSettings};
+use unilateral_contact::{solve, ContactError, Follow, Outcome, SolveSettings};
 use unilateral_lcp::Settings;
-use unilateral_oracle as oracle;
 
-fn rows(m: &Mat<f64>) -> Vec<Vec<f64>> {
-    (0..m.nrows())
-        .map(|i| (0..m.ncols()).map(|j| m[(i, j)]).collect())
-        .collect()
-}
+use crate::common::assert_matches_enumeration;
 
 /// Reference: exhaustive enumeration of the zone's `3m` LCP at each load (`unilateral-oracle`).
 /// A zone of two pressed pairs with friction, pushed sideways: `at(p)` at every event load, in
@@ -41,8 +35,6 @@ fn the_kept_engine_answers_every_load_as_enumeration() {
         sol.steps.len() >= 2,
         "the zone must have events to test between"
     );
-    let lcp = ContactLcp::build(&zone);
-    let m = zone.pairs();
     let last = sol.steps.last().unwrap().p;
     let mut ps: Vec<f64> = sol.steps.iter().map(|s| s.p).collect();
     ps.extend(sol.steps.windows(2).map(|w| 0.5 * (w[0].p + w[1].p)));
@@ -50,21 +42,7 @@ fn the_kept_engine_answers_every_load_as_enumeration() {
     for p in ps {
         let (pairs, residual) = sol.at(p).unwrap().expect("on the path");
         assert!(residual.max() < 1e-12, "residual at p = {p}");
-        let exact =
-            oracle::enumerate_parametric(&rows(&lcp.problem.m), &lcp.problem.q0, &lcp.problem.d, p);
-        let found = exact.iter().any(|s| {
-            let (x, z) = (s.w_f64(), s.z_f64());
-            (0..m).all(|i| {
-                let xt = (x[m + i] - x[2 * m + i]) / 2.0;
-                let zt = (z[m + i] - z[2 * m + i]) / 2.0;
-                let scale = 1.0 + x[i].abs() + z[i].abs();
-                (pairs[i].x_n - x[i]).abs() <= 1e-9 * scale
-                    && (pairs[i].z_n - z[i]).abs() <= 1e-9 * scale
-                    && (pairs[i].x_t - xt).abs() <= 1e-9 * scale
-                    && (pairs[i].z_t - zt).abs() <= 1e-9 * scale
-            })
-        });
-        assert!(found, "at p = {p}: none of the {} enumerated", exact.len());
+        assert_matches_enumeration(&zone, p, &pairs);
     }
     // A clone shares the engine and answers alike.
     let copy = sol.clone();

@@ -343,6 +343,20 @@ fn check_path_against_oracle(
     path
 }
 
+/// A P-matrix with `q0` in `q0_low..=` (up to 3 if `q0_low` ≥ 0, else up to 1) and `d` in
+/// `-3..=3`, and one row of `[M | q0 | d]` copied onto another.
+fn duplicated_row(g: &mut Lcg, n: usize, q0_low: i64) -> (Vec<Vec<f64>>, Vec<f64>, Vec<f64>) {
+    let mut m = g.p_matrix(n);
+    let mut q0 = g.vector(n, q0_low, if q0_low >= 0 { 3 } else { 1 });
+    let mut d = g.vector(n, -3, 3);
+    let i = g.int(0, n as i64 - 1) as usize;
+    let j = (i + 1 + g.int(0, n as i64 - 2) as usize) % n;
+    m[j] = m[i].clone();
+    q0[j] = q0[i];
+    d[j] = d[i];
+    (m, q0, d)
+}
+
 #[test]
 fn parametric_duplicate_rows_tie_at_the_first_step() {
     // Rows 1 and 2 of [M | q0 | d] are equal: both reach zero at p = 1 together.
@@ -364,14 +378,7 @@ fn parametric_duplicate_rows_tie_at_the_first_step() {
     let mut g = Lcg::new(23);
     for case in 0..60 {
         let n = 2 + case % 5;
-        let mut m = g.p_matrix(n);
-        let mut q0 = g.vector(n, 0, 3);
-        let mut d = g.vector(n, -3, 3);
-        let i = g.int(0, n as i64 - 1) as usize;
-        let j = (i + 1 + g.int(0, n as i64 - 2) as usize) % n;
-        m[j] = m[i].clone();
-        q0[j] = q0[i];
-        d[j] = d[i];
+        let (m, q0, d) = duplicated_row(&mut g, n, 0);
         let order: Vec<usize> = (0..n).rev().collect();
         check_path_against_oracle(&format!("dup family {case}"), &m, &q0, &d, 2.0, None);
         check_path_against_oracle(
@@ -449,15 +456,8 @@ fn parametric_degenerate_removal_of_the_tightening() {
     let mut removed = 0;
     for case in 0..80 {
         let n = 2 + case % 5;
-        let mut m = g.p_matrix(n);
         // q0 ≤ 0 somewhere: the start needs the tightening.
-        let mut q0 = g.vector(n, -3, 1);
-        let mut d = g.vector(n, -3, 3);
-        let i = g.int(0, n as i64 - 1) as usize;
-        let j = (i + 1 + g.int(0, n as i64 - 2) as usize) % n;
-        m[j] = m[i].clone();
-        q0[j] = q0[i];
-        d[j] = d[i];
+        let (m, q0, d) = duplicated_row(&mut g, n, -3);
         let c = 4.0;
         let problem = ParametricLcp {
             m: to_mat(&m),
