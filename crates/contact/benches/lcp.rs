@@ -1,4 +1,4 @@
-//! Contact-like LCPs of order `n = 3m` from `generate::beam_on_supports(m, 7)`, m = 100, 300,
+//! Contact-like LCPs of order `n = 3m` from `beam_on_supports(m, 7)` (the oracle's beam fixture), m = 100, 300,
 //! 1000, against one dense LU of the same order:
 //!
 //! * `standard`: the standard LCP at `p = 1` (`q = q0 + d`) with `solve_lcp`,
@@ -26,7 +26,9 @@ use std::time::{Duration, Instant};
 
 use criterion::{BenchmarkId, Criterion, SamplingMode};
 use faer::Mat;
-use unilateral_contact::generate::beam_on_supports;
+#[path = "../tests/it/beam_zone.rs"]
+mod beam_zone;
+use beam_zone::beam_on_supports;
 use unilateral_contact::ContactLcp;
 use unilateral_lcp::{
     follow_path, solve_lcp, Follow, Lcp, LcpSolution, LoadPath, PathOptions, Settings,

@@ -5,7 +5,10 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use unilateral_contact::{generate::beam_on_supports, solve, Follow, SolveSettings};
+#[path = "../tests/it/beam_zone.rs"]
+mod beam_zone;
+use beam_zone::beam_on_supports;
+use unilateral_contact::{solve, Follow, SolveSettings};
 
 fn main() {
     let m: usize = std::env::args()

@@ -20,7 +20,6 @@
 #![warn(missing_docs)]
 
 mod error;
-pub mod generate;
 mod lcp;
 mod settings;
 mod solution;

@@ -4,9 +4,8 @@
 //! reported where the standard method (with its fallbacks) finds no solution just beyond it —
 //! a too tight tie test once ended these paths in false mechanisms.
 
-use unilateral_contact::{
-    generate::beam_on_supports, solve, ContactLcp, Follow, Outcome, SolveSettings,
-};
+use crate::beam_zone::beam_on_supports;
+use unilateral_contact::{solve, ContactLcp, Follow, Outcome, SolveSettings};
 use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings};
 
 fn lcp_at(lcp: &ContactLcp, p: f64) -> Lcp {

@@ -4,9 +4,8 @@
 //! these problems that has a solution, verified; where the load path shows that the beam has
 //! become a mechanism below the load, Lemke must end on a ray (two methods that must agree).
 
-use unilateral_contact::{
-    generate::beam_on_supports, solve, ContactLcp, Follow, Outcome, SolveSettings,
-};
+use crate::beam_zone::beam_on_supports;
+use unilateral_contact::{solve, ContactLcp, Follow, Outcome, SolveSettings};
 use unilateral_lcp::{solve_lcp, Lcp, LcpStatus, Settings, Strategy};
 
 #[test]
