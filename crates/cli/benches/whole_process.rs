@@ -1,0 +1,308 @@
+//! Whole-process timings: what a user waits for, reading and writing included.
+//!
+//! For each size `m` (pairs; the LCP has `n = 3m` unknowns) the benchmark writes the files a user
+//! would give, runs the release `unilateral` binary on them, and measures wall time, CPU time
+//! (user + system) and peak memory (maximum resident set) of each process with `/usr/bin/time`.
+//! The yardstick is one dense LU of order `n` (faer, `partial_piv_lu`, best of three) in this
+//! process, in the same run, so that the ratios do not depend on how busy the machine is.
+//!
+//! Cases:
+//! * `lcp`: the beam's `3m` LCP at `p = 1` as a Siconos `.dat` file, `unilateral lcp`;
+//! * `zone`: the beam's contact zone with `Rnn`, `Rtt` in Matrix Market files, `unilateral solve
+//!   --trace end --tightening 1` (the paper's procedure);
+//! * `zone+out`: the same with `--json`, `--csv` and `--report` (sizes up to
+//!   `UNILATERAL_BENCH_REPORT_MAX`, default 300: today the report re-evaluates the path at every
+//!   event);
+//! * `model`: a structural model, a continuous deck on `m` frictional elastic bearings (an
+//!   elastomer layer meshed with QM6 under a frame member, the bearings' bases on the ground),
+//!   condensed and traced to the end in the process, `--json` written.
+//!
+//! The contact zone is `unilateral_oracle::fixtures::beam::beam_on_supports(m, 7)` (a continuous
+//! beam on `m` frictional supports).
+//!
+//! ```sh
+//! cargo bench -p unilateral --bench whole_process                       # m = 100, 300, 1000, 2000
+//! UNILATERAL_BENCH_SIZES=100,300 cargo bench -p unilateral --bench whole_process
+//! ```
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use faer::Mat;
+use unilateral_contact::{ContactLcp, ContactZone};
+use unilateral_oracle::fixtures::beam;
+
+const BIN: &str = env!("CARGO_BIN_EXE_unilateral");
+
+fn sizes() -> Vec<usize> {
+    std::env::var("UNILATERAL_BENCH_SIZES")
+        .ok()
+        .map(|s| s.split(',').filter_map(|w| w.trim().parse().ok()).collect())
+        .unwrap_or_else(|| vec![100, 300, 1000, 2000])
+}
+
+fn report_max() -> usize {
+    std::env::var("UNILATERAL_BENCH_REPORT_MAX")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(300)
+}
+
+fn zone(m: usize) -> ContactZone {
+    let b = beam::beam_on_supports(m, 7);
+    let mat = |rows: &[Vec<f64>]| Mat::from_fn(m, m, |i, j| rows[i][j]);
+    let mut z = ContactZone::new(mat(&b.rnn), mat(&b.rtt));
+    z.friction = b.friction;
+    z.constant.normal = b.constant_normal;
+    z.variable.normal = b.variable_normal;
+    z.variable.tangential = b.variable_tangential;
+    z
+}
+
+fn list(v: &[f64]) -> String {
+    let words: Vec<String> = v.iter().map(|x| format!("{x:e}")).collect();
+    format!("[{}]", words.join(", "))
+}
+
+/// A dense matrix as a Matrix Market array file (column by column).
+fn write_mtx(path: &Path, a: &Mat<f64>) {
+    let mut s = format!(
+        "%%MatrixMarket matrix array real general\n{} {}\n",
+        a.nrows(),
+        a.ncols()
+    );
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            writeln!(s, "{:e}", a[(i, j)]).unwrap();
+        }
+    }
+    std::fs::write(path, s).unwrap();
+}
+
+fn write_zone(dir: &Path, z: &ContactZone) -> PathBuf {
+    write_mtx(&dir.join("rnn.mtx"), &z.rnn);
+    write_mtx(&dir.join("rtt.mtx"), &z.rtt);
+    let path = dir.join("zone.toml");
+    let s = format!(
+        "[contact_zone]\nfriction = {}\nRnn = \"rnn.mtx\"\nRtt = \"rtt.mtx\"\n\n[load.constant]\nnormal = {}\n\n[load.variable]\nnormal = {}\ntangential = {}\n",
+        list(&z.friction),
+        list(&z.constant.normal),
+        list(&z.variable.normal),
+        list(&z.variable.tangential)
+    );
+    std::fs::write(&path, s).unwrap();
+    path
+}
+
+/// The zone's `3m` LCP at `p = 1` in Siconos `.dat` form (`M` column by column, then `q`).
+fn write_dat(dir: &Path, z: &ContactZone) -> PathBuf {
+    let lcp = ContactLcp::build(z);
+    let p = &lcp.problem;
+    let n = p.q0.len();
+    let mut s = format!("{n}\n0\n{n}\n{n}\n{n} {n}\n");
+    for j in 0..n {
+        for i in 0..n {
+            write!(s, "{:e} ", p.m[(i, j)]).unwrap();
+        }
+        s.push('\n');
+    }
+    for i in 0..n {
+        write!(s, "{:e} ", p.q0[i] + p.d[i]).unwrap();
+    }
+    s.push('\n');
+    let path = dir.join("lcp.dat");
+    std::fs::write(&path, s).unwrap();
+    path
+}
+
+/// The structural model: a frame deck (spans 1 m) on an elastomer layer 0.2 m thick meshed
+/// with `m − 1` QM6 elements, whose `m` base nodes are frictional contact pairs with the ground;
+/// dead load on the deck, a variable load varying along it from down to up and a horizontal
+/// push at its end.
+fn write_model(dir: &Path, m: usize) -> PathBuf {
+    let l = m - 1;
+    let s = format!(
+        r#"title = "Continuous deck on {m} frictional elastic bearings (benchmark)"
+units = "N, m"
+
+[[sections]]
+name = "deck"
+E = 3.0e10
+A = 0.5
+I = 0.04
+
+[[materials]]
+name = "elastomer"
+E = 2.0e7
+nu = 0.45
+thickness = 0.5
+
+[[members]]
+name = "deck"
+start = [0.0, 0.2]
+end = [{l}.0, 0.2]
+divisions = {l}
+section = "deck"
+
+[[blocks]]
+name = "pads"
+origin = [0.0, 0.0]
+width = {l}.0
+height = 0.2
+nx = {l}
+ny = 1
+material = "elastomer"
+analysis = "plane_stress"
+formulation = "QM6"
+connect_to = "deck"
+
+[[contact]]
+name = "bearing"
+from = "ground"
+to = "pads.bottom"
+normal = [0.0, 1.0]
+friction = 0.3
+
+[[loads.constant.distributed]]
+elements = "deck"
+q = [0.0, -1.0e4]
+
+[[loads.variable.distributed]]
+elements = "deck"
+start = [2.0e3, -3.0e4]
+end = [-1.0e3, 0.8e4]
+
+[[loads.variable.nodal]]
+nodes = "deck.end"
+fx = 5.0e4
+
+[solve]
+target = 1.0
+trace = "end"
+"#
+    );
+    let path = dir.join(format!("deck{m}.toml"));
+    std::fs::write(&path, s).unwrap();
+    path
+}
+
+struct Run {
+    wall: f64,
+    cpu: f64,
+    peak_mib: f64,
+    status: String,
+}
+
+/// Runs the binary under `/usr/bin/time` and reads its figures.
+fn run(args: &[&str], dir: &Path) -> Run {
+    let times = dir.join("time.txt");
+    let t = Instant::now();
+    let out = Command::new("/usr/bin/time")
+        .arg("-f")
+        .arg("%U %S %M")
+        .arg("-o")
+        .arg(&times)
+        .arg(BIN)
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("/usr/bin/time runs the binary");
+    let wall = t.elapsed().as_secs_f64();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let status = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("status: "))
+        .map(|s| s.split(' ').next().unwrap_or("").to_string())
+        .unwrap_or_else(|| format!("exit {:?}", out.status.code()));
+    let t = std::fs::read_to_string(&times).unwrap_or_default();
+    let w: Vec<f64> = t
+        .lines()
+        .last()
+        .unwrap_or("")
+        .split_whitespace()
+        .filter_map(|v| v.parse().ok())
+        .collect();
+    let (cpu, peak) = match w.as_slice() {
+        [u, s, k] => (u + s, k / 1024.0),
+        _ => (f64::NAN, f64::NAN),
+    };
+    Run {
+        wall,
+        cpu,
+        peak_mib: peak,
+        status,
+    }
+}
+
+/// One dense LU of order `n`, best of three (seconds).
+fn lu_seconds(n: usize) -> f64 {
+    let a = Mat::<f64>::from_fn(n, n, |i, j| {
+        let k = (i * 7919 + j * 104_729) % 1_000_003;
+        k as f64 / 1_000_003.0 + if i == j { n as f64 } else { 0.0 }
+    });
+    (0..3)
+        .map(|_| {
+            let t = Instant::now();
+            let lu = a.partial_piv_lu();
+            std::hint::black_box(lu.U()[(0, 0)]);
+            t.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "?".into())
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; a filter argument other than that selects nothing here.
+    if std::env::args().skip(1).any(|a| a != "--bench") {
+        return;
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    println!(
+        "whole-process runs of {BIN}\ncores: {cores}; load average before: {}",
+        load_average()
+    );
+    println!(
+        "{:>5} {:>5} {:>9} {:>14} {:>9} {:>9} {:>9} {:>8} {:>10}",
+        "m", "n", "case", "status", "wall s", "CPU s", "LU s", "wall/LU", "peak MiB"
+    );
+    for m in sizes() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let n = 3 * m;
+        let lu = lu_seconds(n);
+        let z = zone(m);
+        let dat = write_dat(d, &z);
+        let zone_file = write_zone(d, &z);
+        let model = write_model(d, m);
+        let row = |case: &str, r: &Run| {
+            println!(
+                "{m:>5} {n:>5} {case:>9} {:>14} {:>9.3} {:>9.2} {lu:>9.3} {:>8.1} {:>10.0}",
+                r.status,
+                r.wall,
+                r.cpu,
+                r.wall / lu,
+                r.peak_mib
+            );
+        };
+        let dat_s = dat.to_string_lossy().into_owned();
+        let zone_s = zone_file.to_string_lossy().into_owned();
+        let model_s = model.to_string_lossy().into_owned();
+        row("lcp", &run(&["lcp", &dat_s], d));
+        let zone_args = ["solve", &zone_s, "--trace", "end", "--tightening", "1"];
+        row("zone", &run(&zone_args, d));
+        if m <= report_max() {
+            let mut a = zone_args.to_vec();
+            a.extend(["--json", "z.json", "--csv", "z.csv", "--report", "rep"]);
+            row("zone+out", &run(&a, d));
+        }
+        row("model", &run(&["solve", &model_s, "--json", "m.json"], d));
+    }
+    println!("load average after: {}", load_average());
+}
