@@ -20,8 +20,7 @@
 
 use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
 use unilateral_fem::{
-    Condensed, ContactSolution as FemSolution, DofLabel, ElementId, FemError, Model, NodeId,
-    Results,
+    Condensed, DofLabel, ElementId, FemError, LinkValues, Model, NodeId, Results,
 };
 
 pub use unilateral_contact::{Outcome, PairState};
@@ -443,7 +442,7 @@ impl Analysis {
     }
 
     fn recover(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
-        let sol = FemSolution {
+        let sol = LinkValues {
             p,
             x_n: pairs.iter().map(|r| r.x_n).collect(),
             x_t: pairs.iter().map(|r| r.x_t).collect(),

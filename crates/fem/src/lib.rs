@@ -4,7 +4,7 @@
 //! constant and a variable [`LoadGroup`], contact pairs), call [`Model::condense`] to obtain
 //! the contact stiffness matrix `R = [[Rnn, Rnt], [Rtn, Rtt]]` and the contact load vectors
 //! `R_c`, `R_v` of `formulation.md` §2 ([`Condensed`]), solve the contact problem elsewhere,
-//! and call [`Condensed::recover`] with the [`ContactSolution`] to get displacements,
+//! and call [`Condensed::recover`] with the [`LinkValues`] of a solution to get displacements,
 //! reactions, internal forces and stresses ([`Results`]).
 //!
 //! Sign conventions (see `docs/fem.md`): for a pair (A, B) with unit normal `n` from A into B,
@@ -36,14 +36,21 @@
     clippy::neg_cmp_op_on_partial_ord
 )]
 
+mod assemble;
 mod condense;
+mod dofs;
 mod elements;
 mod error;
 mod model;
+mod recover;
 mod results;
+mod schur;
+mod stability;
 mod stress;
 
-pub use condense::{check_memory, dense_condensation_bytes, machine_memory, CondensationStats};
+pub use condense::{
+    check_memory, dense_condensation_bytes, machine_memory, CondensationStats, Condensed,
+};
 pub use error::{DofLabel, FemError, FreeDof};
 pub use model::{
     ContactPairSpec, Element, ElementId, Endpoint, FrameSection, Load, LoadFrame, LoadGroup, Model,
@@ -51,7 +58,7 @@ pub use model::{
     SupportDof,
 };
 pub use results::{
-    Condensed, ContactLoadVector, ContactSolution, DiagramPoint, Equilibrium, LineResult,
-    PlaneResult, Reaction, Results, DIAGRAM_SAMPLES,
+    ContactLoadVector, DiagramPoint, Equilibrium, LineResult, LinkValues, PlaneResult, Reaction,
+    Results, DIAGRAM_SAMPLES,
 };
 pub use stress::{principal, von_mises};

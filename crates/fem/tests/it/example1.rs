@@ -1,7 +1,7 @@
 //! Example 1 of Popov & Lovtsov (2023): two-span beam held only by three contact pairs.
 #![allow(clippy::needless_range_loop)]
 
-use unilateral_fem::{ContactPairSpec, ContactSolution, FrameSection, Load, LoadGroup, Model};
+use unilateral_fem::{ContactPairSpec, FrameSection, LinkValues, Load, LoadGroup, Model};
 
 fn example1() -> Model {
     // spans of 2 m, EI = 1, EA = 2 (L³/EI = 8, EA/L = 1), pairs at x = 0, 2, 4, unit load at 3.
@@ -72,7 +72,7 @@ fn example1_csm_and_clv() {
 fn example1_recovery_of_the_paper_solution() {
     // The paper's answer at p = 1: support 1 lifts by 0.5, the others carry 0.5 each.
     let c = example1().condense().unwrap();
-    let sol = ContactSolution {
+    let sol = LinkValues {
         p: 1.0,
         x_n: vec![0.0, 0.5, 0.5],
         x_t: vec![0.0; 3],
