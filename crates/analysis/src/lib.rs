@@ -13,8 +13,8 @@
 //! Results at other loads of the path (for instance at every event, for pictures) come from
 //! [`Analysis::results_at`].
 //!
-//! Node and element names (as a model file gives them) may be passed with [`analyze_named`]
-//! so that errors and extremes name them.
+//! Errors and extremes name nodes and elements by the model's names (as a model file gives
+//! them, [`Model::names`]).
 
 #![warn(missing_docs)]
 
@@ -24,37 +24,12 @@ use unilateral_fem::{
 };
 
 pub use unilateral_contact::{Outcome, PairState};
+/// The names of nodes and elements used in messages and in [`Extremes`] (the model's own,
+/// [`Model::names`]).
+pub use unilateral_fem::Names;
 
 /// Largest relative out-of-balance force accepted in the recovered results.
 pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-6;
-
-/// Names of nodes and elements, used in messages and in [`Extremes`]. Missing names are
-/// replaced by the 0-based index.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Names {
-    /// Name of node `NodeId(i)`.
-    pub nodes: Vec<String>,
-    /// Name of element `ElementId(i)`.
-    pub elements: Vec<String>,
-}
-
-impl Names {
-    /// The name of a node.
-    pub fn node(&self, n: NodeId) -> String {
-        self.nodes
-            .get(n.0)
-            .cloned()
-            .unwrap_or_else(|| n.0.to_string())
-    }
-
-    /// The name of an element.
-    pub fn element(&self, e: ElementId) -> String {
-        self.elements
-            .get(e.0)
-            .cloned()
-            .unwrap_or_else(|| e.0.to_string())
-    }
-}
 
 /// What can go wrong in an analysis.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -283,12 +258,13 @@ pub struct Analysis {
     pub names: Names,
 }
 
-/// Runs the analysis of a model (names default to the 0-based indices).
+/// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
+/// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
-    analyze_named(model, settings, &Names::default())
+    analyze_named(model, settings, model.names())
 }
 
-/// Runs the analysis of a model whose nodes and elements have names.
+/// Runs the analysis of a model with other names for its nodes and elements than its own.
 pub fn analyze_named(
     model: &Model,
     settings: &SolveSettings,

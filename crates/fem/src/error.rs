@@ -107,7 +107,7 @@ pub enum FemError {
         b: NodeId,
     },
     /// A non-positive (or non-finite) property such as E, A, I or thickness.
-    #[error("{element}: {property} must be positive and finite, got {value}")]
+    #[error("{element}: {}", self.detail().unwrap_or_default())]
     NonPositiveProperty {
         /// The element.
         element: ElementId,
@@ -117,7 +117,7 @@ pub enum FemError {
         value: f64,
     },
     /// Poisson's ratio outside (−1, 0.5).
-    #[error("{element}: Poisson's ratio must lie in (-1, 0.5), got {nu}")]
+    #[error("{element}: {}", self.detail().unwrap_or_default())]
     PoissonOutOfRange {
         /// The element.
         element: ElementId,
@@ -125,7 +125,7 @@ pub enum FemError {
         nu: f64,
     },
     /// A plane element with non-positive Jacobian (wrong node order, concave or degenerate).
-    #[error("{element}: non-positive Jacobian {det_j} (nodes must be counter-clockwise and the quadrilateral convex)")]
+    #[error("{element}: {}", self.detail().unwrap_or_default())]
     DistortedElement {
         /// The element.
         element: ElementId,
@@ -133,7 +133,7 @@ pub enum FemError {
         det_j: f64,
     },
     /// A spring with non-positive stiffness or a zero direction.
-    #[error("spring {spring}: {reason}")]
+    #[error("spring {spring}: {}", self.detail().unwrap_or_default())]
     BadSpring {
         /// Spring index.
         spring: usize,
@@ -141,7 +141,7 @@ pub enum FemError {
         reason: String,
     },
     /// A contact pair with a bad normal, gap or friction coefficient.
-    #[error("contact pair {pair} ({name}): {reason}")]
+    #[error("contact pair {pair} ({name}): {}", self.detail().unwrap_or_default())]
     BadContactPair {
         /// Pair index.
         pair: usize,
@@ -152,7 +152,7 @@ pub enum FemError {
     },
     /// No node of a pair can carry the pair's link DOFs (both are supported, or already carry the
     /// links of other pairs).
-    #[error("contact pair {pair} ({name}): cannot place its links: {reason}")]
+    #[error("contact pair {pair} ({name}): {}", self.detail().unwrap_or_default())]
     LinkPlacement {
         /// Pair index.
         pair: usize,
@@ -162,7 +162,7 @@ pub enum FemError {
         reason: String,
     },
     /// Supports on a node that are redundant or parallel.
-    #[error("{node}: bad supports: {reason}")]
+    #[error("{node}: {}", self.detail().unwrap_or_default())]
     BadSupport {
         /// The node.
         node: NodeId,
@@ -228,8 +228,7 @@ pub enum FemError {
     BadSolution(String),
     /// A value computed from finite input overflows double precision (for instance `E·A/L`
     /// with E and A near 1e308): the numbers are out of range for the units used.
-    #[error("{}{what} overflows double precision: the values are too large (or the lengths too \
-             small) for the units used; choose other units", element.map_or(String::new(), |e| format!("{e}: ")))]
+    #[error("{}{}", element.map_or(String::new(), |e| format!("{e}: ")), self.detail().unwrap_or_default())]
     Overflow {
         /// The element whose data overflow, if one.
         element: Option<ElementId>,
@@ -252,7 +251,70 @@ pub enum FemError {
     LinearAlgebra(String),
 }
 
+/// The item of the model a [`FemError`] is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Subject {
+    /// An element.
+    Element(ElementId),
+    /// A contact pair, by its index.
+    Pair(usize),
+    /// A spring, by its index.
+    Spring(usize),
+    /// A node.
+    Node(NodeId),
+}
+
 impl FemError {
+    /// The item of the model the error is about, when it is about one: so that a reader can
+    /// say where the file wrote it, and name it as the file does.
+    pub fn subject(&self) -> Option<Subject> {
+        match self {
+            FemError::RepeatedNode { element, .. }
+            | FemError::ZeroLength { element, .. }
+            | FemError::NonPositiveProperty { element, .. }
+            | FemError::PoissonOutOfRange { element, .. }
+            | FemError::DistortedElement { element, .. }
+            | FemError::Overflow {
+                element: Some(element),
+                ..
+            } => Some(Subject::Element(*element)),
+            FemError::BadContactPair { pair, .. } | FemError::LinkPlacement { pair, .. } => {
+                Some(Subject::Pair(*pair))
+            }
+            FemError::BadSpring { spring, .. } => Some(Subject::Spring(*spring)),
+            FemError::BadSupport { node, .. } => Some(Subject::Node(*node)),
+            _ => None,
+        }
+    }
+
+    /// What is wrong with the [`FemError::subject`], for the errors whose message is
+    /// "subject: what is wrong" (the message reads `{subject}: {detail}`); `None` for the
+    /// others.
+    pub fn detail(&self) -> Option<String> {
+        Some(match self {
+            FemError::NonPositiveProperty {
+                property, value, ..
+            } => format!("{property} must be positive and finite, got {value}"),
+            FemError::PoissonOutOfRange { nu, .. } => {
+                format!("Poisson's ratio must lie in (-1, 0.5), got {nu}")
+            }
+            FemError::DistortedElement { det_j, .. } => format!(
+                "non-positive Jacobian {det_j} (nodes must be counter-clockwise and the \
+                 quadrilateral convex)"
+            ),
+            FemError::BadSpring { reason, .. } | FemError::BadContactPair { reason, .. } => {
+                reason.clone()
+            }
+            FemError::LinkPlacement { reason, .. } => format!("cannot place its links: {reason}"),
+            FemError::BadSupport { reason, .. } => format!("bad supports: {reason}"),
+            FemError::Overflow { what, .. } => format!(
+                "{what} overflows double precision: the values are too large (or the lengths \
+                 too small) for the units used; choose other units"
+            ),
+            _ => return None,
+        })
+    }
+
     /// `true` for failures that are the program's fault rather than the model's: the sparse
     /// linear algebra failing on a valid model ([`FemError::LinearAlgebra`]) and a contact
     /// solution handed to the recovery that does not fit the model

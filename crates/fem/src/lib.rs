@@ -41,7 +41,9 @@ mod condense;
 mod dofs;
 mod elements;
 mod error;
+pub mod mesh;
 mod model;
+mod names;
 mod recover;
 mod results;
 mod schur;
@@ -51,12 +53,13 @@ mod stress;
 pub use condense::{
     check_memory, dense_condensation_bytes, machine_memory, CondensationStats, Condensed,
 };
-pub use error::{DofLabel, FemError, FreeDof};
+pub use error::{DofLabel, FemError, FreeDof, Subject};
 pub use model::{
     ContactPairSpec, Element, ElementId, Endpoint, FrameSection, Load, LoadFrame, LoadGroup, Model,
     NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring, SpringKind,
     SupportDof,
 };
+pub use names::Names;
 pub use results::{
     ContactLoadVector, DiagramPoint, Equilibrium, LineResult, LinkValues, PlaneResult, Reaction,
     Results, DIAGRAM_SAMPLES,

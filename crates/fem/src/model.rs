@@ -1,6 +1,7 @@
 //! The structural model: nodes, elements, springs, supports, loads and contact pairs.
 
 use crate::error::FemError;
+use crate::names::Names;
 use std::fmt;
 
 /// Index of a node (0-based, in the order of [`Model::add_node`]).
@@ -369,6 +370,7 @@ pub struct Model {
     pub(crate) supports: Vec<(NodeId, SupportDof)>,
     pub(crate) loads: Vec<(LoadGroup, Load)>,
     pub(crate) pairs: Vec<ContactPairSpec>,
+    pub(crate) names: Names,
 }
 
 impl Model {
@@ -485,6 +487,14 @@ impl Model {
     /// Contact pairs.
     pub fn pairs(&self) -> &[ContactPairSpec] {
         &self.pairs
+    }
+    /// The names of the nodes, elements, pairs and sets (empty unless given).
+    pub fn names(&self) -> &Names {
+        &self.names
+    }
+    /// Gives the model the names of its items (a model file's names).
+    pub fn set_names(&mut self, names: Names) {
+        self.names = names;
     }
 
     fn check_node(&self, what: impl FnOnce() -> String, n: NodeId) -> Result<(), FemError> {

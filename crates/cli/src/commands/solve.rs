@@ -89,14 +89,11 @@ fn structural(
     progress.say(&format!(
         "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
          the load path, recovering the results…",
-        problem.names.nodes.len(),
-        problem.names.elements.len(),
-        problem.names.pairs.len()
+        problem.model.names().nodes.len(),
+        problem.model.names().elements.len(),
+        problem.model.names().pairs.len()
     ));
-    let names = unilateral_analysis::Names {
-        nodes: problem.names.nodes.clone(),
-        elements: problem.names.elements.clone(),
-    };
+    let names = problem.model.names().clone();
     let a = unilateral_analysis::analyze_named(&problem.model, &problem.settings, &names)
         .map_err(|e| analysis_failure(file, &e))?;
     progress.say(&format!(
@@ -113,8 +110,8 @@ fn structural(
             .as_deref()
             .map(|t| format!(": {t}"))
             .unwrap_or_default(),
-        problem.names.nodes.len(),
-        problem.names.elements.len(),
+        problem.model.names().nodes.len(),
+        problem.model.names().elements.len(),
         a.zone.pairs()
     );
     write_outputs(
