@@ -7,6 +7,15 @@
 //! and call [`Condensed::recover`] with the [`LinkValues`] of a solution to get displacements,
 //! reactions, internal forces and stresses ([`Results`]).
 //!
+//! A model may carry the names of its items ([`Names`], [`Model::names`]); structured meshes
+//! (block grids, divided members, coincident nodes) are pure geometry in [`mesh`].
+//!
+//! Layout: `model.rs` (the builder and its checks), `elements/` (one file per element kind
+//! behind one interface; a new kind is a file there and a line in `elements::unit`), the
+//! condensation in steps (`dofs.rs` numbering, `assemble.rs`, `stability.rs` factorization
+//! and mechanism diagnosis, `schur.rs`, `condense.rs` the entry point), `recover.rs`, and
+//! `results.rs` with the public result types.
+//!
 //! Sign conventions (see `docs/fem.md`): for a pair (A, B) with unit normal `n` from A into B,
 //! the tangent is `t = (n_y, −n_x)`; the opening is `z_n = η + n·(u_B − u_A)` with `η` the
 //! pair's initial gap (positive open, 0 closed), `z_t = t·(u_B − u_A)`; `x_n` is compression

@@ -121,15 +121,12 @@ fn structural(
         |dir| unilateral_output::write_structural_csv(&a, dir),
     )?;
     if let Some(dir) = &args.vtk {
-        report_files(
-            unilateral_output::write_vtk_for(&problem.model, &a, dir),
-            dir,
-        )?;
+        report_files(unilateral_output::write_vtk(&a, dir), dir)?;
     }
     if let Some(dir) = &args.report {
         args.report_args.check(&a.solution.pairs)?;
         let options = args.report_args.options(problem.title.clone());
-        let files = unilateral_output::write_report_for(&problem.model, &a, dir, &options)
+        let files = unilateral_output::write_structural_report(&a, dir, &options)
             .map_err(|e| report_failure(&e))?;
         report_files(Ok(files), dir)?;
     }

@@ -67,7 +67,7 @@ impl Builder<'_> {
             let nm = name.name.clone();
             let points = divide_segment(pa, pb, n);
             let mut nodes = Vec::with_capacity(n + 1);
-            for k in 0..=n {
+            for (k, &xy) in points.iter().enumerate() {
                 let node_name = format!("{nm}.{k}");
                 self.check_new_name(&node_name, name.pos, &name.key)?;
                 let existing = match (k, a, b) {
@@ -80,7 +80,7 @@ impl Builder<'_> {
                         self.node_names.insert(node_name, (p, name.pos));
                         p
                     }
-                    None => self.new_proto(points[k], node_name, name.pos),
+                    None => self.new_proto(xy, node_name, name.pos),
                 };
                 nodes.push(p);
             }
