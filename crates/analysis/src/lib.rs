@@ -20,7 +20,7 @@
 
 use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
 use unilateral_fem::{
-    Condensed, DofLabel, ElementId, FemError, LinkValues, Model, NodeId, Results,
+    Condensed, DofLabel, ElementId, FemError, LinkValues, Model, NodeId, Results, Subject,
 };
 
 pub use unilateral_contact::{Outcome, PairState};
@@ -378,31 +378,20 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
             message: e.to_string(),
         },
         _ => {
-            let message = match &e {
-                FemError::ZeroLength { element, a, b } => format!(
+            let message = match (&e, e.subject(), e.detail()) {
+                (FemError::ZeroLength { element, a, b }, ..) => format!(
                     "element `{}` has zero length (nodes `{}` and `{}` coincide)",
                     names.element(*element),
                     names.node(*a),
                     names.node(*b)
                 ),
-                FemError::NonPositiveProperty {
-                    element,
-                    property,
-                    value,
-                } => format!(
-                    "element `{}`: {property} must be positive and finite, got {value}",
-                    names.element(*element)
-                ),
-                FemError::Overflow {
-                    element: Some(el),
-                    what,
-                } => format!(
-                    "element `{}`: {what} overflows double precision: the values are too large \
-                     (or the lengths too small) for the units used; choose other units",
-                    names.element(*el)
-                ),
-                FemError::BadSupport { node, reason } => {
-                    format!("node `{}`: bad supports: {reason}", names.node(*node))
+                (
+                    FemError::NonPositiveProperty { .. } | FemError::Overflow { .. },
+                    Some(Subject::Element(element)),
+                    Some(detail),
+                ) => format!("element `{}`: {detail}", names.element(element)),
+                (FemError::BadSupport { .. }, Some(Subject::Node(node)), Some(detail)) => {
+                    format!("node `{}`: {detail}", names.node(node))
                 }
                 _ => e.to_string(),
             };

@@ -328,3 +328,78 @@ impl FemError {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{FemError, Subject};
+    use crate::model::{ElementId, NodeId};
+
+    /// Hand-written messages: each error about an item reads `{subject}: {detail}`, the subject
+    /// typed, so that a reader can name the item its own way and keep the detail.
+    #[test]
+    fn subject_and_detail_make_the_message() {
+        let cases = [
+            (
+                FemError::NonPositiveProperty {
+                    element: ElementId(4),
+                    property: "E",
+                    value: -1.0,
+                },
+                Some(Subject::Element(ElementId(4))),
+                "element 4: E must be positive and finite, got -1",
+            ),
+            (
+                FemError::BadSupport {
+                    node: NodeId(2),
+                    reason: "two parallel translational restraints".into(),
+                },
+                Some(Subject::Node(NodeId(2))),
+                "node 2: bad supports: two parallel translational restraints",
+            ),
+            (
+                FemError::LinkPlacement {
+                    pair: 1,
+                    name: "tip".into(),
+                    reason: "the contact pairs form a closed loop of links".into(),
+                },
+                Some(Subject::Pair(1)),
+                "contact pair 1 (tip): cannot place its links: the contact pairs form a closed \
+                 loop of links",
+            ),
+            (
+                FemError::Overflow {
+                    element: Some(ElementId(0)),
+                    what: "its stiffness matrix".into(),
+                },
+                Some(Subject::Element(ElementId(0))),
+                "element 0: its stiffness matrix overflows double precision: the values are too \
+                 large (or the lengths too small) for the units used; choose other units",
+            ),
+        ];
+        for (e, subject, text) in cases {
+            assert_eq!(e.to_string(), text);
+            assert_eq!(e.subject(), subject);
+            let detail = e.detail().expect("a detail");
+            assert!(text.ends_with(&format!(": {detail}")), "{text} / {detail}");
+        }
+        // Without an element, the overflow has no subject and its message is the detail.
+        let e = FemError::Overflow {
+            element: None,
+            what: "the sum of the loads at a node".into(),
+        };
+        assert_eq!(e.subject(), None);
+        assert_eq!(Some(e.to_string()), e.detail());
+        // A zero length reads on from its subject without a colon: no detail.
+        let e = FemError::ZeroLength {
+            element: ElementId(1),
+            a: NodeId(0),
+            b: NodeId(1),
+        };
+        assert_eq!(e.subject(), Some(Subject::Element(ElementId(1))));
+        assert_eq!(e.detail(), None);
+        assert_eq!(
+            e.to_string(),
+            "element 1 has zero length (nodes node 0 and node 1 coincide)"
+        );
+    }
+}
