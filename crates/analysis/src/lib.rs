@@ -13,49 +13,23 @@
 //! Results at other loads of the path (for instance at every event, for pictures) come from
 //! [`Analysis::results_at`].
 //!
-//! Node and element names (as a model file gives them) may be passed with [`analyze_named`]
-//! so that errors and extremes name them.
+//! Errors and extremes name nodes and elements by the model's names (as a model file gives
+//! them, [`Model::names`]).
 
 #![warn(missing_docs)]
 
 use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
 use unilateral_fem::{
-    Condensed, ContactSolution as FemSolution, DofLabel, ElementId, FemError, Model, NodeId,
-    Results,
+    Condensed, DofLabel, ElementId, FemError, LinkValues, Model, NodeId, Results, Subject,
 };
 
 pub use unilateral_contact::{Outcome, PairState};
+/// The names of nodes and elements used in messages and in [`Extremes`] (the model's own,
+/// [`Model::names`]).
+pub use unilateral_fem::Names;
 
 /// Largest relative out-of-balance force accepted in the recovered results.
 pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-6;
-
-/// Names of nodes and elements, used in messages and in [`Extremes`]. Missing names are
-/// replaced by the 0-based index.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Names {
-    /// Name of node `NodeId(i)`.
-    pub nodes: Vec<String>,
-    /// Name of element `ElementId(i)`.
-    pub elements: Vec<String>,
-}
-
-impl Names {
-    /// The name of a node.
-    pub fn node(&self, n: NodeId) -> String {
-        self.nodes
-            .get(n.0)
-            .cloned()
-            .unwrap_or_else(|| n.0.to_string())
-    }
-
-    /// The name of an element.
-    pub fn element(&self, e: ElementId) -> String {
-        self.elements
-            .get(e.0)
-            .cloned()
-            .unwrap_or_else(|| e.0.to_string())
-    }
-}
 
 /// What can go wrong in an analysis.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -284,12 +258,13 @@ pub struct Analysis {
     pub names: Names,
 }
 
-/// Runs the analysis of a model (names default to the 0-based indices).
+/// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
+/// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
-    analyze_named(model, settings, &Names::default())
+    analyze_named(model, settings, model.names())
 }
 
-/// Runs the analysis of a model whose nodes and elements have names.
+/// Runs the analysis of a model with other names for its nodes and elements than its own.
 pub fn analyze_named(
     model: &Model,
     settings: &SolveSettings,
@@ -403,31 +378,20 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
             message: e.to_string(),
         },
         _ => {
-            let message = match &e {
-                FemError::ZeroLength { element, a, b } => format!(
+            let message = match (&e, e.subject(), e.detail()) {
+                (FemError::ZeroLength { element, a, b }, ..) => format!(
                     "element `{}` has zero length (nodes `{}` and `{}` coincide)",
                     names.element(*element),
                     names.node(*a),
                     names.node(*b)
                 ),
-                FemError::NonPositiveProperty {
-                    element,
-                    property,
-                    value,
-                } => format!(
-                    "element `{}`: {property} must be positive and finite, got {value}",
-                    names.element(*element)
-                ),
-                FemError::Overflow {
-                    element: Some(el),
-                    what,
-                } => format!(
-                    "element `{}`: {what} overflows double precision: the values are too large \
-                     (or the lengths too small) for the units used; choose other units",
-                    names.element(*el)
-                ),
-                FemError::BadSupport { node, reason } => {
-                    format!("node `{}`: bad supports: {reason}", names.node(*node))
+                (
+                    FemError::NonPositiveProperty { .. } | FemError::Overflow { .. },
+                    Some(Subject::Element(element)),
+                    Some(detail),
+                ) => format!("element `{}`: {detail}", names.element(element)),
+                (FemError::BadSupport { .. }, Some(Subject::Node(node)), Some(detail)) => {
+                    format!("node `{}`: {detail}", names.node(node))
                 }
                 _ => e.to_string(),
             };
@@ -443,7 +407,7 @@ impl Analysis {
     }
 
     fn recover(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
-        let sol = FemSolution {
+        let sol = LinkValues {
             p,
             x_n: pairs.iter().map(|r| r.x_n).collect(),
             x_t: pairs.iter().map(|r| r.x_t).collect(),

@@ -107,7 +107,7 @@ pub enum FemError {
         b: NodeId,
     },
     /// A non-positive (or non-finite) property such as E, A, I or thickness.
-    #[error("{element}: {property} must be positive and finite, got {value}")]
+    #[error("{element}: {}", self.detail().unwrap_or_default())]
     NonPositiveProperty {
         /// The element.
         element: ElementId,
@@ -117,7 +117,7 @@ pub enum FemError {
         value: f64,
     },
     /// Poisson's ratio outside (−1, 0.5).
-    #[error("{element}: Poisson's ratio must lie in (-1, 0.5), got {nu}")]
+    #[error("{element}: {}", self.detail().unwrap_or_default())]
     PoissonOutOfRange {
         /// The element.
         element: ElementId,
@@ -125,7 +125,7 @@ pub enum FemError {
         nu: f64,
     },
     /// A plane element with non-positive Jacobian (wrong node order, concave or degenerate).
-    #[error("{element}: non-positive Jacobian {det_j} (nodes must be counter-clockwise and the quadrilateral convex)")]
+    #[error("{element}: {}", self.detail().unwrap_or_default())]
     DistortedElement {
         /// The element.
         element: ElementId,
@@ -133,7 +133,7 @@ pub enum FemError {
         det_j: f64,
     },
     /// A spring with non-positive stiffness or a zero direction.
-    #[error("spring {spring}: {reason}")]
+    #[error("spring {spring}: {}", self.detail().unwrap_or_default())]
     BadSpring {
         /// Spring index.
         spring: usize,
@@ -141,7 +141,7 @@ pub enum FemError {
         reason: String,
     },
     /// A contact pair with a bad normal, gap or friction coefficient.
-    #[error("contact pair {pair} ({name}): {reason}")]
+    #[error("contact pair {pair} ({name}): {}", self.detail().unwrap_or_default())]
     BadContactPair {
         /// Pair index.
         pair: usize,
@@ -152,7 +152,7 @@ pub enum FemError {
     },
     /// No node of a pair can carry the pair's link DOFs (both are supported, or already carry the
     /// links of other pairs).
-    #[error("contact pair {pair} ({name}): cannot place its links: {reason}")]
+    #[error("contact pair {pair} ({name}): {}", self.detail().unwrap_or_default())]
     LinkPlacement {
         /// Pair index.
         pair: usize,
@@ -162,7 +162,7 @@ pub enum FemError {
         reason: String,
     },
     /// Supports on a node that are redundant or parallel.
-    #[error("{node}: bad supports: {reason}")]
+    #[error("{node}: {}", self.detail().unwrap_or_default())]
     BadSupport {
         /// The node.
         node: NodeId,
@@ -228,8 +228,7 @@ pub enum FemError {
     BadSolution(String),
     /// A value computed from finite input overflows double precision (for instance `E·A/L`
     /// with E and A near 1e308): the numbers are out of range for the units used.
-    #[error("{}{what} overflows double precision: the values are too large (or the lengths too \
-             small) for the units used; choose other units", element.map_or(String::new(), |e| format!("{e}: ")))]
+    #[error("{}{}", element.map_or(String::new(), |e| format!("{e}: ")), self.detail().unwrap_or_default())]
     Overflow {
         /// The element whose data overflow, if one.
         element: Option<ElementId>,
@@ -252,7 +251,70 @@ pub enum FemError {
     LinearAlgebra(String),
 }
 
+/// The item of the model a [`FemError`] is about.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Subject {
+    /// An element.
+    Element(ElementId),
+    /// A contact pair, by its index.
+    Pair(usize),
+    /// A spring, by its index.
+    Spring(usize),
+    /// A node.
+    Node(NodeId),
+}
+
 impl FemError {
+    /// The item of the model the error is about, when it is about one: so that a reader can
+    /// say where the file wrote it, and name it as the file does.
+    pub fn subject(&self) -> Option<Subject> {
+        match self {
+            FemError::RepeatedNode { element, .. }
+            | FemError::ZeroLength { element, .. }
+            | FemError::NonPositiveProperty { element, .. }
+            | FemError::PoissonOutOfRange { element, .. }
+            | FemError::DistortedElement { element, .. }
+            | FemError::Overflow {
+                element: Some(element),
+                ..
+            } => Some(Subject::Element(*element)),
+            FemError::BadContactPair { pair, .. } | FemError::LinkPlacement { pair, .. } => {
+                Some(Subject::Pair(*pair))
+            }
+            FemError::BadSpring { spring, .. } => Some(Subject::Spring(*spring)),
+            FemError::BadSupport { node, .. } => Some(Subject::Node(*node)),
+            _ => None,
+        }
+    }
+
+    /// What is wrong with the [`FemError::subject`], for the errors whose message is
+    /// "subject: what is wrong" (the message reads `{subject}: {detail}`); `None` for the
+    /// others.
+    pub fn detail(&self) -> Option<String> {
+        Some(match self {
+            FemError::NonPositiveProperty {
+                property, value, ..
+            } => format!("{property} must be positive and finite, got {value}"),
+            FemError::PoissonOutOfRange { nu, .. } => {
+                format!("Poisson's ratio must lie in (-1, 0.5), got {nu}")
+            }
+            FemError::DistortedElement { det_j, .. } => format!(
+                "non-positive Jacobian {det_j} (nodes must be counter-clockwise and the \
+                 quadrilateral convex)"
+            ),
+            FemError::BadSpring { reason, .. } | FemError::BadContactPair { reason, .. } => {
+                reason.clone()
+            }
+            FemError::LinkPlacement { reason, .. } => format!("cannot place its links: {reason}"),
+            FemError::BadSupport { reason, .. } => format!("bad supports: {reason}"),
+            FemError::Overflow { what, .. } => format!(
+                "{what} overflows double precision: the values are too large (or the lengths \
+                 too small) for the units used; choose other units"
+            ),
+            _ => return None,
+        })
+    }
+
     /// `true` for failures that are the program's fault rather than the model's: the sparse
     /// linear algebra failing on a valid model ([`FemError::LinearAlgebra`]) and a contact
     /// solution handed to the recovery that does not fit the model
@@ -264,5 +326,80 @@ impl FemError {
             self,
             FemError::LinearAlgebra(_) | FemError::BadSolution(_) | FemError::IllConditioned { .. }
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{FemError, Subject};
+    use crate::model::{ElementId, NodeId};
+
+    /// Hand-written messages: each error about an item reads `{subject}: {detail}`, the subject
+    /// typed, so that a reader can name the item its own way and keep the detail.
+    #[test]
+    fn subject_and_detail_make_the_message() {
+        let cases = [
+            (
+                FemError::NonPositiveProperty {
+                    element: ElementId(4),
+                    property: "E",
+                    value: -1.0,
+                },
+                Some(Subject::Element(ElementId(4))),
+                "element 4: E must be positive and finite, got -1",
+            ),
+            (
+                FemError::BadSupport {
+                    node: NodeId(2),
+                    reason: "two parallel translational restraints".into(),
+                },
+                Some(Subject::Node(NodeId(2))),
+                "node 2: bad supports: two parallel translational restraints",
+            ),
+            (
+                FemError::LinkPlacement {
+                    pair: 1,
+                    name: "tip".into(),
+                    reason: "the contact pairs form a closed loop of links".into(),
+                },
+                Some(Subject::Pair(1)),
+                "contact pair 1 (tip): cannot place its links: the contact pairs form a closed \
+                 loop of links",
+            ),
+            (
+                FemError::Overflow {
+                    element: Some(ElementId(0)),
+                    what: "its stiffness matrix".into(),
+                },
+                Some(Subject::Element(ElementId(0))),
+                "element 0: its stiffness matrix overflows double precision: the values are too \
+                 large (or the lengths too small) for the units used; choose other units",
+            ),
+        ];
+        for (e, subject, text) in cases {
+            assert_eq!(e.to_string(), text);
+            assert_eq!(e.subject(), subject);
+            let detail = e.detail().expect("a detail");
+            assert!(text.ends_with(&format!(": {detail}")), "{text} / {detail}");
+        }
+        // Without an element, the overflow has no subject and its message is the detail.
+        let e = FemError::Overflow {
+            element: None,
+            what: "the sum of the loads at a node".into(),
+        };
+        assert_eq!(e.subject(), None);
+        assert_eq!(Some(e.to_string()), e.detail());
+        // A zero length reads on from its subject without a colon: no detail.
+        let e = FemError::ZeroLength {
+            element: ElementId(1),
+            a: NodeId(0),
+            b: NodeId(1),
+        };
+        assert_eq!(e.subject(), Some(Subject::Element(ElementId(1))));
+        assert_eq!(e.detail(), None);
+        assert_eq!(
+            e.to_string(),
+            "element 1 has zero length (nodes node 0 and node 1 coincide)"
+        );
     }
 }

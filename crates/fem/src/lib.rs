@@ -4,8 +4,17 @@
 //! constant and a variable [`LoadGroup`], contact pairs), call [`Model::condense`] to obtain
 //! the contact stiffness matrix `R = [[Rnn, Rnt], [Rtn, Rtt]]` and the contact load vectors
 //! `R_c`, `R_v` of `formulation.md` §2 ([`Condensed`]), solve the contact problem elsewhere,
-//! and call [`Condensed::recover`] with the [`ContactSolution`] to get displacements,
+//! and call [`Condensed::recover`] with the [`LinkValues`] of a solution to get displacements,
 //! reactions, internal forces and stresses ([`Results`]).
+//!
+//! A model may carry the names of its items ([`Names`], [`Model::names`]); structured meshes
+//! (block grids, divided members, coincident nodes) are pure geometry in [`mesh`].
+//!
+//! Layout: `model.rs` (the builder and its checks), `elements/` (one file per element kind
+//! behind one interface; a new kind is a file there and a line in `elements::unit`), the
+//! condensation in steps (`dofs.rs` numbering, `assemble.rs`, `stability.rs` factorization
+//! and mechanism diagnosis, `schur.rs`, `condense.rs` the entry point), `recover.rs`, and
+//! `results.rs` with the public result types.
 //!
 //! Sign conventions (see `docs/fem.md`): for a pair (A, B) with unit normal `n` from A into B,
 //! the tangent is `t = (n_y, −n_x)`; the opening is `z_n = η + n·(u_B − u_A)` with `η` the
@@ -36,22 +45,32 @@
     clippy::neg_cmp_op_on_partial_ord
 )]
 
+mod assemble;
 mod condense;
+mod dofs;
 mod elements;
 mod error;
+pub mod mesh;
 mod model;
+mod names;
+mod recover;
 mod results;
+mod schur;
+mod stability;
 mod stress;
 
-pub use condense::{check_memory, dense_condensation_bytes, machine_memory, CondensationStats};
-pub use error::{DofLabel, FemError, FreeDof};
+pub use condense::{
+    check_memory, dense_condensation_bytes, machine_memory, CondensationStats, Condensed,
+};
+pub use error::{DofLabel, FemError, FreeDof, Subject};
 pub use model::{
     ContactPairSpec, Element, ElementId, Endpoint, FrameSection, Load, LoadFrame, LoadGroup, Model,
     NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring, SpringKind,
     SupportDof,
 };
+pub use names::Names;
 pub use results::{
-    Condensed, ContactLoadVector, ContactSolution, DiagramPoint, Equilibrium, LineResult,
-    PlaneResult, Reaction, Results, DIAGRAM_SAMPLES,
+    ContactLoadVector, DiagramPoint, Equilibrium, LineResult, LinkValues, PlaneResult, Reaction,
+    Results, DIAGRAM_SAMPLES,
 };
 pub use stress::{principal, von_mises};

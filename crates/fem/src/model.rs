@@ -1,6 +1,7 @@
 //! The structural model: nodes, elements, springs, supports, loads and contact pairs.
 
 use crate::error::FemError;
+use crate::names::Names;
 use std::fmt;
 
 /// Index of a node (0-based, in the order of [`Model::add_node`]).
@@ -369,6 +370,7 @@ pub struct Model {
     pub(crate) supports: Vec<(NodeId, SupportDof)>,
     pub(crate) loads: Vec<(LoadGroup, Load)>,
     pub(crate) pairs: Vec<ContactPairSpec>,
+    pub(crate) names: Names,
 }
 
 impl Model {
@@ -486,6 +488,14 @@ impl Model {
     pub fn pairs(&self) -> &[ContactPairSpec] {
         &self.pairs
     }
+    /// The names of the nodes, elements, pairs and sets (empty unless given).
+    pub fn names(&self) -> &Names {
+        &self.names
+    }
+    /// Gives the model the names of its items (a model file's names).
+    pub fn set_names(&mut self, names: Names) {
+        self.names = names;
+    }
 
     fn check_node(&self, what: impl FnOnce() -> String, n: NodeId) -> Result<(), FemError> {
         if n.0 >= self.nodes.len() {
@@ -510,10 +520,8 @@ impl Model {
         }
         for (ei, e) in self.elements.iter().enumerate() {
             let id = ElementId(ei);
-            let nodes: &[NodeId] = match e {
-                Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => nodes,
-                Element::Plane { nodes, .. } => nodes,
-            };
+            let unit = crate::elements::unit(e);
+            let nodes = unit.nodes();
             for &n in nodes {
                 self.check_node(|| format!("element {ei}"), n)?;
             }
@@ -525,57 +533,7 @@ impl Model {
                     });
                 }
             }
-            let positive = |property: &'static str, value: f64| {
-                if value > 0.0 && value.is_finite() {
-                    Ok(())
-                } else {
-                    Err(FemError::NonPositiveProperty {
-                        element: id,
-                        property,
-                        value,
-                    })
-                }
-            };
-            match e {
-                Element::Frame { nodes, section, .. } | Element::Bar { nodes, section } => {
-                    let [a, b] = [self.nodes[nodes[0].0], self.nodes[nodes[1].0]];
-                    let len = (b[0] - a[0]).hypot(b[1] - a[1]);
-                    let scale = a[0].abs().max(a[1].abs()).max(b[0].abs()).max(b[1].abs());
-                    if len <= 1e-12 * scale.max(1e-300) || len == 0.0 {
-                        return Err(FemError::ZeroLength {
-                            element: id,
-                            a: nodes[0],
-                            b: nodes[1],
-                        });
-                    }
-                    positive("E", section.e)?;
-                    positive("A", section.area)?;
-                    if matches!(e, Element::Frame { .. }) {
-                        positive("I", section.inertia)?;
-                    }
-                    if !section.alpha.is_finite() || !section.depth.is_finite() {
-                        return Err(FemError::NotFinite {
-                            what: format!("section of element {ei}"),
-                        });
-                    }
-                }
-                Element::Plane { material, .. } => {
-                    positive("E", material.e)?;
-                    positive("thickness", material.thickness)?;
-                    if !(material.nu > -1.0 && material.nu < 0.5) {
-                        return Err(FemError::PoissonOutOfRange {
-                            element: id,
-                            nu: material.nu,
-                        });
-                    }
-                    if !material.alpha.is_finite() {
-                        return Err(FemError::NotFinite {
-                            what: format!("alpha of element {ei}"),
-                        });
-                    }
-                    crate::elements::plane_min_det_j(self, e, id)?;
-                }
-            }
+            unit.check(self, id)?;
         }
         for (si, s) in self.springs.iter().enumerate() {
             self.check_node(|| format!("spring {si}"), s.b)?;
@@ -649,20 +607,23 @@ impl Model {
             }
         }
         for (li, (_, l)) in self.loads.iter().enumerate() {
-            let elem = |e: ElementId, frames_only: bool| -> Result<&Element, FemError> {
-                match self.elements.get(e.0) {
-                    None => Err(FemError::BadLoadTarget {
-                        load: li,
-                        element: e,
-                        reason: "no such element".into(),
-                    }),
-                    Some(Element::Plane { .. }) if frames_only => Err(FemError::BadLoadTarget {
-                        load: li,
-                        element: e,
-                        reason: "this load applies to frames and bars only".into(),
-                    }),
-                    Some(el) => Ok(el),
-                }
+            let elem = |e: ElementId| match self.elements.get(e.0) {
+                None => Err(FemError::BadLoadTarget {
+                    load: li,
+                    element: e,
+                    reason: "no such element".into(),
+                }),
+                Some(el) => Ok(crate::elements::unit(el)),
+            };
+            let refused = |unit: &dyn crate::elements::ElementUnit, element: ElementId| match unit
+                .refuses(l)
+            {
+                Some(reason) => Err(FemError::BadLoadTarget {
+                    load: li,
+                    element,
+                    reason,
+                }),
+                None => Ok(()),
             };
             let finite = |v: &[f64]| {
                 if v.iter().all(|x| x.is_finite()) {
@@ -684,12 +645,13 @@ impl Model {
                     end,
                     ..
                 } => {
-                    elem(element, true)?;
+                    refused(elem(element)?.as_ref(), element)?;
                     finite(&[start[0], start[1], end[0], end[1]])?;
                 }
                 Load::BodyForce { element, force } => {
-                    elem(element, false)?;
+                    let unit = elem(element)?;
                     finite(&force)?;
+                    refused(unit.as_ref(), element)?;
                 }
                 Load::Settlement { node, dof, value } => {
                     self.check_node(|| format!("load {li}"), node)?;
@@ -711,28 +673,9 @@ impl Model {
                     uniform,
                     gradient,
                 } => {
-                    let el = elem(element, false)?;
+                    let unit = elem(element)?;
                     finite(&[uniform, gradient])?;
-                    if gradient != 0.0 {
-                        match el {
-                            Element::Frame { section, .. } if section.depth > 0.0 => {}
-                            Element::Frame { .. } => {
-                                return Err(FemError::BadLoadTarget {
-                                    load: li,
-                                    element,
-                                    reason: "a temperature gradient needs the section depth > 0"
-                                        .into(),
-                                })
-                            }
-                            _ => {
-                                return Err(FemError::BadLoadTarget {
-                                    load: li,
-                                    element,
-                                    reason: "a temperature gradient applies to frames only".into(),
-                                })
-                            }
-                        }
-                    }
+                    refused(unit.as_ref(), element)?;
                 }
             }
         }

@@ -2,7 +2,7 @@
 //!
 //! * the summary, the JSON document and the CSV tables of a contact-zone solve, a structural
 //!   analysis, the Lemke tableaux and a plain LCP ([`contact_summary`], [`structural_json`],
-//!   [`write_structural_csv`], …) and ParaView files over the load path ([`write_vtk_for`]);
+//!   [`write_structural_csv`], …) and ParaView files over the load path ([`write_vtk`]);
 //!   none of them ever writes a number that is not finite: they return a [`NonFiniteOutput`]
 //!   instead (an internal failure: the readers accept only finite data);
 //! * load-path charts ([`load_path_svgs`]): the forces `x_n`, `x_t` and the mutual
@@ -18,9 +18,9 @@
 //! Everything is hand-written SVG. Text is drawn with a small built-in stroke font
 //! ([`font`]) as SVG paths, so the pictures look the same on a machine without fonts.
 //!
-//! The structure needs the finite-element model (node coordinates and elements), which an
-//! [`Analysis`] does not keep: [`write_report_for`] takes it; [`write_report`] writes the
-//! charts and the HTML without the structure picture.
+//! The structure is drawn from the finite-element model the analysis was condensed from
+//! ([`write_structural_report`]); [`write_report`] writes the charts and the HTML without the
+//! structure picture.
 
 #![warn(missing_docs)]
 
@@ -41,7 +41,7 @@ mod vtk;
 
 pub use documents::*;
 pub use finite::NonFiniteOutput;
-pub use vtk::{write_vtk_for, PVD_FILE};
+pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
 
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};
 pub use structure::state_style;
@@ -168,8 +168,7 @@ pub fn structure_svg(model: &Model, analysis: &Analysis, options: &ReportOptions
 
 /// Writes the pictures and `report.html` of an analysis into `dir`; returns the files written.
 ///
-/// Without the model there is no structure to draw: use [`write_report_for`] for the
-/// structure picture.
+/// Without the structure picture: use [`write_structural_report`] for it.
 pub fn write_report(
     analysis: &Analysis,
     dir: &Path,
@@ -178,8 +177,20 @@ pub fn write_report(
     write_all(None, Some(analysis), &analysis.solution, dir, options)
 }
 
+/// Writes the load-path charts, the structure picture and `report.html` of an analysis into
+/// `dir`; returns the files written. The structure is the model the analysis was condensed
+/// from ([`Condensed::model`](unilateral_fem::Condensed::model)).
+pub fn write_structural_report(
+    analysis: &Analysis,
+    dir: &Path,
+    options: &ReportOptions,
+) -> Result<Vec<PathBuf>, ReportError> {
+    write_report_for(analysis.condensed.model(), analysis, dir, options)
+}
+
 /// Writes the load-path charts, the structure picture and `report.html` of an analysis of
-/// `model` into `dir`; returns the files written.
+/// `model` into `dir`; returns the files written. The analysis knows its model: prefer
+/// [`write_structural_report`].
 pub fn write_report_for(
     model: &Model,
     analysis: &Analysis,

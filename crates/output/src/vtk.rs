@@ -41,7 +41,7 @@ use unilateral_analysis::Analysis;
 use unilateral_contact::{PairResult, PairState};
 use unilateral_fem::{von_mises, Element, Endpoint, Model, Results};
 
-/// Name of the collection file written by [`write_vtk_for`].
+/// Name of the collection file written by [`write_vtk`].
 pub const PVD_FILE: &str = "unilateral.pvd";
 
 /// VTK cell type of a vertex.
@@ -56,10 +56,10 @@ const VTK_QUAD: u8 = 9;
 /// returns the files written, the collection last. See the module documentation for the
 /// contents.
 ///
-/// `model` must be the model `analysis` was made from; a model whose node, element or pair
-/// counts do not match gives an [`io::ErrorKind::InvalidInput`] error.
-pub fn write_vtk_for(model: &Model, analysis: &Analysis, dir: &Path) -> io::Result<Vec<PathBuf>> {
-    check_match(model, analysis)?;
+/// The mesh is the model the analysis was condensed from
+/// ([`Condensed::model`](unilateral_fem::Condensed::model)).
+pub fn write_vtk(analysis: &Analysis, dir: &Path) -> io::Result<Vec<PathBuf>> {
+    let model = analysis.condensed.model();
     crate::finite::analysis(analysis)?;
     let snapshots = snapshots(analysis);
     let mesh = MeshGeometry::new(model);
@@ -104,6 +104,14 @@ pub fn write_vtk_for(model: &Model, analysis: &Analysis, dir: &Path) -> io::Resu
         .iter()
         .map(|(name, text)| write_file(dir, name, text))
         .collect()
+}
+
+/// [`write_vtk`] for a caller that holds the model apart: `model` must be the model `analysis`
+/// was made from; a model whose node, element or pair counts do not match gives an
+/// [`io::ErrorKind::InvalidInput`] error. The analysis knows its model: prefer [`write_vtk`].
+pub fn write_vtk_for(model: &Model, analysis: &Analysis, dir: &Path) -> io::Result<Vec<PathBuf>> {
+    check_match(model, analysis)?;
+    write_vtk(analysis, dir)
 }
 
 /// Every number of a VTK file is finite: the values of each `DataArray` (written by this

@@ -4,7 +4,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 
-use unilateral_analysis::{analyze_named, AnalysisError, Names};
+use unilateral_analysis::{analyze_named, AnalysisError};
 use unilateral_io::read_model;
 
 #[test]
@@ -22,10 +22,7 @@ fn analysis_time_errors_name_the_nodes() {
         }
         count += 1;
         let p = read_model(&dir.join(cols[0])).unwrap();
-        let names = Names {
-            nodes: p.names.nodes.clone(),
-            elements: p.names.elements.clone(),
-        };
+        let names = p.model.names().clone();
         let r = catch_unwind(AssertUnwindSafe(|| {
             analyze_named(&p.model, &p.settings, &names)
         }));

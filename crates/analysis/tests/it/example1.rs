@@ -23,16 +23,16 @@ fn read(name: &str) -> StructuralProblem {
 }
 
 fn names(p: &StructuralProblem) -> Names {
-    Names {
-        nodes: p.names.nodes.clone(),
-        elements: p.names.elements.clone(),
-    }
+    p.model.names().clone()
 }
 
 #[test]
 fn example1_structural_reproduces_the_paper() {
     let p = read("example1-beam.toml");
-    assert_eq!(p.names.pairs, ["support.1", "support.2", "support.3"]);
+    assert_eq!(
+        p.model.names().pairs,
+        ["support.1", "support.2", "support.3"]
+    );
     let a = analyze_named(&p.model, &p.settings, &names(&p)).unwrap();
 
     // The condensed matrices are the paper's.
@@ -71,7 +71,7 @@ fn example1_structural_reproduces_the_paper() {
         assert!(pr.x_t.abs() < 1e-12);
     }
     let r = a.results.as_ref().unwrap();
-    let node_a = p.names.node_id("A").unwrap();
+    let node_a = p.model.names().node_id("A").unwrap();
     assert!((r.displacements[node_a.0][1] - 0.5).abs() < 1e-9);
     assert!(r.equilibrium.relative() < 1e-10);
 

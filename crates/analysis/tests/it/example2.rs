@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use unilateral_analysis::{analyze_named, Names, Outcome, PairState};
+use unilateral_analysis::{analyze_named, Outcome, PairState};
 use unilateral_contact::EventKind;
 use unilateral_io::{read_model, StructuralProblem};
 
@@ -52,14 +52,11 @@ fn example2_release_table() {
     println!("   n        u_tip (m)      rel. error (%)   discrete exact rel. diff");
     for n in [5usize, 10, 20, 40, 80, 160] {
         let p = model(n, dir.path());
-        let names = Names {
-            nodes: p.names.nodes.clone(),
-            elements: p.names.elements.clone(),
-        };
+        let names = p.model.names().clone();
         let a = analyze_named(&p.model, &p.settings, &names).unwrap();
         assert_eq!(a.solution.outcome, Outcome::TargetReached);
         let r = a.results.as_ref().unwrap();
-        let tip = p.names.node_id("bar.end").unwrap();
+        let tip = p.model.names().node_id("bar.end").unwrap();
         let u = r.displacements[tip.0][0];
         let rel = (u - exact).abs() / exact;
         let (ud, slipping) = discrete_u_tip(n);

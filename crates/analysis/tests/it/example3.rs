@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use unilateral_analysis::{analyze_named, Analysis, Names, Outcome, PairState};
+use unilateral_analysis::{analyze_named, Analysis, Outcome, PairState};
 use unilateral_io::{read_model, StructuralProblem};
 
 fn problem() -> StructuralProblem {
@@ -14,10 +14,7 @@ fn problem() -> StructuralProblem {
 }
 
 fn run(p: &StructuralProblem) -> Analysis {
-    let names = Names {
-        nodes: p.names.nodes.clone(),
-        elements: p.names.elements.clone(),
-    };
+    let names = p.model.names().clone();
     analyze_named(&p.model, &p.settings, &names).unwrap()
 }
 
@@ -67,7 +64,7 @@ fn example3_pattern() {
     // The results balance, and the wall's top moves towards the right soil.
     let r = a.results.as_ref().unwrap();
     assert!(r.equilibrium.relative() < 1e-8);
-    let top = p.names.node_id("wall.end").unwrap();
+    let top = p.model.names().node_id("wall.end").unwrap();
     assert!(r.displacements[top.0][0] > 0.0);
 
     // Results at every event load up to the ray (for pictures) are available and balance.

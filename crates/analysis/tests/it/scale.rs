@@ -32,7 +32,7 @@
 
 use std::path::{Path, PathBuf};
 
-use unilateral_analysis::{analyze_named, Analysis, Names, Outcome};
+use unilateral_analysis::{analyze_named, Analysis, Outcome};
 use unilateral_fem::SupportDof;
 use unilateral_io::{read_problem, Problem, StructuralProblem};
 
@@ -81,10 +81,7 @@ fn analyse(name: &str, doc: &toml::Table) -> Result<(StructuralProblem, Analysis
         Ok(Problem::ContactZone(_)) => return Err("not a structural model".into()),
         Err(e) => return Err(format!("read: {e}")),
     };
-    let names = Names {
-        nodes: p.names.nodes.clone(),
-        elements: p.names.elements.clone(),
-    };
+    let names = p.model.names().clone();
     let a = analyze_named(&p.model, &p.settings, &names).map_err(|e| e.to_string())?;
     Ok((p, a))
 }
@@ -325,7 +322,7 @@ fn spring_is_rotational(doc: &toml::Table, p: &StructuralProblem) -> Vec<bool> {
         let rot = s.get("rotational").and_then(|x| x.as_bool()) == Some(true);
         let n: usize = refs(s.get("nodes"))
             .iter()
-            .map(|r| p.names.set(r).map_or(1, |s| s.len()))
+            .map(|r| p.model.names().set(r).map_or(1, |s| s.len()))
             .sum();
         v.extend(std::iter::repeat_n(rot, n));
     }
@@ -422,7 +419,7 @@ fn compare(
     let us = max_abs(rr.displacements.iter().flat_map(|d| &d[..2]));
     let rs = max_abs(rr.displacements.iter().map(|d| &d[2])).max(us / size);
     for (i, (r, s)) in rr.displacements.iter().zip(&sr.displacements).enumerate() {
-        let n = &rp.names.nodes[i];
+        let n = &rp.model.names().nodes[i];
         c.num(&format!("node {n} ux"), s[0], r[0], k.disp, us);
         c.num(&format!("node {n} uy"), s[1], r[1], k.disp, us);
         c.num(&format!("node {n} rz"), s[2], r[2], k.rot, rs);
@@ -482,7 +479,11 @@ fn compare(
     }
     c.same("reactions", sr.reactions.len(), rr.reactions.len());
     for (r, s) in rr.reactions.iter().zip(&sr.reactions) {
-        let what = format!("reaction {:?} at {}", r.dof, rp.names.nodes[r.node.0]);
+        let what = format!(
+            "reaction {:?} at {}",
+            r.dof,
+            rp.model.names().nodes[r.node.0]
+        );
         if r.dof == SupportDof::Rz {
             c.num(&what, s.value, r.value, k.moment, moment_scale);
         } else {
@@ -490,7 +491,7 @@ fn compare(
         }
     }
     for (r, s) in rr.lines.iter().zip(&sr.lines) {
-        let e = &rp.names.elements[r.element.0];
+        let e = &rp.model.names().elements[r.element.0];
         for j in 0..6 {
             let (kk, sc) = if j % 3 == 2 {
                 (k.moment, moment_scale)
@@ -514,7 +515,7 @@ fn compare(
     }
     let ss = max_abs(rr.planes.iter().flat_map(|p| p.stress.iter().flatten()));
     for (r, s) in rr.planes.iter().zip(&sr.planes) {
-        let e = &rp.names.elements[r.element.0];
+        let e = &rp.model.names().elements[r.element.0];
         for g in 0..4 {
             for j in 0..4 {
                 c.num(

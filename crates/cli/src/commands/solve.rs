@@ -89,14 +89,11 @@ fn structural(
     progress.say(&format!(
         "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
          the load path, recovering the results…",
-        problem.names.nodes.len(),
-        problem.names.elements.len(),
-        problem.names.pairs.len()
+        problem.model.names().nodes.len(),
+        problem.model.names().elements.len(),
+        problem.model.names().pairs.len()
     ));
-    let names = unilateral_analysis::Names {
-        nodes: problem.names.nodes.clone(),
-        elements: problem.names.elements.clone(),
-    };
+    let names = problem.model.names().clone();
     let a = unilateral_analysis::analyze_named(&problem.model, &problem.settings, &names)
         .map_err(|e| analysis_failure(file, &e))?;
     progress.say(&format!(
@@ -113,8 +110,8 @@ fn structural(
             .as_deref()
             .map(|t| format!(": {t}"))
             .unwrap_or_default(),
-        problem.names.nodes.len(),
-        problem.names.elements.len(),
+        problem.model.names().nodes.len(),
+        problem.model.names().elements.len(),
         a.zone.pairs()
     );
     write_outputs(
@@ -124,15 +121,12 @@ fn structural(
         |dir| unilateral_output::write_structural_csv(&a, dir),
     )?;
     if let Some(dir) = &args.vtk {
-        report_files(
-            unilateral_output::write_vtk_for(&problem.model, &a, dir),
-            dir,
-        )?;
+        report_files(unilateral_output::write_vtk(&a, dir), dir)?;
     }
     if let Some(dir) = &args.report {
         args.report_args.check(&a.solution.pairs)?;
         let options = args.report_args.options(problem.title.clone());
-        let files = unilateral_output::write_report_for(&problem.model, &a, dir, &options)
+        let files = unilateral_output::write_structural_report(&a, dir, &options)
             .map_err(|e| report_failure(&e))?;
         report_files(Ok(files), dir)?;
     }

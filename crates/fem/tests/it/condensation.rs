@@ -4,9 +4,8 @@
 use faer::linalg::solvers::DenseSolveCore;
 use faer::{Mat, Side};
 use unilateral_fem::{
-    ContactPairSpec, ContactSolution, ElementId, Endpoint, FrameSection, Load, LoadFrame,
-    LoadGroup, Model, NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Spring, SpringKind,
-    SupportDof,
+    ContactPairSpec, ElementId, Endpoint, FrameSection, LinkValues, Load, LoadFrame, LoadGroup,
+    Model, NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Spring, SpringKind, SupportDof,
 };
 
 /// A column (frames) beside a small soil block (QM6), two extra nodes on springs, and six
@@ -236,7 +235,7 @@ fn csm_equals_inverse_flexibility_and_clv_matches() {
             );
         }
         let cf = free.condense().unwrap();
-        let res = cf.recover(&ContactSolution::bonded(&cf, 0.0)).unwrap();
+        let res = cf.recover(&LinkValues::bonded(&cf, 0.0)).unwrap();
         let z = relative(&pairs, &res.displacements);
         for i in 0..2 * m {
             f[(i, j)] = z[i];
@@ -268,7 +267,7 @@ fn csm_equals_inverse_flexibility_and_clv_matches() {
     for (p, clv) in [(0.0, &c.constant), (1.0, &c.variable)] {
         let z_c = relative(
             &pairs,
-            &cf.recover(&ContactSolution::bonded(&cf, 0.0))
+            &cf.recover(&LinkValues::bonded(&cf, 0.0))
                 .unwrap()
                 .displacements,
         );
@@ -277,7 +276,7 @@ fn csm_equals_inverse_flexibility_and_clv_matches() {
         } else {
             let z1 = relative(
                 &pairs,
-                &cf.recover(&ContactSolution::bonded(&cf, 1.0))
+                &cf.recover(&LinkValues::bonded(&cf, 1.0))
                     .unwrap()
                     .displacements,
             );
@@ -322,7 +321,7 @@ fn recovery_reproduces_the_imposed_mutual_displacements() {
             rz[(i, 0)] + rc + p * rv
         })
         .collect();
-    let sol = ContactSolution {
+    let sol = LinkValues {
         p,
         x_n: x[..m].to_vec(),
         x_t: x[m..].to_vec(),

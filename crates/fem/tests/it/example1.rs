@@ -1,7 +1,7 @@
 //! Example 1 of Popov & Lovtsov (2023): two-span beam held only by three contact pairs.
 #![allow(clippy::needless_range_loop)]
 
-use unilateral_fem::{ContactPairSpec, ContactSolution, FrameSection, Load, LoadGroup, Model};
+use unilateral_fem::{ContactPairSpec, FrameSection, LinkValues, Load, LoadGroup, Model};
 use unilateral_oracle::fixtures::example1::{self as ex1, beam};
 
 fn example1() -> Model {
@@ -68,7 +68,7 @@ fn example1_csm_and_clv() {
 fn example1_recovery_of_the_paper_solution() {
     // The paper's answer at p = 1: support 1 lifts by 0.5, the others carry 0.5 each.
     let c = example1().condense().unwrap();
-    let sol = ContactSolution {
+    let sol = LinkValues {
         p: 1.0,
         x_n: ex1::X_AT_TARGET[..3].to_vec(),
         x_t: vec![0.0; 3],

@@ -7,7 +7,7 @@
 //! kinematics of the mechanisms by hand.
 
 use unilateral_fem::{
-    ContactPairSpec, ContactSolution, DofLabel, Endpoint, FemError, FrameSection, Load, LoadGroup,
+    ContactPairSpec, DofLabel, Endpoint, FemError, FrameSection, LinkValues, Load, LoadGroup,
     Model, NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring, SpringKind,
     SupportDof,
 };
@@ -68,7 +68,7 @@ fn fine_pinned_beams_are_not_mechanisms() {
         lambda < 1e-12,
         "{lambda}: the test must exercise a fine mesh"
     );
-    let r = c.recover(&ContactSolution::bonded(&c, 1.0)).unwrap();
+    let r = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
     let v = r.displacements[ids[1000].0][1];
     let exact = -p * len.powi(3) / (48.0 * EI);
     assert!(

@@ -2,14 +2,14 @@
 #![allow(clippy::needless_range_loop)]
 
 use unilateral_fem::{
-    ContactSolution, Endpoint, FrameSection, Load, LoadFrame, LoadGroup, Model, Releases, Results,
+    Endpoint, FrameSection, LinkValues, Load, LoadFrame, LoadGroup, Model, Releases, Results,
     Spring, SpringKind, SupportDof,
 };
 use unilateral_oracle::fixtures::example1 as ex1;
 
 fn solve(model: &Model, p: f64) -> Results {
     let c = model.condense().unwrap();
-    let r = c.recover(&ContactSolution::bonded(&c, p)).unwrap();
+    let r = c.recover(&LinkValues::bonded(&c, p)).unwrap();
     assert!(r.equilibrium.relative() < 1e-10, "{:?}", r.equilibrium);
     r
 }

@@ -3,13 +3,13 @@
 #![allow(clippy::needless_range_loop)]
 
 use unilateral_fem::{
-    ContactSolution, ElementId, Load, LoadGroup, Model, NodeId, PlaneAnalysis, PlaneFormulation,
+    ElementId, LinkValues, Load, LoadGroup, Model, NodeId, PlaneAnalysis, PlaneFormulation,
     PlaneMaterial, Results, SupportDof,
 };
 
 fn solve(model: &Model) -> Results {
     let c = model.condense().unwrap();
-    let r = c.recover(&ContactSolution::bonded(&c, 1.0)).unwrap();
+    let r = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
     assert!(r.equilibrium.relative() < 1e-9, "{:?}", r.equilibrium);
     r
 }

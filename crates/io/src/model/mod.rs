@@ -1,5 +1,5 @@
 //! Structural model files: nodes, elements, structured meshes, supports, springs, loads and
-//! contact pairs, read into a [`unilateral_fem::Model`] with the names the file used.
+//! contact pairs, read into a [`unilateral_fem::Model`] that holds the names the file used.
 //!
 //! The format is described in full in `docs/model-format.md`. In short (TOML; the same
 //! structure in JSON):
@@ -41,11 +41,10 @@
 mod build;
 mod values;
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
 use unilateral_contact::SolveSettings;
-use unilateral_fem::{ElementId, Model, NodeId};
+use unilateral_fem::Model;
 
 use crate::error::{InputError, InputErrorKind};
 use crate::reader::{format_of, Doc, Format};
@@ -55,68 +54,14 @@ use crate::zone::{read_contact_zone, ContactZoneProblem};
 /// A structural model read from a file, ready for analysis.
 #[derive(Debug, Clone)]
 pub struct StructuralProblem {
-    /// The finite-element model (nodes, elements, supports, springs, loads, contact pairs).
+    /// The finite-element model (nodes, elements, supports, springs, loads, contact pairs),
+    /// with the names the file used for nodes, elements, pairs and sets
+    /// ([`Model::names`]).
     pub model: Model,
     /// The `[solve]` settings (defaults where the file gives none).
     pub settings: SolveSettings,
-    /// The names the file used for nodes, elements, pairs and sets.
-    pub names: ModelNames,
     /// The optional `title` of the file.
     pub title: Option<String>,
-}
-
-/// The names of a model's items, indexed by the finite-element ids.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct ModelNames {
-    /// Name of node `NodeId(i)` (for merged nodes: the first name given).
-    pub nodes: Vec<String>,
-    /// Name of element `ElementId(i)`.
-    pub elements: Vec<String>,
-    /// Name of contact pair `i` (as in `Model::pairs`).
-    pub pairs: Vec<String>,
-    /// Every named node set (block edges, member nodes, `[[node_sets]]`), in the set's order.
-    pub node_sets: BTreeMap<String, Vec<NodeId>>,
-    /// Elements of every block and member, by its name.
-    pub element_sets: BTreeMap<String, Vec<ElementId>>,
-    /// Every node name (including the other names of merged nodes) → node.
-    pub node_ids: BTreeMap<String, NodeId>,
-}
-
-impl ModelNames {
-    /// The name of a node (its number when it has none).
-    pub fn node(&self, id: NodeId) -> String {
-        self.nodes
-            .get(id.0)
-            .cloned()
-            .unwrap_or_else(|| id.0.to_string())
-    }
-
-    /// The name of an element.
-    pub fn element(&self, id: ElementId) -> String {
-        self.elements
-            .get(id.0)
-            .cloned()
-            .unwrap_or_else(|| id.0.to_string())
-    }
-
-    /// The node a name refers to: a node's name, or a set of exactly one node
-    /// (`beam.end`, `soil.top_left`).
-    pub fn node_id(&self, name: &str) -> Option<NodeId> {
-        self.node_ids.get(name).copied().or_else(|| {
-            self.node_sets
-                .get(name)
-                .filter(|s| s.len() == 1)
-                .map(|s| s[0])
-        })
-    }
-
-    /// The nodes of a named set (or the single node of that name).
-    pub fn set(&self, name: &str) -> Option<Vec<NodeId>> {
-        self.node_sets
-            .get(name)
-            .cloned()
-            .or_else(|| self.node_id(name).map(|n| vec![n]))
-    }
 }
 
 /// A problem file of either kind.
@@ -194,8 +139,9 @@ pub fn is_structural_model(path: &Path) -> bool {
 /// "#)?;
 /// let Problem::Structural(p) = read_problem(&path)? else { panic!() };
 /// assert_eq!(p.model.nodes().len(), 5);
-/// assert_eq!(p.names.pairs, vec!["tip".to_string()]);
-/// assert_eq!(p.names.node(p.names.node_id("beam.end").unwrap()), "beam.4");
+/// let names = p.model.names();
+/// assert_eq!(names.pairs, vec!["tip".to_string()]);
+/// assert_eq!(names.node(names.node_id("beam.end").unwrap()), "beam.4");
 ///
 /// // Errors name the file, the line and the key.
 /// std::fs::write(&path, "[[nodes]]\nid = 1\nx = 0\ny = \"zero\"\n")?;

@@ -32,10 +32,15 @@ fn examples_read_and_problem_kinds_are_told_apart() {
     ));
     let p = read_model(&examples().join("example3-sheet-pile.toml")).unwrap();
     assert_eq!(p.model.pairs().len(), 24);
-    assert_eq!(p.names.pairs[0], "left.1");
-    assert_eq!(p.names.node_sets["soil_left.right"].len(), 13);
-    assert_eq!(p.names.element_sets["soil_right"].len(), 144);
-    assert_eq!(p.names.element(p.names.element_sets["wall"][0]), "wall.1");
+    assert_eq!(p.model.names().pairs[0], "left.1");
+    assert_eq!(p.model.names().node_sets["soil_left.right"].len(), 13);
+    assert_eq!(p.model.names().element_sets["soil_right"].len(), 144);
+    assert_eq!(
+        p.model
+            .names()
+            .element(p.model.names().element_sets["wall"][0]),
+        "wall.1"
+    );
 }
 
 #[test]
@@ -65,8 +70,8 @@ fn json_reads_like_toml() {
     assert_eq!(j.model.elements(), t.model.elements());
     assert_eq!(j.model.pairs(), t.model.pairs());
     assert_eq!(j.settings, t.settings);
-    assert_eq!(j.names.nodes, t.names.nodes);
-    assert_eq!(j.names.pairs, t.names.pairs);
+    assert_eq!(j.model.names().nodes, t.model.names().nodes);
+    assert_eq!(j.model.names().pairs, t.model.names().pairs);
 }
 
 #[test]
@@ -177,7 +182,7 @@ fx = 1.0
     )
     .unwrap();
     let p = read_model(&path).unwrap();
-    let n = &p.names;
+    let n = p.model.names();
     // ground: 5 × 3 nodes; upper: 5 × 2, its bottom row merged with ground.top; post: 2 new.
     assert_eq!(p.model.nodes().len(), 15 + 5 + 2);
     assert_eq!(n.node_id("upper.0.0"), n.node_id("ground.0.2"));

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use unilateral_analysis::{analyze_named, Names};
+use unilateral_analysis::analyze_named;
 use unilateral_io::Problem;
 use unilateral_output::{write_path_report, write_report, write_report_for, ReportOptions};
 
@@ -185,10 +185,7 @@ fn run_structural(file: &str, name: &str, options: &ReportOptions) {
     else {
         panic!("{file} is a structural model");
     };
-    let names = Names {
-        nodes: pb.names.nodes.clone(),
-        elements: pb.names.elements.clone(),
-    };
+    let names = pb.model.names().clone();
     let a = analyze_named(&pb.model, &pb.settings, &names).unwrap();
     let (_keep, dir) = out_dir(name);
     let mut opt = options.clone();

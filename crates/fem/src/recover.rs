@@ -1,0 +1,282 @@
+//! The recovery of full results from the link values of a contact solution: displacements,
+//! reactions, internal forces and stresses element by element, spring forces, and the
+//! equilibrium check of the whole structure.
+
+use crate::condense::Condensed;
+use crate::elements::spring::{spring_force, spring_matrix};
+use crate::elements::{element_stiffness, unit as element_unit, Recovered};
+use crate::error::FemError;
+use crate::model::{ElementId, Endpoint, Load, LoadGroup};
+use crate::results::{ratio, ContactLoadVector, Equilibrium, LinkValues, Reaction, Results};
+use faer::linalg::solvers::SolveCore;
+use faer::{Conj, Mat};
+
+impl Condensed {
+    /// Recovers displacements, reactions, internal forces, stresses and the equilibrium check
+    /// for a contact solution at load parameter `sol.p`.
+    pub fn recover(&self, sol: &LinkValues) -> Result<Results, FemError> {
+        let model = &self.model;
+        let map = &self.asm.map;
+        let m = map.m;
+        for (name, v) in [
+            ("x_n", &sol.x_n),
+            ("x_t", &sol.x_t),
+            ("z_n", &sol.z_n),
+            ("z_t", &sol.z_t),
+        ] {
+            if v.len() != m {
+                return Err(FemError::BadSolution(format!(
+                    "{name} has {} entries, the model has {m} pairs",
+                    v.len()
+                )));
+            }
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(FemError::BadSolution(format!("{name} is not finite")));
+            }
+        }
+        if !sol.p.is_finite() {
+            return Err(FemError::BadSolution("p is not finite".into()));
+        }
+        let p = sol.p;
+        let fac = |g: LoadGroup| match g {
+            LoadGroup::Constant => 1.0,
+            LoadGroup::Variable => p,
+        };
+        let (n_i, z0, p0) = (map.n_i, map.z0(), map.p0());
+        // The link dislocations are the mutual displacements n·(u_B − u_A) = z_n − η and
+        // t·(u_B − u_A) = z_t: the LCP measures z_n from closed contact (formulation §3, the
+        // gaps enter q_c as −Rnn·η, −Rtn·η).
+        let z: Vec<f64> = sol
+            .z_n
+            .iter()
+            .zip(&self.gap)
+            .map(|(z, g)| z - g)
+            .chain(sol.z_t.iter().copied())
+            .collect();
+        // free DOFs
+        let mut v_i = vec![0.0; n_i];
+        if let Some(llt) = &self.llt {
+            let mut rhs =
+                Mat::<f64>::from_fn(n_i, 1, |i, _| self.asm.b_i[0][i] + p * self.asm.b_i[1][i]);
+            for (r, col) in self.asm.kiz.iter().enumerate() {
+                for &(i, v) in col {
+                    rhs[(i, 0)] -= v * z[r];
+                }
+            }
+            llt.solve_in_place_with_conj(Conj::No, rhs.as_mut());
+            for (i, x) in v_i.iter_mut().enumerate() {
+                *x = rhs[(i, 0)];
+            }
+        }
+        let s: Vec<f64> = (0..map.n_p)
+            .map(|k| self.asm.s[0][k] + p * self.asm.s[1][k])
+            .collect();
+        let gen = |g: usize| -> f64 {
+            if g < z0 {
+                v_i[g]
+            } else if g < p0 {
+                z[g - z0]
+            } else {
+                s[g - p0]
+            }
+        };
+        let nn = model.nodes.len();
+        let u: Vec<f64> = map
+            .rows
+            .iter()
+            .map(|r| r.iter().map(|&(g, c)| c * gen(g)).sum())
+            .collect();
+        let displacements: Vec<[f64; 3]> = (0..nn)
+            .map(|i| [u[3 * i], u[3 * i + 1], u[3 * i + 2]])
+            .collect();
+
+        // element loads per element
+        let mut loads_of: Vec<Vec<(f64, &Load)>> = vec![Vec::new(); model.elements.len()];
+        for (g, l) in &model.loads {
+            match l {
+                Load::Distributed { element, .. }
+                | Load::BodyForce { element, .. }
+                | Load::Temperature { element, .. } => loads_of[element.0].push((fac(*g), l)),
+                _ => {}
+            }
+        }
+
+        // residual r = K u − f, element by element
+        let f: Vec<f64> = (0..3 * nn)
+            .map(|d| self.asm.f_phys[0][d] + p * self.asm.f_phys[1][d])
+            .collect();
+        let mut r: Vec<f64> = f.iter().map(|v| -v).collect();
+        // magnitude of the forces that meet at each DOF (the scale of its residual)
+        let mut r_mag: Vec<f64> = f.iter().map(|v| v.abs()).collect();
+        let mut lines = Vec::new();
+        let mut planes = Vec::new();
+        let mut stress_sum: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
+        let mut stress_cnt = vec![0usize; nn];
+        for (ei, el) in model.elements.iter().enumerate() {
+            let unit = element_unit(el);
+            let em = element_stiffness(model, el);
+            let n = em.dofs.len();
+            let ue: Vec<f64> = em.dofs.iter().map(|&d| u[d]).collect();
+            for a in 0..n {
+                let fa = (0..n).map(|b| em.k[a * n + b] * ue[b]).sum::<f64>();
+                r[em.dofs[a]] += fa;
+                r_mag[em.dofs[a]] += fa.abs();
+            }
+            match unit.recover(model, ElementId(ei), &ue, &loads_of[ei]) {
+                Recovered::Line(line) => lines.push(line),
+                Recovered::Plane { result, at_nodes } => {
+                    for (nd, s) in unit.nodes().iter().zip(&at_nodes) {
+                        for c in 0..4 {
+                            stress_sum[nd.0][c] += s[c];
+                        }
+                        stress_cnt[nd.0] += 1;
+                    }
+                    planes.push(result);
+                }
+            }
+        }
+        let mut spring_forces = Vec::new();
+        let mut ground = [0.0; 3];
+        for sp in &model.springs {
+            let em = spring_matrix(sp);
+            let n = em.dofs.len();
+            for a in 0..n {
+                let fa = (0..n).map(|b| em.k[a * n + b] * u[em.dofs[b]]).sum::<f64>();
+                r[em.dofs[a]] += fa;
+                r_mag[em.dofs[a]] += fa.abs();
+            }
+            spring_forces.push(spring_force(model, sp, &u, &mut ground));
+        }
+        // generalized residuals
+        let mut res_i = vec![0.0; n_i];
+        let mut mag_i = vec![0.0; n_i];
+        let mut mag_z = vec![0.0; 2 * m];
+        let mut x_of_z = vec![0.0; 2 * m];
+        let mut lambda = vec![0.0; map.n_p];
+        for (d, row) in map.rows.iter().enumerate() {
+            for &(g, c) in row {
+                if g < z0 {
+                    res_i[g] += c * r[d];
+                    mag_i[g] += c.abs() * r_mag[d];
+                } else if g < p0 {
+                    x_of_z[g - z0] += c * r[d];
+                    mag_z[g - z0] += c.abs() * r_mag[d];
+                } else {
+                    lambda[g - p0] += c * r[d];
+                }
+            }
+        }
+        let moment = |pos: [f64; 2], fx: f64, fy: f64| pos[0] * fy - pos[1] * fx;
+        let mut applied = [0.0; 3];
+        let mut scale = 0.0f64;
+        for i in 0..nn {
+            let (fx, fy, mz) = (f[3 * i], f[3 * i + 1], f[3 * i + 2]);
+            applied[0] += fx;
+            applied[1] += fy;
+            applied[2] += mz + moment(model.nodes[i], fx, fy);
+            scale = scale.max(fx.abs()).max(fy.abs());
+        }
+        let mut reactions = Vec::with_capacity(map.n_p);
+        let mut reac = [0.0; 3];
+        for (k, &(node, dof, dir)) in map.prescribed.iter().enumerate() {
+            let v = lambda[k];
+            reactions.push(Reaction {
+                node,
+                dof,
+                value: v,
+            });
+            let (fx, fy) = (v * dir[0], v * dir[1]);
+            reac[0] += fx;
+            reac[1] += fy;
+            reac[2] += dir[2] * v + moment(model.nodes[node.0], fx, fy);
+            scale = scale.max(v.abs());
+        }
+        let mut contact = [0.0; 3];
+        for (k, pair) in model.pairs.iter().enumerate() {
+            let (nv, tv) = map.nt[k];
+            let fx = nv[0] * sol.x_n[k] + tv[0] * sol.x_t[k];
+            let fy = nv[1] * sol.x_n[k] + tv[1] * sol.x_t[k];
+            scale = scale.max(sol.x_n[k].abs()).max(sol.x_t[k].abs());
+            let pb = model.nodes[pair.b.0];
+            contact[0] += fx;
+            contact[1] += fy;
+            contact[2] += moment(pb, fx, fy);
+            if let Endpoint::Node(a) = pair.a {
+                // the reaction on A; with A and B at different places and n not along AB the
+                // pair carries a couple, which is part of the balance
+                let pa = model.nodes[a.0];
+                contact[0] -= fx;
+                contact[1] -= fy;
+                contact[2] -= moment(pa, fx, fy);
+            }
+        }
+        let mut resultant = [0.0; 3];
+        for c in 0..3 {
+            resultant[c] = applied[c] + reac[c] + contact[c] + ground[c];
+        }
+        let x_given: Vec<f64> = sol.x_n.iter().chain(&sol.x_t).copied().collect();
+        let mismatch = x_of_z
+            .iter()
+            .zip(&x_given)
+            .fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
+        let free_res = res_i.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let nodal_stress = (0..nn)
+            .map(|i| (stress_cnt[i] > 0).then(|| stress_sum[i].map(|v| v / stress_cnt[i] as f64)))
+            .collect();
+        // moment scale: forces times the model's size (its extent)
+        let extent = |c: usize| {
+            let (lo, hi) = model
+                .nodes
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+                    (a.0.min(p[c]), a.1.max(p[c]))
+                });
+            if hi >= lo {
+                hi - lo
+            } else {
+                0.0
+            }
+        };
+        let size = extent(0).max(extent(1));
+        let size = if size > 0.0 { size } else { 1.0 };
+        // Relative residuals, each against forces (or moments) of its own units, so that they
+        // do not depend on the units of the model: the largest residual at a free translation
+        // over the largest force meeting at one (or the largest applied force, reaction or
+        // contact force when larger), the same for rotations against moments (and the force
+        // scale times the model's size), the link force mismatch against the largest link
+        // force.
+        let mut worst = [(0.0f64, scale), (0.0f64, scale * size)];
+        for g in 0..n_i {
+            let k = usize::from(map.free_label[g].1 == crate::error::DofLabel::Rz);
+            worst[k].0 = worst[k].0.max(res_i[g].abs());
+            worst[k].1 = worst[k].1.max(mag_i[g]);
+        }
+        let link_mag = mag_z.iter().fold(scale, |a, b| a.max(b.abs()));
+        let free_rel = ratio(worst[0].0, worst[0].1).max(ratio(worst[1].0, worst[1].1));
+        Ok(Results {
+            p,
+            displacements,
+            reactions,
+            link_forces: ContactLoadVector {
+                normal: x_of_z[..m].to_vec(),
+                tangential: x_of_z[m..].to_vec(),
+            },
+            lines,
+            planes,
+            nodal_stress,
+            spring_forces,
+            equilibrium: Equilibrium {
+                applied,
+                reactions: reac,
+                contact,
+                springs: ground,
+                resultant: [resultant[0], resultant[1], resultant[2] / size],
+                free_dof_residual: free_res,
+                link_force_mismatch: mismatch,
+                free_dof_relative: free_rel,
+                link_force_relative: ratio(mismatch, link_mag),
+                scale: scale.max(f64::MIN_POSITIVE),
+            },
+        })
+    }
+}
