@@ -37,7 +37,7 @@ mod zone;
 
 pub use dat::{read_fc2d, read_siconos_lcp, Fc2dProblem};
 pub use error::{InputError, InputErrorKind, Location};
-pub use model::*;
+pub use model::{is_structural_model, read_model, read_problem, Problem, StructuralProblem};
 pub use msh::{
     read_gmsh, GmshMesh, MshElement, MshElementType, MshNode, MshVersion, PhysicalGroup,
 };
