@@ -24,23 +24,31 @@
 
 #![warn(missing_docs)]
 
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use unilateral_analysis::Analysis;
 use unilateral_contact::ContactSolution;
 use unilateral_fem::Model;
 
 mod chart;
-mod documents;
+mod csv;
 mod finite;
 pub mod font;
+mod json;
+mod report;
 mod structure;
+mod summary;
 pub mod svg;
 mod vtk;
 
-pub use documents::*;
+pub use csv::{write_contact_csv, write_structural_csv};
 pub use finite::NonFiniteOutput;
+pub use json::{contact_json, lcp_json, residual_json, structural_json, tableaux_json};
+pub use report::{
+    report_html, write_path_report, write_report, write_report_for, write_structural_report,
+    Pictures,
+};
+pub use summary::{contact_summary, lcp_summary, structural_summary, tableau_text};
 pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
 
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};
@@ -164,297 +172,6 @@ pub fn load_path_svgs(
 /// The structure picture at the reported load as an SVG document.
 pub fn structure_svg(model: &Model, analysis: &Analysis, options: &ReportOptions) -> String {
     structure::structure_svg(model, analysis, options)
-}
-
-/// Writes the pictures and `report.html` of an analysis into `dir`; returns the files written.
-///
-/// Without the structure picture: use [`write_structural_report`] for it.
-pub fn write_report(
-    analysis: &Analysis,
-    dir: &Path,
-    options: &ReportOptions,
-) -> Result<Vec<PathBuf>, ReportError> {
-    write_all(None, Some(analysis), &analysis.solution, dir, options)
-}
-
-/// Writes the load-path charts, the structure picture and `report.html` of an analysis into
-/// `dir`; returns the files written. The structure is the model the analysis was condensed
-/// from ([`Condensed::model`](unilateral_fem::Condensed::model)).
-pub fn write_structural_report(
-    analysis: &Analysis,
-    dir: &Path,
-    options: &ReportOptions,
-) -> Result<Vec<PathBuf>, ReportError> {
-    write_report_for(analysis.condensed.model(), analysis, dir, options)
-}
-
-/// Writes the load-path charts, the structure picture and `report.html` of an analysis of
-/// `model` into `dir`; returns the files written. The analysis knows its model: prefer
-/// [`write_structural_report`].
-pub fn write_report_for(
-    model: &Model,
-    analysis: &Analysis,
-    dir: &Path,
-    options: &ReportOptions,
-) -> Result<Vec<PathBuf>, ReportError> {
-    write_all(
-        Some(model),
-        Some(analysis),
-        &analysis.solution,
-        dir,
-        options,
-    )
-}
-
-/// Writes the load-path charts and `report.html` of a contact-zone solve (no structure to draw)
-/// into `dir`; returns the files written.
-pub fn write_path_report(
-    solution: &ContactSolution,
-    dir: &Path,
-    options: &ReportOptions,
-) -> Result<Vec<PathBuf>, ReportError> {
-    write_all(None, None, solution, dir, options)
-}
-
-fn write_all(
-    model: Option<&Model>,
-    analysis: Option<&Analysis>,
-    solution: &ContactSolution,
-    dir: &Path,
-    options: &ReportOptions,
-) -> Result<Vec<PathBuf>, ReportError> {
-    std::fs::create_dir_all(dir).map_err(|source| ReportError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
-    let mut written = Vec::new();
-    let mut put = |name: &str, text: &str| -> Result<(), ReportError> {
-        let path = dir.join(name);
-        std::fs::write(&path, text).map_err(|source| ReportError::Io {
-            path: path.clone(),
-            source,
-        })?;
-        written.push(path);
-        Ok(())
-    };
-    let (forces, displacements) = load_path_svgs(solution, options)?;
-    let structure = match (model, analysis) {
-        (Some(m), Some(a)) => Some(structure_svg(m, a, options)),
-        _ => None,
-    };
-    // Every picture is checked before any file is written.
-    check_finite(FORCES_SVG, &forces)?;
-    check_finite(DISPLACEMENTS_SVG, &displacements)?;
-    if let Some(s) = &structure {
-        check_finite(STRUCTURE_SVG, s)?;
-    }
-    put(FORCES_SVG, &forces)?;
-    put(DISPLACEMENTS_SVG, &displacements)?;
-    if let Some(s) = &structure {
-        put(STRUCTURE_SVG, s)?;
-    }
-    let html = report_html(
-        model,
-        analysis,
-        solution,
-        options,
-        &Pictures {
-            structure: structure.as_deref(),
-            forces: &forces,
-            displacements: &displacements,
-        },
-    );
-    put(REPORT_HTML, &html)?;
-    Ok(written)
-}
-
-/// The SVG documents to put into the HTML report.
-#[derive(Debug, Clone, Copy)]
-pub struct Pictures<'a> {
-    /// The structure picture (if there is a structure).
-    pub structure: Option<&'a str>,
-    /// The load-path chart of the forces.
-    pub forces: &'a str,
-    /// The load-path chart of the mutual displacements.
-    pub displacements: &'a str,
-}
-
-const CSS: &str = "body{font-family:sans-serif;margin:24px auto;max-width:1400px;color:#222;padding:0 16px}\
-h1{font-size:1.5em}h2{font-size:1.2em;margin-top:1.6em;border-bottom:1px solid #ccc}\
-table{border-collapse:collapse;font-size:.9em;margin:.5em 0}td,th{border:1px solid #ccc;padding:3px 8px}\
-th{background:#f0f0f0}td.n{text-align:right;font-variant-numeric:tabular-nums;font-family:monospace}\
-.pic{overflow-x:auto;margin:.6em 0}.pic svg{max-width:100%;height:auto}.sw{display:inline-block;width:.8em;height:.8em;border:1px solid #333;margin-right:.3em}\
-dl{display:grid;grid-template-columns:max-content auto;gap:2px 16px}dt{font-weight:bold}";
-
-/// The HTML report: summary, pictures inline, events and pairs tables.
-pub fn report_html(
-    model: Option<&Model>,
-    analysis: Option<&Analysis>,
-    sol: &ContactSolution,
-    options: &ReportOptions,
-    pics: &Pictures<'_>,
-) -> String {
-    use svg::esc;
-    let title = options
-        .title
-        .clone()
-        .unwrap_or_else(|| "unilateral — contact analysis report".into());
-    let mut h = String::new();
-    let _ = write!(
-        h,
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n<style>{CSS}</style>\n</head>\n<body>\n<h1>{}</h1>\n",
-        esc(&title),
-        esc(&title)
-    );
-    // summary
-    h.push_str("<h2 id=\"summary\">Summary</h2>\n<dl>\n");
-    let mut row = |k: &str, v: String| {
-        let _ = writeln!(h, "<dt>{}</dt><dd>{}</dd>", esc(k), esc(&v));
-    };
-    if let Some(m) = model {
-        row(
-            "Model",
-            format!(
-                "{} nodes, {} elements, {} contact pairs",
-                m.nodes().len(),
-                m.elements().len(),
-                m.pairs().len()
-            ),
-        );
-    }
-    row("Contact pairs", sol.lcp.pairs.to_string());
-    row(
-        "Status",
-        format!(
-            "{} — {}",
-            sol.outcome.status(),
-            sol.outcome.reading(sol.settings.target)
-        ),
-    );
-    row(
-        "Reported load p",
-        sol.p
-            .map(|p| format!("{p}"))
-            .unwrap_or_else(|| "none".into()),
-    );
-    row("Target p*", format!("{}", sol.settings.target));
-    row("Tightening c", format!("{}", sol.tightening));
-    row(
-        "Steps of the load path",
-        format!(
-            "{} ({} before the target)",
-            sol.steps.len(),
-            sol.steps_before_target
-        ),
-    );
-    if let Some(r) = &sol.residual {
-        row(
-            "Residuals",
-            format!(
-                "equation {:.2e}, sign conditions {:.2e}, complementarity {:.2e}",
-                r.equation, r.feasibility, r.complementarity
-            ),
-        );
-    }
-    if let Some(ext) = analysis.and_then(|a| a.extremes()) {
-        if let Some(d) = ext.displacement {
-            row(
-                "Largest displacement",
-                format!("{} at node {}", svg::num(d.value), d.name),
-            );
-        }
-        if let Some(m) = ext.moment {
-            row(
-                "Largest |M|",
-                format!("{} in element {}", svg::num(m.value), m.name),
-            );
-        }
-        if let Some(s) = ext.von_mises {
-            row(
-                "Largest von Mises stress",
-                format!("{} in element {}", svg::num(s.value), s.name),
-            );
-        }
-    }
-    h.push_str("</dl>\n");
-    if !sol.notes.is_empty() {
-        h.push_str("<ul>\n");
-        for n in &sol.notes {
-            let _ = writeln!(h, "<li>{}</li>", esc(n));
-        }
-        h.push_str("</ul>\n");
-    }
-    // pictures
-    if let Some(s) = pics.structure {
-        let _ = writeln!(
-            h,
-            "<h2 id=\"structure\">Structure</h2>\n<div class=\"pic\">{}</div>",
-            strip_decl(s)
-        );
-    } else if analysis.is_some() {
-        h.push_str("<h2 id=\"structure\">Structure</h2>\n<p>The structure picture needs the model (written by <code>write_report_for</code>).</p>\n");
-    }
-    let _ = writeln!(
-        h,
-        "<h2 id=\"load-path\">Load path</h2>\n<div class=\"pic\">{}</div>\n<div class=\"pic\">{}</div>",
-        strip_decl(pics.forces),
-        strip_decl(pics.displacements)
-    );
-    // events
-    h.push_str("<h2 id=\"events\">Events</h2>\n<table class=\"events\">\n<tr><th>step</th><th>p</th><th>entering</th><th>leaving</th><th>events</th></tr>\n");
-    for st in &sol.steps {
-        let ev = if st.events.is_empty() {
-            "—".to_string()
-        } else {
-            st.events
-                .iter()
-                .map(|e| e.to_string())
-                .collect::<Vec<_>>()
-                .join("; ")
-        };
-        let _ = writeln!(
-            h,
-            "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td><td>{}</td><td>{}{}</td></tr>",
-            st.index,
-            st.p,
-            esc(&st.entering),
-            esc(&st.leaving),
-            esc(&ev),
-            if st.turning { " (turning point)" } else { "" }
-        );
-    }
-    h.push_str("</table>\n");
-    if sol.steps.is_empty() {
-        h.push_str("<p>No events: the working scheme does not change along the path.</p>\n");
-    }
-    // pairs
-    let _ = writeln!(
-        h,
-        "<h2 id=\"pairs\">Pairs at p = {}</h2>\n<table class=\"pairs\">\n<tr><th>pair</th><th>x<sub>n</sub> (compression +)</th><th>x<sub>t</sub></th><th>z<sub>n</sub> (opening +)</th><th>z<sub>t</sub></th><th>state</th></tr>",
-        sol.p.map(|p| p.to_string()).unwrap_or_else(|| "—".into())
-    );
-    for r in &sol.pairs {
-        let (c, _) = state_style(r.state);
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td class=\"n\">{:.6e}</td><td class=\"n\">{:.6e}</td><td class=\"n\">{:.6e}</td><td class=\"n\">{:.6e}</td><td><span class=\"sw\" style=\"background:{c}\"></span>{}</td></tr>",
-            esc(&r.name), r.x_n, r.x_t, r.z_n, r.z_t, r.state
-        );
-    }
-    h.push_str("</table>\n");
-    if sol.pairs.is_empty() {
-        h.push_str("<p>No solution reported.</p>\n");
-    }
-    let _ = writeln!(
-        h,
-        "<p style=\"color:#777;font-size:.8em\">unilateral-report {}</p>\n</body>\n</html>",
-        env!("CARGO_PKG_VERSION")
-    );
-    h
-}
-
-fn strip_decl(s: &str) -> &str {
-    s.trim_start_matches(|c: char| c != '<').trim_end()
 }
 
 #[cfg(test)]

@@ -1,0 +1,210 @@
+//! The JSON documents of `interfaces.md`: of a contact solution, a plain LCP, the tableaux and a
+//! structural analysis. Every number is checked finite first ([`NonFiniteOutput`] otherwise):
+//! no `null`, `NaN` or `inf` is ever written.
+
+use serde_json::{json, Value};
+use unilateral_contact::{ContactSolution, Outcome};
+use unilateral_lcp::{LcpSolution, Residual, Tableau};
+
+use crate::finite::{self, NonFiniteOutput};
+
+/// The JSON value of a residual.
+pub fn residual_json(r: Option<&Residual>) -> Result<Value, NonFiniteOutput> {
+    if let Some(r) = r {
+        finite::residual(r, "residual")?;
+    }
+    Ok(residual_json_unchecked(r))
+}
+
+fn residual_json_unchecked(r: Option<&Residual>) -> Value {
+    match r {
+        Some(r) => json!({
+            "equation": r.equation,
+            "complementarity": r.complementarity,
+            "feasibility": r.feasibility,
+        }),
+        None => Value::Null,
+    }
+}
+
+/// The result document of a contact solve (`interfaces.md`, "Result JSON").
+pub fn contact_json(sol: &ContactSolution) -> Result<Value, NonFiniteOutput> {
+    finite::contact_solution(sol)?;
+    let p_limit = match &sol.outcome {
+        Outcome::Mechanism { p_limit, .. } => json!(p_limit),
+        _ => Value::Null,
+    };
+    let mechanism = match &sol.outcome {
+        Outcome::Mechanism { mode, .. } => Value::Array(
+            mode.iter()
+                .enumerate()
+                .map(|(i, (dn, dt))| json!({ "pair": i + 1, "dz_n": dn, "dz_t": dt }))
+                .collect(),
+        ),
+        _ => Value::Null,
+    };
+    let steps: Vec<Value> = sol
+        .steps
+        .iter()
+        .map(|s| {
+            json!({
+                "step": s.index,
+                "p": s.p,
+                "entering": s.entering,
+                "leaving": s.leaving,
+                "events": s.events.iter().map(|e| e.to_string()).collect::<Vec<_>>(),
+                "turning": s.turning,
+                "beyond_target": s.index > sol.steps_before_target,
+            })
+        })
+        .collect();
+    let pairs: Vec<Value> = sol
+        .pairs
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            json!({
+                "pair": i + 1,
+                "name": p.name,
+                "x_n": p.x_n,
+                "x_t": p.x_t,
+                "z_n": p.z_n,
+                "z_t": p.z_t,
+                "state": p.state.as_str(),
+            })
+        })
+        .collect();
+    Ok(json!({
+        "status": sol.outcome.status(),
+        "reading": sol.outcome.reading(sol.settings.target),
+        "p": sol.p,
+        "p_limit": p_limit,
+        "target": sol.settings.target,
+        "trace": match sol.settings.follow {
+            unilateral_contact::Follow::ToTarget => "target",
+            unilateral_contact::Follow::ToEnd => "end",
+        },
+        "tightening": sol.tightening,
+        "tightening_pivots": sol.tightening_pivots,
+        "pivots": sol.steps.len(),
+        "steps": steps,
+        "pairs": pairs,
+        "mechanism": mechanism,
+        "residual": residual_json_unchecked(sol.residual.as_ref()),
+        "notes": sol.notes,
+    }))
+}
+
+/// The result document of a plain LCP solve.
+pub fn lcp_json(sol: &LcpSolution) -> Result<Value, NonFiniteOutput> {
+    finite::lcp_solution(sol)?;
+    let (z, w, r) = match &sol.point {
+        Some(p) => (
+            json!(p.z),
+            json!(p.w),
+            residual_json_unchecked(Some(&p.residual)),
+        ),
+        None => (Value::Null, Value::Null, Value::Null),
+    };
+    Ok(json!({
+        "status": sol.status.as_str(),
+        "z": z,
+        "w": w,
+        "pivots": sol.pivots,
+        "residual": r,
+        "strategy": format!("{:?}", sol.strategy),
+        "attempts": sol.attempts,
+    }))
+}
+
+/// The tableaux as JSON (entries by row).
+pub fn tableaux_json(
+    ts: &[Tableau],
+    label: &dyn Fn(unilateral_lcp::Var) -> String,
+) -> Result<Value, NonFiniteOutput> {
+    finite::tableaux(ts)?;
+    Ok(Value::Array(
+        ts.iter()
+            .map(|t| {
+                json!({
+                    "title": t.title,
+                    "after_steps": t.after_steps,
+                    "basis": t.basis.iter().map(|v| label(*v)).collect::<Vec<_>>(),
+                    "columns": t.columns.iter().map(|v| label(*v)).collect::<Vec<_>>(),
+                    "entries": t.entries,
+                    "rhs": t.rhs,
+                    "ratios": t.ratios,
+                    "entering": t.entering.map(label),
+                    "leaving_row": t.leaving_row,
+                })
+            })
+            .collect(),
+    ))
+}
+
+pub(crate) fn dof_name(d: &unilateral_fem::SupportDof) -> String {
+    match d {
+        unilateral_fem::SupportDof::Ux => "ux".into(),
+        unilateral_fem::SupportDof::Uy => "uy".into(),
+        unilateral_fem::SupportDof::Rz => "rz".into(),
+        unilateral_fem::SupportDof::Along(v) => format!("along({}, {})", v[0], v[1]),
+    }
+}
+
+/// The result document of a structural analysis: the contact document plus node
+/// displacements, reactions, frame end forces, plane-element stresses and the equilibrium check.
+pub fn structural_json(a: &unilateral_analysis::Analysis) -> Result<Value, NonFiniteOutput> {
+    finite::analysis(a)?;
+    let mut doc = contact_json(&a.solution)?;
+    let Some(r) = &a.results else {
+        return Ok(doc);
+    };
+    let names = &a.names;
+    let nodes: Vec<Value> = r
+        .displacements
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            json!({ "node": names.node(unilateral_fem::NodeId(i)), "ux": d[0], "uy": d[1], "rz": d[2] })
+        })
+        .collect();
+    let reactions: Vec<Value> = r
+        .reactions
+        .iter()
+        .map(|x| json!({ "node": names.node(x.node), "dof": dof_name(&x.dof), "value": x.value }))
+        .collect();
+    let frames: Vec<Value> = r
+        .lines
+        .iter()
+        .map(|l| {
+            let f = l.end_forces;
+            json!({
+                "element": names.element(l.element),
+                "end_forces": { "N1": f[0], "V1": f[1], "M1": f[2], "N2": f[3], "V2": f[4], "M2": f[5] },
+                "diagram": l.diagram.iter().map(|p| json!({ "s": p.s, "N": p.n, "Q": p.q, "M": p.m })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let planes: Vec<Value> = r
+        .planes
+        .iter()
+        .map(|pl| {
+            json!({
+                "element": names.element(pl.element),
+                "gauss_points": pl.gauss_points,
+                "stress": pl.stress.iter().map(|s| json!({ "sxx": s[0], "syy": s[1], "txy": s[2], "szz": s[3] })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let e = &r.equilibrium;
+    let obj = doc.as_object_mut().expect("an object");
+    obj.insert("nodes".into(), Value::Array(nodes));
+    obj.insert("reactions".into(), Value::Array(reactions));
+    obj.insert("frames".into(), Value::Array(frames));
+    obj.insert("plane_elements".into(), Value::Array(planes));
+    obj.insert(
+        "equilibrium".into(),
+        json!({ "applied": e.applied, "reactions": e.reactions, "contact": e.contact, "springs": e.springs, "resultant": e.resultant, "relative": e.relative() }),
+    );
+    Ok(doc)
+}

@@ -1,0 +1,298 @@
+//! The human-readable summaries: of a contact solution, a plain LCP, a structural analysis, and
+//! the tableaux in the paper's layout. Every number is checked finite before it is printed
+//! ([`NonFiniteOutput`] otherwise).
+
+use std::fmt::Write as _;
+
+use unilateral_contact::{ContactSolution, Outcome};
+use unilateral_lcp::{LcpSolution, Tableau};
+
+use crate::finite::{self, NonFiniteOutput};
+
+fn fmt_num(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if v.abs() >= 1e-4 && v.abs() < 1e7 {
+        let s = format!("{v:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s == "-0" {
+            "0".into()
+        } else {
+            s.to_string()
+        }
+    } else {
+        format!("{v:.4e}")
+    }
+}
+
+/// The human-readable summary of a contact solve.
+pub fn contact_summary(sol: &ContactSolution, title: &str) -> Result<String, NonFiniteOutput> {
+    finite::contact_solution(sol)?;
+    let mut s = String::new();
+    let _ = writeln!(s, "{title}");
+    let _ = writeln!(
+        s,
+        "status: {} — {}",
+        sol.outcome.status(),
+        sol.outcome.reading(sol.settings.target)
+    );
+    match sol.p {
+        Some(p) => {
+            let _ = write!(s, "solution at p = {}", fmt_num(p));
+            if sol.tightening > 0.0 {
+                let _ = write!(
+                    s,
+                    " (tightening c = {} removed from it{})",
+                    fmt_num(sol.tightening),
+                    if sol.tightening_pivots > 0 {
+                        let n = sol.tightening_pivots;
+                        format!(" by {n} pivot{}", if n == 1 { "" } else { "s" })
+                    } else {
+                        String::new()
+                    }
+                );
+            }
+            let _ = writeln!(s);
+        }
+        None => {
+            let _ = writeln!(s, "no solution to report");
+        }
+    }
+    let _ = writeln!(s);
+    if sol.steps.is_empty() {
+        let _ = writeln!(s, "load path: no change of the working scheme");
+    } else {
+        let _ = writeln!(
+            s,
+            "load path ({} step{}{}):",
+            sol.steps.len(),
+            if sol.steps.len() == 1 { "" } else { "s" },
+            if sol.tightening > 0.0 {
+                format!(", traced with tightening c = {}", fmt_num(sol.tightening))
+            } else {
+                String::new()
+            }
+        );
+        let _ = writeln!(
+            s,
+            "  {:>5}  {:>14}  {:<9} {:<9} events",
+            "step", "p", "entering", "leaving"
+        );
+        for st in &sol.steps {
+            let mut ev: Vec<String> = st.events.iter().map(|e| e.to_string()).collect();
+            if st.turning {
+                ev.push("(load decreases: turning point)".into());
+            }
+            if st.index > sol.steps_before_target {
+                ev.push("(beyond the target)".into());
+            }
+            let _ = writeln!(
+                s,
+                "  {:>5}  {:>14}  {:<9} {:<9} {}",
+                st.index,
+                fmt_num(st.p),
+                st.entering,
+                st.leaving,
+                ev.join("; ")
+            );
+        }
+    }
+    if let Outcome::Mechanism { p_limit, mode } = &sol.outcome {
+        let _ = writeln!(
+            s,
+            "\nmechanism at p_lim = {}; rates per pair (dz_n, dz_t):",
+            fmt_num(*p_limit)
+        );
+        for (i, (dn, dt)) in mode.iter().enumerate() {
+            if dn.abs() + dt.abs() > 1e-9 {
+                let _ = writeln!(
+                    s,
+                    "  pair {:<6} {:>12} {:>12}",
+                    i + 1,
+                    fmt_num(*dn),
+                    fmt_num(*dt)
+                );
+            }
+        }
+    }
+    for note in &sol.notes {
+        let _ = writeln!(s, "note: {note}");
+    }
+    if !sol.pairs.is_empty() {
+        let _ = writeln!(s);
+        let _ = writeln!(
+            s,
+            "pairs at p = {}:",
+            sol.p.map(fmt_num).unwrap_or_default()
+        );
+        let _ = writeln!(
+            s,
+            "  {:<8} {:>14} {:>14} {:>14} {:>14}  state",
+            "pair", "x_n", "x_t", "z_n", "z_t"
+        );
+        for p in &sol.pairs {
+            let _ = writeln!(
+                s,
+                "  {:<8} {:>14} {:>14} {:>14} {:>14}  {}",
+                p.name,
+                fmt_num(p.x_n),
+                fmt_num(p.x_t),
+                fmt_num(p.z_n),
+                fmt_num(p.z_t),
+                p.state
+            );
+        }
+    }
+    if let Some(r) = &sol.residual {
+        let _ = writeln!(
+            s,
+            "\nresiduals (relative): equation {:.1e}, feasibility {:.1e}, complementarity {:.1e} — {}",
+            r.equation,
+            r.feasibility,
+            r.complementarity,
+            if r.max() <= unilateral_lcp::ACCEPT_RESIDUAL {
+                "verified"
+            } else {
+                "NOT verified"
+            }
+        );
+    }
+    Ok(s)
+}
+
+/// The human-readable summary of a plain LCP solve.
+pub fn lcp_summary(sol: &LcpSolution, title: &str) -> Result<String, NonFiniteOutput> {
+    finite::lcp_solution(sol)?;
+    let mut s = String::new();
+    let _ = writeln!(s, "{title}");
+    let _ = writeln!(
+        s,
+        "status: {} after {} pivots",
+        sol.status.as_str(),
+        sol.pivots
+    );
+    for a in &sol.attempts {
+        let _ = writeln!(s, "  {a}");
+    }
+    if let Some(p) = &sol.point {
+        let _ = writeln!(s, "  {:>6} {:>16} {:>16}", "i", "z", "w");
+        for (i, (z, w)) in p.z.iter().zip(&p.w).enumerate() {
+            let _ = writeln!(s, "  {:>6} {:>16} {:>16}", i + 1, fmt_num(*z), fmt_num(*w));
+        }
+        let r = &p.residual;
+        let _ = writeln!(
+            s,
+            "residuals (relative): equation {:.1e}, feasibility {:.1e}, complementarity {:.1e} — verified",
+            r.equation, r.feasibility, r.complementarity
+        );
+    }
+    Ok(s)
+}
+
+/// A tableau in the paper's layout, with labels from `label`.
+pub fn tableau_text(
+    t: &Tableau,
+    label: &dyn Fn(unilateral_lcp::Var) -> String,
+) -> Result<String, NonFiniteOutput> {
+    finite::tableaux(std::slice::from_ref(t))?;
+    let mut s = String::new();
+    let _ = writeln!(s, "tableau {}", t.title);
+    let w = 9;
+    let _ = write!(s, "{:<8}", "basis");
+    for c in &t.columns {
+        let mark = if Some(*c) == t.entering { "*" } else { "" };
+        let _ = write!(s, " {:>w$}", format!("{}{mark}", label(*c)));
+    }
+    let _ = writeln!(s, " {:>w$} {:>w$}", "rhs", "min ratio");
+    for (i, b) in t.basis.iter().enumerate() {
+        let mark = if Some(i) == t.leaving_row { "*" } else { " " };
+        let _ = write!(s, "{mark}{:<7}", label(*b));
+        for v in &t.entries[i] {
+            let _ = write!(s, " {:>w$}", short(*v));
+        }
+        let ratio = t.ratios[i].map(short).unwrap_or_default();
+        let _ = writeln!(s, " {:>w$} {:>w$}", short(t.rhs[i]), ratio);
+    }
+    if let Some(e) = t.entering {
+        let _ = write!(s, "leading column: {}", label(e));
+        match t.leaving_row {
+            Some(r) => {
+                let _ = writeln!(s, "; leading row: {}", label(t.basis[r]));
+            }
+            None => {
+                let _ = writeln!(s, "; no positive entry: ray");
+            }
+        }
+    }
+    Ok(s)
+}
+
+fn short(v: f64) -> String {
+    if v.abs() < 1e-12 {
+        "0".into()
+    } else if v.abs() >= 1e-3 && v.abs() < 1e5 {
+        let s = format!("{v:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
+/// The human-readable summary of a structural analysis: the contact summary, then the largest
+/// displacement and internal forces and the equilibrium check.
+pub fn structural_summary(
+    a: &unilateral_analysis::Analysis,
+    title: &str,
+) -> Result<String, NonFiniteOutput> {
+    finite::analysis(a)?;
+    let mut s = contact_summary(&a.solution, title)?;
+    if let (Some(r), Some(ex)) = (&a.results, a.extremes()) {
+        let _ = writeln!(s, "\nstructure at p = {}:", fmt_num(r.p));
+        if let Some(d) = &ex.displacement {
+            let [ux, uy, _] = r.displacements[d.node.0];
+            let _ = writeln!(
+                s,
+                "  largest displacement   {:>12} at node {} (ux = {}, uy = {})",
+                fmt_num(d.value),
+                d.name,
+                fmt_num(ux),
+                fmt_num(uy)
+            );
+        }
+        let line = |label: &str, v: &Option<unilateral_analysis::ElementValue>, s: &mut String| {
+            if let Some(v) = v {
+                let _ = writeln!(
+                    s,
+                    "  {label:<22} {:>12} in element {} at s = {}",
+                    fmt_num(v.value),
+                    v.name,
+                    fmt_num(v.at[0])
+                );
+            }
+        };
+        line("largest |M|", &ex.moment, &mut s);
+        line("largest |N|", &ex.axial, &mut s);
+        line("largest |Q|", &ex.shear, &mut s);
+        if let Some(v) = &ex.von_mises {
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>12} in element {} at ({}, {})",
+                "largest von Mises",
+                fmt_num(v.value),
+                v.name,
+                fmt_num(v.at[0]),
+                fmt_num(v.at[1])
+            );
+        }
+        let e = &r.equilibrium;
+        let _ = writeln!(
+            s,
+            "  equilibrium: applied + reactions + contact + springs = ({}, {}, {}), relative {:.1e}",
+            fmt_num(e.resultant[0]),
+            fmt_num(e.resultant[1]),
+            fmt_num(e.resultant[2]),
+            e.relative()
+        );
+    }
+    Ok(s)
+}
