@@ -14,13 +14,23 @@ pub enum DofLabel {
     Rz,
 }
 
+impl DofLabel {
+    /// The three DOFs of a node, in the order of the node's unknowns.
+    pub const ALL: [DofLabel; 3] = [DofLabel::Ux, DofLabel::Uy, DofLabel::Rz];
+
+    /// The DOF's name in messages, model files and result files: `ux`, `uy`, `rz`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            DofLabel::Ux => "ux",
+            DofLabel::Uy => "uy",
+            DofLabel::Rz => "rz",
+        }
+    }
+}
+
 impl fmt::Display for DofLabel {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            DofLabel::Ux => write!(f, "ux"),
-            DofLabel::Uy => write!(f, "uy"),
-            DofLabel::Rz => write!(f, "rz"),
-        }
+        f.write_str(self.as_str())
     }
 }
 

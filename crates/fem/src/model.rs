@@ -209,6 +209,18 @@ pub enum SupportDof {
     Along([f64; 2]),
 }
 
+impl SupportDof {
+    /// The node DOF this support restrains, `None` for an inclined roller.
+    pub fn label(&self) -> Option<crate::DofLabel> {
+        match self {
+            SupportDof::Ux => Some(crate::DofLabel::Ux),
+            SupportDof::Uy => Some(crate::DofLabel::Uy),
+            SupportDof::Rz => Some(crate::DofLabel::Rz),
+            SupportDof::Along(_) => None,
+        }
+    }
+}
+
 /// The load group a load belongs to (formulation.md §2: `R_F = R_c + p·R_v`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LoadGroup {

@@ -112,7 +112,7 @@ pub(crate) fn analysis(a: &unilateral_analysis::Analysis) -> Result<(), NonFinit
     finite(r.p, || "structure.p".into())?;
     for (i, d) in r.displacements.iter().enumerate() {
         all(d, |k| {
-            format!("nodes[{}].{}", i + 1, ["ux", "uy", "rz"][k - 1])
+            format!("nodes[{}].{}", i + 1, unilateral_fem::DofLabel::ALL[k - 1])
         })?;
     }
     for (i, x) in r.reactions.iter().enumerate() {

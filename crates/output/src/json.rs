@@ -142,12 +142,12 @@ pub fn tableaux_json(
     ))
 }
 
+/// The name of a restrained DOF in result files: `ux`, `uy`, `rz` or `along(nx, ny)`.
 pub(crate) fn dof_name(d: &unilateral_fem::SupportDof) -> String {
-    match d {
-        unilateral_fem::SupportDof::Ux => "ux".into(),
-        unilateral_fem::SupportDof::Uy => "uy".into(),
-        unilateral_fem::SupportDof::Rz => "rz".into(),
-        unilateral_fem::SupportDof::Along(v) => format!("along({}, {})", v[0], v[1]),
+    match (d.label(), d) {
+        (Some(l), _) => l.as_str().into(),
+        (None, unilateral_fem::SupportDof::Along(v)) => format!("along({}, {})", v[0], v[1]),
+        (None, _) => String::new(),
     }
 }
 

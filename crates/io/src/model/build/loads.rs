@@ -226,10 +226,6 @@ impl Builder<'_> {
 }
 
 fn dof_word(d: SupportDof) -> &'static str {
-    match d {
-        SupportDof::Ux => "ux",
-        SupportDof::Uy => "uy",
-        SupportDof::Rz => "rz",
-        SupportDof::Along(_) => "inclined",
-    }
+    d.label()
+        .map_or("inclined", unilateral_fem::DofLabel::as_str)
 }
