@@ -254,22 +254,12 @@ pub struct Analysis {
     pub solution: unilateral_contact::ContactSolution,
     /// Full results at the reported load (`None` when the path reports no solution).
     pub results: Option<Results>,
-    /// Names used in messages.
-    pub names: Names,
 }
 
 /// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
 /// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
-    analyze_named(model, settings, model.names())
-}
-
-/// Runs the analysis of a model with other names for its nodes and elements than its own.
-pub fn analyze_named(
-    model: &Model,
-    settings: &SolveSettings,
-    names: &Names,
-) -> Result<Analysis, AnalysisError> {
+    let names = model.names();
     settings.validate()?;
     let m = model.pairs().len();
     unilateral_fem::check_memory(&format!("{m} contact pairs"), analysis_bytes(m))
@@ -299,7 +289,6 @@ pub fn analyze_named(
         zone,
         solution,
         results: None,
-        names: names.clone(),
     };
     if let Some(p) = a.solution.p {
         let r = a.recover(p, &a.solution.pairs)?;
@@ -401,6 +390,11 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
 }
 
 impl Analysis {
+    /// The names of the model's nodes, elements and pairs (the model's own, [`Model::names`]).
+    pub fn names(&self) -> &Names {
+        self.condensed.model().names()
+    }
+
     /// The load of the reported solution.
     pub fn p(&self) -> Option<f64> {
         self.solution.p
@@ -457,7 +451,7 @@ impl Analysis {
 
     /// Extremes of the results at the reported load.
     pub fn extremes(&self) -> Option<Extremes> {
-        self.results.as_ref().map(|r| extremes(r, &self.names))
+        self.results.as_ref().map(|r| extremes(r, self.names()))
     }
 }
 

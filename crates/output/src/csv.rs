@@ -73,7 +73,7 @@ pub fn write_structural_csv(
     let Some(r) = &a.results else {
         return Ok(files);
     };
-    let names = &a.names;
+    let names = a.names();
     let mut t = String::from("node,ux,uy,rz\n");
     for (i, d) in r.displacements.iter().enumerate() {
         let _ = writeln!(

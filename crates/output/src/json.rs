@@ -159,7 +159,7 @@ pub fn structural_json(a: &unilateral_analysis::Analysis) -> Result<Value, NonFi
     let Some(r) = &a.results else {
         return Ok(doc);
     };
-    let names = &a.names;
+    let names = a.names();
     let nodes: Vec<Value> = r
         .displacements
         .iter()

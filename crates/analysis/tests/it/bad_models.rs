@@ -4,7 +4,7 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 
-use unilateral_analysis::{analyze_named, AnalysisError};
+use unilateral_analysis::{analyze, AnalysisError};
 use unilateral_io::read_model;
 
 #[test]
@@ -22,10 +22,7 @@ fn analysis_time_errors_name_the_nodes() {
         }
         count += 1;
         let p = read_model(&dir.join(cols[0])).unwrap();
-        let names = p.model.names().clone();
-        let r = catch_unwind(AssertUnwindSafe(|| {
-            analyze_named(&p.model, &p.settings, &names)
-        }));
+        let r = catch_unwind(AssertUnwindSafe(|| analyze(&p.model, &p.settings)));
         let Ok(r) = r else {
             panic!("{}: panicked", cols[0])
         };

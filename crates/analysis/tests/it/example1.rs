@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use unilateral_analysis::{analyze_named, Names, Outcome, PairState};
+use unilateral_analysis::{analyze, Outcome, PairState};
 use unilateral_contact::EventKind;
 use unilateral_io::{read_problem, Problem, StructuralProblem};
 use unilateral_oracle::fixtures::example1 as ex1;
@@ -22,10 +22,6 @@ fn read(name: &str) -> StructuralProblem {
     }
 }
 
-fn names(p: &StructuralProblem) -> Names {
-    p.model.names().clone()
-}
-
 #[test]
 fn example1_structural_reproduces_the_paper() {
     let p = read("example1-beam.toml");
@@ -33,7 +29,7 @@ fn example1_structural_reproduces_the_paper() {
         p.model.names().pairs,
         ["support.1", "support.2", "support.3"]
     );
-    let a = analyze_named(&p.model, &p.settings, &names(&p)).unwrap();
+    let a = analyze(&p.model, &p.settings).unwrap();
 
     // The condensed matrices are the paper's.
     let (rnn, rtt) = (ex1::RNN, ex1::RTT);

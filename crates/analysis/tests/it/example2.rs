@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use unilateral_analysis::{analyze_named, Outcome, PairState};
+use unilateral_analysis::{analyze, Outcome, PairState};
 use unilateral_contact::EventKind;
 use unilateral_io::{read_model, StructuralProblem};
 
@@ -52,8 +52,7 @@ fn example2_release_table() {
     println!("   n        u_tip (m)      rel. error (%)   discrete exact rel. diff");
     for n in [5usize, 10, 20, 40, 80, 160] {
         let p = model(n, dir.path());
-        let names = p.model.names().clone();
-        let a = analyze_named(&p.model, &p.settings, &names).unwrap();
+        let a = analyze(&p.model, &p.settings).unwrap();
         assert_eq!(a.solution.outcome, Outcome::TargetReached);
         let r = a.results.as_ref().unwrap();
         let tip = p.model.names().node_id("bar.end").unwrap();

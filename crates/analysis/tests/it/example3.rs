@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use unilateral_analysis::{analyze_named, Analysis, Outcome, PairState};
+use unilateral_analysis::{analyze, Analysis, Outcome, PairState};
 use unilateral_io::{read_model, StructuralProblem};
 
 fn problem() -> StructuralProblem {
@@ -14,8 +14,7 @@ fn problem() -> StructuralProblem {
 }
 
 fn run(p: &StructuralProblem) -> Analysis {
-    let names = p.model.names().clone();
-    analyze_named(&p.model, &p.settings, &names).unwrap()
+    analyze(&p.model, &p.settings).unwrap()
 }
 
 #[test]

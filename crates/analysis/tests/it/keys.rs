@@ -10,7 +10,7 @@
 
 use std::path::{Path, PathBuf};
 
-use unilateral_analysis::{analyze_named, Analysis, Outcome, PairState};
+use unilateral_analysis::{analyze, Analysis, Outcome, PairState};
 use unilateral_contact::{EventKind, PairResult};
 use unilateral_fem::{Element, SupportDof};
 use unilateral_io::{read_problem, Problem, StructuralProblem};
@@ -50,9 +50,7 @@ fn run_edited(path: &Path, edit: impl FnOnce(&mut toml::Table)) -> (StructuralPr
         Ok(Problem::ContactZone(_)) => panic!("{} is not a structural model", path.display()),
         Err(e) => panic!("{}: {e}", path.display()),
     };
-    let names = p.model.names().clone();
-    let a = analyze_named(&p.model, &p.settings, &names)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     (p, a)
 }
 
@@ -323,8 +321,7 @@ fn a_json_model_is_the_toml_model() {
     let Problem::Structural(p) = read_problem(&file).unwrap() else {
         panic!("not a structural model")
     };
-    let names = p.model.names().clone();
-    check_slider(&analyze_named(&p.model, &p.settings, &names).unwrap());
+    check_slider(&analyze(&p.model, &p.settings).unwrap());
 }
 
 fn check_slider(a: &Analysis) {

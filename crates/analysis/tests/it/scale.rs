@@ -32,7 +32,7 @@
 
 use std::path::{Path, PathBuf};
 
-use unilateral_analysis::{analyze_named, Analysis, Outcome};
+use unilateral_analysis::{analyze, Analysis, Outcome};
 use unilateral_fem::SupportDof;
 use unilateral_io::{read_problem, Problem, StructuralProblem};
 
@@ -81,8 +81,7 @@ fn analyse(name: &str, doc: &toml::Table) -> Result<(StructuralProblem, Analysis
         Ok(Problem::ContactZone(_)) => return Err("not a structural model".into()),
         Err(e) => return Err(format!("read: {e}")),
     };
-    let names = p.model.names().clone();
-    let a = analyze_named(&p.model, &p.settings, &names).map_err(|e| e.to_string())?;
+    let a = analyze(&p.model, &p.settings).map_err(|e| e.to_string())?;
     Ok((p, a))
 }
 

@@ -93,8 +93,7 @@ fn structural(
         problem.model.names().elements.len(),
         problem.model.names().pairs.len()
     ));
-    let names = problem.model.names().clone();
-    let a = unilateral_analysis::analyze_named(&problem.model, &problem.settings, &names)
+    let a = unilateral_analysis::analyze(&problem.model, &problem.settings)
         .map_err(|e| analysis_failure(file, &e))?;
     progress.say(&format!(
         "done: {} steps of the load path, {:.2} s",

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use unilateral_analysis::analyze_named;
+use unilateral_analysis::analyze;
 use unilateral_io::Problem;
 use unilateral_output::{write_path_report, write_report, write_report_for, ReportOptions};
 
@@ -185,8 +185,7 @@ fn run_structural(file: &str, name: &str, options: &ReportOptions) {
     else {
         panic!("{file} is a structural model");
     };
-    let names = pb.model.names().clone();
-    let a = analyze_named(&pb.model, &pb.settings, &names).unwrap();
+    let a = analyze(&pb.model, &pb.settings).unwrap();
     let (_keep, dir) = out_dir(name);
     let mut opt = options.clone();
     opt.title = pb.title.clone();

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use unilateral_analysis::{analyze_named, Analysis};
+use unilateral_analysis::{analyze, Analysis};
 use unilateral_fem::{Element, Endpoint, Model};
 use unilateral_io::{read_problem, Problem};
 use unilateral_output::{write_vtk_for, PVD_FILE};
@@ -19,8 +19,7 @@ fn analyse(name: &str) -> (Model, Analysis) {
     let Problem::Structural(problem) = read_problem(&example(name)).unwrap() else {
         panic!("{name} is not a structural model");
     };
-    let names = problem.model.names().clone();
-    let a = analyze_named(&problem.model, &problem.settings, &names).unwrap();
+    let a = analyze(&problem.model, &problem.settings).unwrap();
     (problem.model, a)
 }
 
