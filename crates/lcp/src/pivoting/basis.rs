@@ -9,6 +9,7 @@
 
 use faer::linalg::solvers::DenseSolveCore;
 use faer::Mat;
+use rayon::prelude::*;
 
 use crate::pivoting::columns::Columns;
 use crate::pivoting::kernel::{dot, KernelInverse};
@@ -193,15 +194,14 @@ impl Basis {
             }
         }
         // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y. This pass streams k
-        // columns of M and dominates a pivot: split the rows over two threads when it is large.
+        // columns of M and dominates a pivot: blocks of rows on the thread pool when it is
+        // large (each row's sum is the same whatever the number of threads).
         let tmp = &mut tmp[..n];
         if n * zcols.len() >= 1 << 18 && n >= 64 {
-            let half = n / 2;
-            let (lo, hi) = tmp.split_at_mut(half);
-            std::thread::scope(|sc| {
-                sc.spawn(|| add_columns(cols, &zcols, lo, 0));
-                add_columns(cols, &zcols, hi, half);
-            });
+            const ROWS: usize = 256;
+            tmp.par_chunks_mut(ROWS)
+                .enumerate()
+                .for_each(|(i, rows)| add_columns(cols, &zcols, rows, i * ROWS));
         } else {
             add_columns(cols, &zcols, tmp, 0);
         }

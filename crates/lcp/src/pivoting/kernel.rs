@@ -1,6 +1,8 @@
 //! The inverse of the basis kernel `K = A[R, S]`, stored column-major with spare capacity so that
 //! every update is a sequence of contiguous `axpy`s.
 
+use rayon::prelude::*;
+
 /// `G = K⁻¹`: rows follow the basic non-slack columns `S`, columns the rows `R`.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct KernelInverse {
@@ -13,8 +15,12 @@ pub(crate) struct KernelInverse {
     gmax: f64,
 }
 
-/// Kernel order from which the `O(k²)` passes use both cores.
+/// Kernel order from which the `O(k²)` passes run on the thread pool (rayon's, one thread per
+/// core of the machine).
 const PARALLEL_K: usize = 384;
+
+/// Columns per task of the parallel passes.
+pub(crate) const PARALLEL_BLOCK: usize = 64;
 
 #[inline]
 pub(crate) fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
@@ -104,12 +110,12 @@ impl KernelInverse {
         if k < PARALLEL_K {
             return sum(0..k);
         }
-        // Two halves of the columns on the two cores, then one addition.
+        // Two halves of the columns as two tasks of the thread pool, then one addition: the
+        // association of the sums is fixed, so the result does not depend on the number of
+        // threads. (Summing in more blocks changes the round-off, and the 1000-support beam's
+        // path is sensitive to it: see docs/engine.md.)
         let half = k / 2;
-        let (mut y, y2) = std::thread::scope(|sc| {
-            let other = sc.spawn(|| sum(half..k));
-            (sum(0..half), other.join().expect("kernel solve thread"))
-        });
+        let (mut y, y2) = rayon::join(|| sum(0..half), || sum(half..k));
         axpy(&mut y, 1.0, &y2);
         y
     }
@@ -135,27 +141,22 @@ impl KernelInverse {
         self.grow(k + 1);
         let ld = self.ld;
         let f: Vec<f64> = ut.iter().map(|u| u / sigma).collect();
-        // Columns are independent: update them in two halves on the two cores.
-        let update = |cols: &mut [f64]| -> f64 {
-            let mut new_row = 0.0f64;
-            for col in cols.chunks_mut(ld) {
-                let col = &mut col[..k + 1];
-                let vb = dot(v, &col[..k]);
-                axpy(&mut col[..k], vb, &f);
-                col[k] = -vb / sigma;
-                new_row = new_row.max(col[k].abs());
-            }
-            new_row
+        // Columns are independent: update them on the machine's thread pool.
+        let update = |col: &mut [f64]| -> f64 {
+            let col = &mut col[..k + 1];
+            let vb = dot(v, &col[..k]);
+            axpy(&mut col[..k], vb, &f);
+            col[k] = -vb / sigma;
+            col[k].abs()
         };
         let old = &mut self.data[..k * ld];
         let new_row = if k < PARALLEL_K {
-            update(old)
+            old.chunks_mut(ld).map(update).fold(0.0f64, f64::max)
         } else {
-            let (a, b) = old.split_at_mut((k / 2) * ld);
-            std::thread::scope(|sc| {
-                let other = sc.spawn(|| update(b));
-                update(a).max(other.join().expect("kernel update thread"))
-            })
+            old.par_chunks_mut(ld)
+                .with_min_len(PARALLEL_BLOCK)
+                .map(update)
+                .reduce(|| 0.0f64, f64::max)
         };
         let col = &mut self.data[k * ld..k * ld + k + 1];
         for (c, fa) in col.iter_mut().zip(&f) {
