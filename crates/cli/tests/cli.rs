@@ -713,3 +713,28 @@ fn the_json_is_written_after_the_other_outputs() {
     assert_eq!(out.code, 2, "{}", out.stderr);
     assert_eq!(cmd.json("out.json")["status"], "ray");
 }
+
+/// A command line refused (a pair name that the model does not have, `--vtk` for a contact
+/// zone) is refused before the solve: exit 2, nothing on stdout, no file written.
+#[test]
+fn a_bad_command_line_writes_nothing() {
+    for (file, bad) in [
+        (
+            root().join("examples/example1-beam.toml"),
+            ["--report", "r", "--report-pairs", "nosuch"],
+        ),
+        (example1(), ["--report", "r", "--report-pairs", "nosuch"]),
+        (example1(), ["--vtk", "v", "--report", "r"]),
+    ] {
+        let cmd = TestCommand::new(&["solve"])
+            .arg(&file)
+            .args(&bad)
+            .args(&["--json", "out.json", "--csv", "t"]);
+        let out = cmd.run();
+        assert_eq!(out.code, 2, "{bad:?}: {}", out.stderr);
+        assert!(out.stdout.is_empty(), "{bad:?}: {}", out.stdout);
+        for f in ["out.json", "t", "r", "v"] {
+            assert!(!cmd.path(f).exists(), "{bad:?}: {f} written");
+        }
+    }
+}

@@ -4,8 +4,8 @@
 //! The outputs are written in this order: the summary (stdout; it ends with the timings known
 //! by then), the CSV tables, the ParaView files, the report, and the JSON document last, so
 //! that its `timings.write` can cover the time spent writing all the others (the JSON cannot
-//! contain the time of writing itself). The command line is checked before anything is
-//! written.
+//! contain the time of writing itself). The command line is checked before the solve, so a
+//! bad one costs no work and writes nothing.
 
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -79,6 +79,9 @@ fn contact_zone(
             "--vtk needs a structural model: a contact-zone problem has no mesh".into(),
         ));
     }
+    if args.report.is_some() {
+        args.report_args.check(&problem.zone.pair_names)?;
+    }
     let started = Instant::now();
     let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
         .map_err(|e| contact_failure(file, &e, ZoneOrigin::File))?;
@@ -87,9 +90,6 @@ fn contact_zone(
         solve: Some(started.elapsed()),
         ..Timings::default()
     };
-    if args.report.is_some() {
-        args.report_args.check(&sol.pairs)?;
-    }
     let title = format!(
         "unilateral {} — {} (contact zone, {} pairs)",
         env!("CARGO_PKG_VERSION"),
@@ -125,6 +125,12 @@ fn structural(
 ) -> Result<(), Failure> {
     let file = &args.file;
     overrides.apply(&mut problem.settings)?;
+    if args.report.is_some() {
+        let pairs: Vec<String> = (0..problem.model.pairs().len())
+            .map(|i| problem.model.pair_name(i))
+            .collect();
+        args.report_args.check(&pairs)?;
+    }
     let progress = Progress::new();
     progress.say(&format!(
         "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
@@ -144,9 +150,6 @@ fn structural(
         read: Some(read),
         ..a.timings
     };
-    if args.report.is_some() {
-        args.report_args.check(&a.solution.pairs)?;
-    }
     let title = format!(
         "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs)",
         env!("CARGO_PKG_VERSION"),
