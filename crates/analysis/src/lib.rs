@@ -11,12 +11,15 @@
 //!    and check the equilibrium of the whole structure.
 //!
 //! Results at other loads of the path (for instance at every event, for pictures) come from
-//! [`Analysis::results_at`].
+//! [`Analysis::results_at`]. The wall-clock time of each of the three steps is kept in
+//! [`Analysis::timings`].
 //!
 //! Errors and extremes name nodes and elements by the model's names (as a model file gives
 //! them, [`Model::names`]).
 
 #![warn(missing_docs)]
+
+use std::time::{Duration, Instant};
 
 use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
 use unilateral_fem::{
@@ -214,6 +217,47 @@ pub struct Extremes {
     pub min_principal: Option<ElementValue>,
 }
 
+/// The wall-clock time of the parts of a run, each `None` where that part did not happen.
+///
+/// [`analyze`] fills `condense`, `solve` and `recover` (`recover` only when the path reports a
+/// solution to recover); a front end adds the time it spends reading the input (`read`) and
+/// writing the outputs (`write`). The parts never overlap, so their sum is at most the
+/// wall-clock time of the whole run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Timings {
+    /// Reading the input file and building the problem from it.
+    pub read: Option<Duration>,
+    /// Checking the model and condensing it to the contact zone handed to the solver.
+    pub condense: Option<Duration>,
+    /// Following the load path (or solving the plain LCP).
+    pub solve: Option<Duration>,
+    /// Recovering the structural results at the reported load and checking their equilibrium.
+    pub recover: Option<Duration>,
+    /// Writing outputs (what exactly is the front end's to say).
+    pub write: Option<Duration>,
+}
+
+impl Timings {
+    /// The parts in the order of a run, with their names (`read`, `condense`, `solve`,
+    /// `recover`, `write`): the one list that writers of the timings go through.
+    pub fn parts(&self) -> [(&'static str, Option<Duration>); 5] {
+        [
+            ("read", self.read),
+            ("condense", self.condense),
+            ("solve", self.solve),
+            ("recover", self.recover),
+            ("write", self.write),
+        ]
+    }
+
+    /// The parts that happened, in the order of [`Timings::parts`].
+    pub fn present(&self) -> impl Iterator<Item = (&'static str, Duration)> {
+        self.parts()
+            .into_iter()
+            .filter_map(|(name, d)| d.map(|d| (name, d)))
+    }
+}
+
 /// A finished analysis: the condensed model, the contact solution along the load path, and
 /// the full results at the reported load.
 ///
@@ -254,11 +298,15 @@ pub struct Analysis {
     pub solution: unilateral_contact::ContactSolution,
     /// Full results at the reported load (`None` when the path reports no solution).
     pub results: Option<Results>,
+    /// The wall-clock time of the condensation, the solve and the recovery (`read` and
+    /// `write` are `None`: the analysis neither reads nor writes files).
+    pub timings: Timings,
 }
 
 /// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
 /// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
+    let started = Instant::now();
     let names = model.names();
     settings.validate()?;
     let m = model.pairs().len();
@@ -272,6 +320,8 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
         what: "the contact zone condensed from the model was refused".into(),
         message: e.to_string(),
     })?;
+    let condense = started.elapsed();
+    let started = Instant::now();
     let solution = unilateral_contact::solve(&zone, settings).map_err(|e| match e {
         ContactError::Settings(_) => AnalysisError::Contact(e),
         other => AnalysisError::Internal {
@@ -279,6 +329,7 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
             message: other.to_string(),
         },
     })?;
+    let solve = started.elapsed();
     if solution.outcome == Outcome::NoSolutionAtStart {
         if let Some(e) = pulled_apart(&condensed) {
             return Err(e);
@@ -289,10 +340,17 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
         zone,
         solution,
         results: None,
+        timings: Timings {
+            condense: Some(condense),
+            solve: Some(solve),
+            ..Timings::default()
+        },
     };
     if let Some(p) = a.solution.p {
+        let started = Instant::now();
         let r = a.recover(p, &a.solution.pairs)?;
         a.results = Some(r);
+        a.timings.recover = Some(started.elapsed());
     }
     Ok(a)
 }

@@ -48,11 +48,12 @@ pub(crate) struct ReportArgs {
 }
 
 impl ReportArgs {
-    /// Every name given to `--report-pairs` must be a pair of the problem.
-    pub(crate) fn check(&self, pairs: &[unilateral_contact::PairResult]) -> Result<(), Failure> {
+    /// Every name given to `--report-pairs` must be a pair of the problem (`pairs`: the names
+    /// of its pairs, known before the solve, so that a bad name is refused before any work).
+    pub(crate) fn check(&self, pairs: &[String]) -> Result<(), Failure> {
         for name in self.report_pairs.iter().flatten() {
-            if !pairs.iter().any(|p| &p.name == name) {
-                let known: Vec<&str> = pairs.iter().take(12).map(|p| p.name.as_str()).collect();
+            if !pairs.iter().any(|p| p == name) {
+                let known: Vec<&str> = pairs.iter().take(12).map(String::as_str).collect();
                 return Err(Failure::Input(format!(
                     "--report-pairs: no pair named '{name}'; the pairs are {}{}",
                     known.join(", "),

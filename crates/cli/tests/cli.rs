@@ -562,3 +562,179 @@ fn vtk_writes_a_collection_over_the_load_path() {
     );
     assert!(cmd.path("vtk/mesh_000.vtu").is_file() && cmd.path("vtk/pairs_000.vtu").is_file());
 }
+
+/// The `timings` of a result document: every key in `present` is a number ≥ 0 (JSON has no
+/// non-finite numbers: `as_f64` fails on anything else), every key in `absent` is missing, no
+/// other key is there, and the parts add up to no more than `wall`, the wall-clock time the test
+/// measured around the whole process (the parts do not overlap and all lie inside it).
+fn check_timings(j: &Value, present: &[&str], absent: &[&str], wall: f64, what: &str) {
+    let t = j["timings"]
+        .as_object()
+        .unwrap_or_else(|| panic!("{what}: no timings object"));
+    let mut sum = 0.0;
+    for k in present {
+        let s = t
+            .get(*k)
+            .and_then(Value::as_f64)
+            .unwrap_or_else(|| panic!("{what}: timings.{k} missing: {t:?}"));
+        assert!(s.is_finite() && s >= 0.0, "{what}: timings.{k} = {s}");
+        sum += s;
+    }
+    for k in absent {
+        assert!(!t.contains_key(*k), "{what}: timings.{k} present: {t:?}");
+    }
+    assert_eq!(t.len(), present.len(), "{what}: {t:?}");
+    assert!(
+        sum <= wall,
+        "{what}: parts {sum} s > the process's {wall} s"
+    );
+}
+
+/// `run` and the wall-clock seconds around it.
+fn timed(cmd: &TestCommand) -> (Output, f64) {
+    let start = std::time::Instant::now();
+    let out = cmd.run();
+    (out, start.elapsed().as_secs_f64())
+}
+
+/// The last line of the summary: `time: ` and the parts done by then, in the order of a run.
+fn time_line(stdout: &str) -> &str {
+    let last = stdout.lines().last().unwrap_or_default();
+    assert!(last.starts_with("time: read "), "{stdout}");
+    last
+}
+
+#[test]
+fn results_carry_the_timings_of_the_parts_that_happened() {
+    // A structural model: all five parts, `write` covering the summary and the CSV tables.
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .args(&["--json", "out.json", "--csv", "tables"]);
+    let (out, wall) = timed(&cmd);
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let all = ["read", "condense", "solve", "recover", "write"];
+    check_timings(&cmd.json("out.json"), &all, &[], wall, "structural");
+    let line = time_line(&out.stdout);
+    let shape: String = line
+        .chars()
+        .filter(|c| !c.is_ascii_digit() && *c != '.')
+        .collect();
+    assert_eq!(
+        shape, "time: read  s, condense  s, solve  s, recover  s",
+        "{line}"
+    );
+
+    // A contact zone: nothing to condense or recover.
+    let cmd = TestCommand::new(&["solve"])
+        .arg(example1())
+        .args(&["--json", "out.json"]);
+    let (out, wall) = timed(&cmd);
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let zone = ["read", "solve", "write"];
+    check_timings(
+        &cmd.json("out.json"),
+        &zone,
+        &["condense", "recover"],
+        wall,
+        "zone",
+    );
+    assert!(
+        time_line(&out.stdout).contains(", solve "),
+        "{}",
+        out.stdout
+    );
+
+    // The JSON on stdout and nothing else: nothing is written before it, so no `write`.
+    let cmd = TestCommand::new(&["solve"])
+        .arg(example1())
+        .args(&["--json", "-"]);
+    let (out, wall) = timed(&cmd);
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j: Value = serde_json::from_str(&out.stdout).expect("JSON on stdout");
+    check_timings(
+        &j,
+        &["read", "solve"],
+        &["condense", "recover", "write"],
+        wall,
+        "stdout",
+    );
+
+    // A plain LCP.
+    let cmd = TestCommand::new(&["lcp"])
+        .arg(siconos("lcp").join("lcp_CPS_3.dat"))
+        .args(&["--json", "out.json"]);
+    let (out, wall) = timed(&cmd);
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    check_timings(
+        &cmd.json("out.json"),
+        &zone,
+        &["condense", "recover"],
+        wall,
+        "lcp",
+    );
+    assert!(
+        time_line(&out.stdout).contains(", solve "),
+        "{}",
+        out.stdout
+    );
+}
+
+/// The JSON is written last, after the report: its `write` covers the report (and the JSON is
+/// still written when the report cannot be: here its directory would be inside a file).
+#[test]
+fn the_json_is_written_after_the_other_outputs() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(example1())
+        .args(&["--json", "out.json", "--report", "rep"]);
+    let (out, wall) = timed(&cmd);
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let json_time = std::fs::metadata(cmd.path("out.json"))
+        .unwrap()
+        .modified()
+        .unwrap();
+    let html_time = std::fs::metadata(cmd.path("rep/report.html"))
+        .unwrap()
+        .modified()
+        .unwrap();
+    assert!(json_time >= html_time);
+    check_timings(
+        &cmd.json("out.json"),
+        &["read", "solve", "write"],
+        &[],
+        wall,
+        "report",
+    );
+
+    let cmd = TestCommand::new(&["solve"])
+        .arg(example1())
+        .args(&["--json", "out.json", "--report", "file/rep"]);
+    std::fs::write(cmd.path("file"), "").unwrap();
+    let out = cmd.run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert_eq!(cmd.json("out.json")["status"], "ray");
+}
+
+/// A command line refused (a pair name that the model does not have, `--vtk` for a contact
+/// zone) is refused before the solve: exit 2, nothing on stdout, no file written.
+#[test]
+fn a_bad_command_line_writes_nothing() {
+    for (file, bad) in [
+        (
+            root().join("examples/example1-beam.toml"),
+            ["--report", "r", "--report-pairs", "nosuch"],
+        ),
+        (example1(), ["--report", "r", "--report-pairs", "nosuch"]),
+        (example1(), ["--vtk", "v", "--report", "r"]),
+    ] {
+        let cmd = TestCommand::new(&["solve"])
+            .arg(&file)
+            .args(&bad)
+            .args(&["--json", "out.json", "--csv", "t"]);
+        let out = cmd.run();
+        assert_eq!(out.code, 2, "{bad:?}: {}", out.stderr);
+        assert!(out.stdout.is_empty(), "{bad:?}: {}", out.stdout);
+        for f in ["out.json", "t", "r", "v"] {
+            assert!(!cmd.path(f).exists(), "{bad:?}: {f} written");
+        }
+    }
+}

@@ -8,3 +8,4 @@ mod example3;
 mod fixes;
 mod keys;
 mod scale;
+mod timings;

@@ -1,14 +1,23 @@
 //! `unilateral solve FILE`: follow the load path of a contact-zone problem or a structural
 //! model, print the summary and write the files asked for.
+//!
+//! The outputs are written in this order: the summary (stdout; it ends with the timings known
+//! by then), the CSV tables, the ParaView files, the report, and the JSON document last, so
+//! that its `timings.write` can cover the time spent writing all the others (the JSON cannot
+//! contain the time of writing itself). The command line is checked before the solve, so a
+//! bad one costs no work and writes nothing.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use unilateral_analysis::Timings;
 
 use crate::args::{Overrides, SolveArgs};
 use crate::failure::{
     analysis_failure, contact_failure, input_failure, outcome_failure, report_failure, Failure,
     ZoneOrigin,
 };
-use crate::output::{report_files, write_json, Progress};
+use crate::output::{report_files, timings_summary, with_timings, write_json, Progress};
 
 pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
     let overrides = Overrides {
@@ -16,41 +25,71 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
         trace: args.trace,
         tightening: args.tightening,
     };
-    match unilateral_io::read_problem(&args.file).map_err(input_failure)? {
-        unilateral_io::Problem::ContactZone(problem) => contact_zone(&args, &overrides, problem),
-        unilateral_io::Problem::Structural(problem) => structural(&args, &overrides, problem),
+    let started = Instant::now();
+    let problem = unilateral_io::read_problem(&args.file).map_err(input_failure)?;
+    let read = started.elapsed();
+    match problem {
+        unilateral_io::Problem::ContactZone(problem) => {
+            contact_zone(&args, &overrides, problem, read)
+        }
+        unilateral_io::Problem::Structural(problem) => structural(&args, &overrides, problem, read),
     }
 }
 
-/// The summary on stdout (unless the JSON goes there), the JSON document and the CSV tables:
-/// the step every kind of problem shares.
+/// The step every kind of problem shares: the summary on stdout (unless the JSON goes there)
+/// with the timings so far, the other files (`files`: CSV, ParaView, report), then the JSON
+/// document with `timings.write` = the time spent on all of these (present only when something
+/// was written before the JSON). The JSON is written even when writing the other files failed;
+/// the first failure is the one returned.
 fn write_outputs(
     args: &SolveArgs,
+    mut timings: Timings,
     summary: impl FnOnce() -> Result<String, unilateral_output::NonFiniteOutput>,
     json: impl FnOnce() -> Result<serde_json::Value, unilateral_output::NonFiniteOutput>,
-    csv: impl FnOnce(&Path) -> std::io::Result<Vec<PathBuf>>,
+    files: impl FnOnce() -> Result<(), Failure>,
 ) -> Result<(), Failure> {
-    if args.json.as_deref() != Some(Path::new("-")) {
-        print!("{}", summary()?);
+    let started = Instant::now();
+    let to_stdout = args.json.as_deref() == Some(Path::new("-"));
+    if !to_stdout {
+        print!("{}{}", summary()?, timings_summary(&timings));
     }
-    if let Some(out) = &args.json {
-        write_json(out, &json()?)?;
+    let written = files();
+    if !to_stdout || args.csv.is_some() || args.vtk.is_some() || args.report.is_some() {
+        timings.write = Some(started.elapsed());
     }
-    if let Some(dir) = &args.csv {
-        report_files(csv(dir), dir)?;
-    }
-    Ok(())
+    let json_written = match &args.json {
+        Some(out) => json()
+            .map_err(Failure::from)
+            .and_then(|doc| write_json(out, &with_timings(doc, &timings))),
+        None => Ok(()),
+    };
+    written.and(json_written)
 }
 
 fn contact_zone(
     args: &SolveArgs,
     overrides: &Overrides,
     mut problem: unilateral_io::ContactZoneProblem,
+    read: Duration,
 ) -> Result<(), Failure> {
     let file = &args.file;
     overrides.apply(&mut problem.settings)?;
+    if args.vtk.is_some() {
+        return Err(Failure::Input(
+            "--vtk needs a structural model: a contact-zone problem has no mesh".into(),
+        ));
+    }
+    if args.report.is_some() {
+        args.report_args.check(&problem.zone.pair_names)?;
+    }
+    let started = Instant::now();
     let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
         .map_err(|e| contact_failure(file, &e, ZoneOrigin::File))?;
+    let timings = Timings {
+        read: Some(read),
+        solve: Some(started.elapsed()),
+        ..Timings::default()
+    };
     let title = format!(
         "unilateral {} — {} (contact zone, {} pairs)",
         env!("CARGO_PKG_VERSION"),
@@ -59,22 +98,22 @@ fn contact_zone(
     );
     write_outputs(
         args,
+        timings,
         || unilateral_output::contact_summary(&sol, &title),
         || unilateral_output::contact_json(&sol),
-        |dir| unilateral_output::write_contact_csv(&sol, dir),
+        || {
+            if let Some(dir) = &args.csv {
+                report_files(unilateral_output::write_contact_csv(&sol, dir), dir)?;
+            }
+            if let Some(dir) = &args.report {
+                let options = args.report_args.options(None);
+                let files = unilateral_output::write_path_report(&sol, dir, &options)
+                    .map_err(|e| report_failure(&e))?;
+                report_files(Ok(files), dir)?;
+            }
+            Ok(())
+        },
     )?;
-    if args.vtk.is_some() {
-        return Err(Failure::Input(
-            "--vtk needs a structural model: a contact-zone problem has no mesh".into(),
-        ));
-    }
-    if let Some(dir) = &args.report {
-        args.report_args.check(&sol.pairs)?;
-        let files =
-            unilateral_output::write_path_report(&sol, dir, &args.report_args.options(None))
-                .map_err(|e| report_failure(&e))?;
-        report_files(Ok(files), dir)?;
-    }
     outcome_failure(file, &sol).map_or(Ok(()), Err)
 }
 
@@ -82,9 +121,16 @@ fn structural(
     args: &SolveArgs,
     overrides: &Overrides,
     mut problem: unilateral_io::StructuralProblem,
+    read: Duration,
 ) -> Result<(), Failure> {
     let file = &args.file;
     overrides.apply(&mut problem.settings)?;
+    if args.report.is_some() {
+        let pairs: Vec<String> = (0..problem.model.pairs().len())
+            .map(|i| problem.model.pair_name(i))
+            .collect();
+        args.report_args.check(&pairs)?;
+    }
     let progress = Progress::new();
     progress.say(&format!(
         "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
@@ -100,6 +146,10 @@ fn structural(
         a.solution.steps.len(),
         progress.elapsed()
     ));
+    let timings = Timings {
+        read: Some(read),
+        ..a.timings
+    };
     let title = format!(
         "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs)",
         env!("CARGO_PKG_VERSION"),
@@ -115,19 +165,24 @@ fn structural(
     );
     write_outputs(
         args,
+        timings,
         || unilateral_output::structural_summary(&a, &title),
         || unilateral_output::structural_json(&a),
-        |dir| unilateral_output::write_structural_csv(&a, dir),
+        || {
+            if let Some(dir) = &args.csv {
+                report_files(unilateral_output::write_structural_csv(&a, dir), dir)?;
+            }
+            if let Some(dir) = &args.vtk {
+                report_files(unilateral_output::write_vtk(&a, dir), dir)?;
+            }
+            if let Some(dir) = &args.report {
+                let options = args.report_args.options(problem.title.clone());
+                let files = unilateral_output::write_structural_report(&a, dir, &options)
+                    .map_err(|e| report_failure(&e))?;
+                report_files(Ok(files), dir)?;
+            }
+            Ok(())
+        },
     )?;
-    if let Some(dir) = &args.vtk {
-        report_files(unilateral_output::write_vtk(&a, dir), dir)?;
-    }
-    if let Some(dir) = &args.report {
-        args.report_args.check(&a.solution.pairs)?;
-        let options = args.report_args.options(problem.title.clone());
-        let files = unilateral_output::write_structural_report(&a, dir, &options)
-            .map_err(|e| report_failure(&e))?;
-        report_files(Ok(files), dir)?;
-    }
     outcome_failure(file, &a.solution).map_or(Ok(()), Err)
 }
