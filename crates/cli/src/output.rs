@@ -1,10 +1,7 @@
 //! What every command shares in writing its answers: progress on a terminal, JSON documents,
-//! the list of files written, the timings of the run.
+//! the list of files written.
 
 use std::path::{Path, PathBuf};
-
-use serde_json::Value;
-use unilateral_analysis::Timings;
 
 use crate::failure::Failure;
 
@@ -59,64 +56,4 @@ pub(crate) fn write_json(out: &Path, value: &serde_json::Value) -> Result<(), Fa
     }
     std::fs::write(out, text + "\n")
         .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))
-}
-
-/// The `timings` object of a result document: the seconds of each part of the run that
-/// happened (`read`, `condense`, `solve`, `recover`, `write`, in that order of the run; the
-/// keys of the parts that did not happen are absent). Durations are finite and non-negative by
-/// construction, so no finite-number check is needed.
-pub(crate) fn timings_json(t: &Timings) -> Value {
-    Value::Object(
-        t.present()
-            .map(|(name, d)| (name.to_string(), Value::from(d.as_secs_f64())))
-            .collect(),
-    )
-}
-
-/// The result document with its `timings` added.
-pub(crate) fn with_timings(mut doc: Value, t: &Timings) -> Value {
-    if let Some(obj) = doc.as_object_mut() {
-        obj.insert("timings".into(), timings_json(t));
-    }
-    doc
-}
-
-/// The closing paragraph of a summary: a blank line and `time: read 0.01 s, solve 0.20 s`, the
-/// parts of the run done by the time the summary is printed.
-pub(crate) fn timings_summary(t: &Timings) -> String {
-    let parts: Vec<String> = t
-        .present()
-        .map(|(name, d)| format!("{name} {:.2} s", d.as_secs_f64()))
-        .collect();
-    format!("\ntime: {}\n", parts.join(", "))
-}
-
-#[cfg(test)]
-mod tests {
-    use std::time::Duration;
-
-    use super::*;
-
-    /// Hand-made timings: only the parts given appear, in the order of a run, in seconds.
-    #[test]
-    fn timings_are_written_in_seconds_for_the_parts_that_happened() {
-        let t = Timings {
-            read: Some(Duration::from_millis(12)),
-            solve: Some(Duration::from_millis(1500)),
-            write: Some(Duration::from_micros(250)),
-            ..Timings::default()
-        };
-        assert_eq!(
-            timings_json(&t),
-            serde_json::json!({ "read": 0.012, "solve": 1.5, "write": 0.00025 })
-        );
-        assert_eq!(
-            timings_summary(&t),
-            "\ntime: read 0.01 s, solve 1.50 s, write 0.00 s\n"
-        );
-        let doc = with_timings(serde_json::json!({ "status": "solved" }), &t);
-        assert_eq!(doc["status"], "solved");
-        assert_eq!(doc["timings"]["solve"], 1.5);
-        assert!(doc["timings"].get("condense").is_none());
-    }
 }

@@ -208,3 +208,54 @@ pub fn structural_json(a: &unilateral_analysis::Analysis) -> Result<Value, NonFi
     );
     Ok(doc)
 }
+
+/// The `timings` object of a result document: the seconds of each part of the run that
+/// happened (`read`, `condense`, `solve`, `recover`, `write`, in that order of the run; the
+/// keys of the parts that did not happen are absent). Durations are finite and non-negative by
+/// construction, so no finite-number check is needed.
+pub fn timings_json(t: &unilateral_analysis::Timings) -> Value {
+    Value::Object(
+        t.present()
+            .map(|(name, d)| (name.to_string(), Value::from(d.as_secs_f64())))
+            .collect(),
+    )
+}
+
+/// The result document with its `timings` added.
+pub fn with_timings(mut doc: Value, t: &unilateral_analysis::Timings) -> Value {
+    if let Some(obj) = doc.as_object_mut() {
+        obj.insert("timings".into(), timings_json(t));
+    }
+    doc
+}
+
+#[cfg(test)]
+mod tests {
+    use std::time::Duration;
+
+    use crate::{timings_json, timings_summary, with_timings};
+    use unilateral_analysis::Timings;
+
+    /// Hand-made timings: only the parts given appear, in the order of a run, in seconds.
+    #[test]
+    fn timings_are_written_in_seconds_for_the_parts_that_happened() {
+        let t = Timings {
+            read: Some(Duration::from_millis(12)),
+            solve: Some(Duration::from_millis(1500)),
+            write: Some(Duration::from_micros(250)),
+            ..Timings::default()
+        };
+        assert_eq!(
+            timings_json(&t),
+            serde_json::json!({ "read": 0.012, "solve": 1.5, "write": 0.00025 })
+        );
+        assert_eq!(
+            timings_summary(&t),
+            "\ntime: read 0.01 s, solve 1.50 s, write 0.00 s\n"
+        );
+        let doc = with_timings(serde_json::json!({ "status": "solved" }), &t);
+        assert_eq!(doc["status"], "solved");
+        assert_eq!(doc["timings"]["solve"], 1.5);
+        assert!(doc["timings"].get("condense").is_none());
+    }
+}

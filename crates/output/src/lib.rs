@@ -43,12 +43,17 @@ mod vtk;
 
 pub use csv::{write_contact_csv, write_structural_csv};
 pub use finite::NonFiniteOutput;
-pub use json::{contact_json, lcp_json, residual_json, structural_json, tableaux_json};
+pub use json::{
+    contact_json, lcp_json, residual_json, structural_json, tableaux_json, timings_json,
+    with_timings,
+};
 pub use report::{
     report_html, write_path_report, write_report, write_report_for, write_structural_report,
     Pictures,
 };
-pub use summary::{contact_summary, lcp_summary, structural_summary, tableau_text};
+pub use summary::{
+    contact_summary, lcp_summary, structural_summary, tableau_text, timings_summary,
+};
 pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
 
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};

@@ -296,3 +296,13 @@ pub fn structural_summary(
     }
     Ok(s)
 }
+
+/// The closing paragraph of a summary: a blank line and `time: read 0.01 s, solve 0.20 s`, the
+/// parts of the run done by the time the summary is printed.
+pub fn timings_summary(t: &unilateral_analysis::Timings) -> String {
+    let parts: Vec<String> = t
+        .present()
+        .map(|(name, d)| format!("{name} {:.2} s", d.as_secs_f64()))
+        .collect();
+    format!("\ntime: {}\n", parts.join(", "))
+}

@@ -7,7 +7,8 @@ use unilateral_analysis::Timings;
 
 use crate::args::LcpArgs;
 use crate::failure::{input_failure, lcp_failure, lcp_status_failure, Failure};
-use crate::output::{timings_summary, with_timings, write_json};
+use crate::output::write_json;
+use unilateral_output::{timings_summary, with_timings};
 
 pub(crate) fn run(args: LcpArgs) -> Result<(), Failure> {
     let LcpArgs { file, json } = args;

@@ -17,7 +17,8 @@ use crate::failure::{
     analysis_failure, contact_failure, input_failure, outcome_failure, report_failure, Failure,
     ZoneOrigin,
 };
-use crate::output::{report_files, timings_summary, with_timings, write_json, Progress};
+use crate::output::{report_files, write_json, Progress};
+use unilateral_output::{timings_summary, with_timings};
 
 pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
     let overrides = Overrides {
