@@ -10,12 +10,14 @@
 //! * `lcp`: the beam's `3m` LCP at `p = 1` as a Siconos `.dat` file, `unilateral lcp`;
 //! * `zone`: the beam's contact zone with `Rnn`, `Rtt` in Matrix Market files, `unilateral solve
 //!   --trace end --tightening 1` (the paper's procedure);
-//! * `zone+out`: the same with `--json`, `--csv` and `--report` (sizes up to
+//! * `zone+out`: the same with `--csv` and `--report` as well (sizes up to
 //!   `UNILATERAL_BENCH_REPORT_MAX`, default 300: today the report re-evaluates the path at every
 //!   event);
 //! * `model`: a structural model, a continuous deck on `m` frictional elastic bearings (an
 //!   elastomer layer meshed with QM6 under a frame member, the bearings' bases on the ground),
-//!   condensed and traced to the end in the process, `--json` written.
+//!   condensed and traced to the end in the process.
+//!
+//! Every case writes `--json`; the column `solve s` is its `timings.solve`, the solve alone.
 //!
 //! The contact zone is `unilateral_oracle::fixtures::beam::beam_on_supports(m, 7)` (a continuous
 //! beam on `m` frictional supports).
@@ -193,6 +195,8 @@ struct Run {
     cpu: f64,
     peak_mib: f64,
     status: String,
+    /// The solve alone, from the JSON's `timings.solve` (when a JSON was written to `out.json`).
+    solve: Option<f64>,
 }
 
 /// Runs the binary under `/usr/bin/time` and reads its figures.
@@ -228,11 +232,18 @@ fn run(args: &[&str], dir: &Path) -> Run {
         [u, s, k] => (u + s, k / 1024.0),
         _ => (f64::NAN, f64::NAN),
     };
+    let json = dir.join("out.json");
+    let solve = std::fs::read_to_string(&json)
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v["timings"]["solve"].as_f64());
+    let _ = std::fs::remove_file(&json);
     Run {
         wall,
         cpu,
         peak_mib: peak,
         status,
+        solve,
     }
 }
 
@@ -269,8 +280,8 @@ fn main() {
         load_average()
     );
     println!(
-        "{:>5} {:>5} {:>9} {:>14} {:>9} {:>9} {:>9} {:>8} {:>10}",
-        "m", "n", "case", "status", "wall s", "CPU s", "LU s", "wall/LU", "peak MiB"
+        "{:>5} {:>5} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>8} {:>10}",
+        "m", "n", "case", "status", "wall s", "CPU s", "solve s", "LU s", "wall/LU", "peak MiB"
     );
     for m in sizes() {
         let dir = tempfile::tempdir().unwrap();
@@ -282,8 +293,9 @@ fn main() {
         let zone_file = write_zone(d, &z);
         let model = write_model(d, m);
         let row = |case: &str, r: &Run| {
+            let solve = r.solve.map_or("-".to_string(), |s| format!("{s:.3}"));
             println!(
-                "{m:>5} {n:>5} {case:>9} {:>14} {:>9.3} {:>9.2} {lu:>9.3} {:>8.1} {:>10.0}",
+                "{m:>5} {n:>5} {case:>9} {:>14} {:>9.3} {:>9.2} {solve:>9} {lu:>9.3} {:>8.1} {:>10.0}",
                 r.status,
                 r.wall,
                 r.cpu,
@@ -294,15 +306,24 @@ fn main() {
         let dat_s = dat.to_string_lossy().into_owned();
         let zone_s = zone_file.to_string_lossy().into_owned();
         let model_s = model.to_string_lossy().into_owned();
-        row("lcp", &run(&["lcp", &dat_s], d));
-        let zone_args = ["solve", &zone_s, "--trace", "end", "--tightening", "1"];
+        row("lcp", &run(&["lcp", &dat_s, "--json", "out.json"], d));
+        let zone_args = [
+            "solve",
+            &zone_s,
+            "--trace",
+            "end",
+            "--tightening",
+            "1",
+            "--json",
+            "out.json",
+        ];
         row("zone", &run(&zone_args, d));
         if m <= report_max() {
             let mut a = zone_args.to_vec();
-            a.extend(["--json", "z.json", "--csv", "z.csv", "--report", "rep"]);
+            a.extend(["--csv", "csv", "--report", "rep"]);
             row("zone+out", &run(&a, d));
         }
-        row("model", &run(&["solve", &model_s, "--json", "m.json"], d));
+        row("model", &run(&["solve", &model_s, "--json", "out.json"], d));
     }
     println!("load average after: {}", load_average());
 }
