@@ -54,7 +54,7 @@ pub(crate) const ROUND_OFF: f64 = 8.0 * f64::EPSILON / 2.0;
 /// [`Llt`] solve is used.
 enum Solver<'a> {
     Supernodal {
-        symbolic: SymbolicCholesky<usize>,
+        symbolic: Box<SymbolicCholesky<usize>>,
         values: Vec<f64>,
     },
     Plain(&'a Llt<usize, f64>),
@@ -100,7 +100,10 @@ impl<'a> Solver<'a> {
             )
             .is_ok();
         if ok {
-            Solver::Supernodal { symbolic, values }
+            Solver::Supernodal {
+                symbolic: Box::new(symbolic),
+                values,
+            }
         } else {
             plain
         }
