@@ -6,7 +6,7 @@
 use crate::assemble::Assembled;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::SolveCore;
-use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::reborrow::ReborrowMut;
 use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw,
@@ -109,7 +109,21 @@ impl<'a> Solver<'a> {
         }
     }
 
-    /// Solves `K_II X = B` for the columns `cols` of `K_Iz`, returning `X` (`n_i × cols.len()`).
+    /// The position of each free DOF in the rows [`Solver::solve_sparse`] returns: the fill-
+    /// reducing permutation of the supernodal factor (so that no chunk is permuted back), the
+    /// identity for [`Llt`]'s solve.
+    fn row_of(&self, n_i: usize) -> Vec<usize> {
+        match self {
+            Solver::Supernodal { symbolic, .. } => match symbolic.perm() {
+                Some(p) => p.arrays().1.to_vec(),
+                None => (0..n_i).collect(),
+            },
+            Solver::Plain(_) => (0..n_i).collect(),
+        }
+    }
+
+    /// Solves `K_II X = B` for the columns `cols` of `K_Iz`, returning `X` (`n_i × cols.len()`)
+    /// with its rows in the order of [`Solver::row_of`].
     fn solve_sparse(&self, n_i: usize, cols: &[crate::dofs::Row]) -> Mat<f64> {
         let w = cols.len();
         match self {
@@ -139,11 +153,11 @@ impl<'a> Solver<'a> {
                     }
                 }
                 let l = SupernodalLltRef::<'_, usize, f64>::new(sym, values);
-                forward_sparse(l, xp.as_mut());
+                forward_sparse(l, &mut xp);
                 let par = Par::Seq;
                 let mut buf = MemBuffer::new(sym.solve_in_place_scratch::<f64>(w, par));
                 l.l_transpose_solve_with_conj(Conj::No, xp.as_mut(), par, MemStack::new(&mut buf));
-                Mat::from_fn(n_i, w, |i, j| xp[(inv[i], j)])
+                xp
             }
         }
     }
@@ -151,7 +165,7 @@ impl<'a> Solver<'a> {
 
 /// `L Y = B` in place for the supernodal `L`, skipping the supernodes whose rows of `B` are
 /// still all zero (their update of the later rows is zero).
-fn forward_sparse(l: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
+fn forward_sparse(l: SupernodalLltRef<'_, usize, f64>, x: &mut Mat<f64>) {
     let k = x.ncols();
     let mut tmp: Vec<f64> = Vec::new();
     for s in 0..l.symbolic().n_supernodes() {
@@ -159,20 +173,21 @@ fn forward_sparse(l: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
         let ls = sn.val();
         let size = ls.ncols();
         let start = sn.start();
-        let zero = (0..k).all(|j| (start..start + size).all(|i| x[(i, j)] == 0.0));
+        let zero = (0..k).all(|j| {
+            x.col_as_slice(j)[start..start + size]
+                .iter()
+                .all(|v| *v == 0.0)
+        });
         if zero {
             continue;
         }
         let (ls_top, ls_bot) = ls.split_at_row(size);
         let pattern = sn.pattern();
-        {
-            let x_top = x.rb_mut().subrows_mut(start, size);
-            faer::linalg::triangular_solve::solve_lower_triangular_in_place(
-                ls_top,
-                x_top,
-                Par::Seq,
-            );
-        }
+        faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+            ls_top,
+            x.as_mut().subrows_mut(start, size),
+            Par::Seq,
+        );
         if pattern.is_empty() {
             continue;
         }
@@ -183,13 +198,15 @@ fn forward_sparse(l: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
             t.rb_mut(),
             Accum::Replace,
             ls_bot,
-            x.rb().subrows(start, size),
+            x.as_ref().subrows(start, size),
             1.0,
             Par::Seq,
         );
         for j in 0..k {
-            for (idx, &i) in pattern.iter().enumerate() {
-                x[(i, j)] -= t[(idx, j)];
+            let xj = x.col_as_slice_mut(j);
+            let tj = &tmp[j * pattern.len()..(j + 1) * pattern.len()];
+            for (&i, &v) in pattern.iter().zip(tj) {
+                xj[i] -= v;
             }
         }
     }
@@ -344,13 +361,31 @@ fn condense_with(
             #[cfg(test)]
             Method::Reference => Solver::Plain(llt),
         };
-        let weights = kii.map_or_else(Vec::new, abs_form_weights);
+        // everything the chunks meet, in the row order of the solutions
+        let row_of = solver.row_of(n_i);
+        let permute = |v: Vec<f64>| {
+            let mut p = vec![0.0; v.len()];
+            for (a, x) in v.into_iter().enumerate() {
+                p[row_of[a]] = x;
+            }
+            p
+        };
+        let weights = permute(kii.map_or_else(Vec::new, abs_form_weights));
+        let kxb: Vec<Vec<f64>> = kxb
+            .into_iter()
+            .map(|v| if v.is_empty() { v } else { permute(v) })
+            .collect();
+        let kiz: Vec<crate::dofs::Row> = asm
+            .kiz
+            .iter()
+            .map(|c| c.iter().map(|&(i, v)| (row_of[i], v)).collect())
+            .collect();
         let mut c0 = 0;
         while c0 < nz {
             let w = CHUNK.min(nz - c0);
             let x = solver.solve_sparse(n_i, &asm.kiz[c0..c0 + w]);
             for row in 0..nz {
-                let col = &asm.kiz[row];
+                let col = &kiz[row];
                 if col.is_empty() {
                     continue;
                 }
