@@ -43,15 +43,20 @@ pub(crate) const CHUNK: usize = 64;
 /// the smallest genuine entries at 1.7e-14 (the tip stiffness of a cantilever of 2000
 /// elements, `1/(8N³)` of its terms; finer members are refused as ill-conditioned by
 /// `factorize` before this point) and 3.3e-14 (a spring behind a bar 10¹³ times stiffer).
+/// Those figures are for the exact form; the condensation uses the upper bound of
+/// [`abs_form_weights`], which only makes exact zeros smaller against it, and the same test
+/// models (`tests/it/fine_mesh.rs`, the analysis crate's determinate supports) keep their
+/// genuine entries.
 pub(crate) const ROUND_OFF: f64 = 8.0 * f64::EPSILON / 2.0;
 
 /// The solves `K_II X = K_Iz` of the condensation. The right-hand sides are sparse (a link
 /// DOF touches the few free DOFs of its node), so with the supernodal factor at hand the
 /// forward substitution skips every supernode whose block of the (permuted) right-hand
 /// sides is still zero: the skipped work is exactly zero (`0 − L·0`), so the result is the
-/// same bit for bit as the full solve of [`Llt`], at a fraction of the forward half's cost.
-/// Without a supernodal factor (small matrices, where faer chooses the simplicial one) the
-/// [`Llt`] solve is used.
+/// same bit for bit as a full supernodal solve, at a fraction of the forward half's cost.
+/// The factor is always supernodal (where [`Llt`] may have chosen a simplicial one, so the
+/// round-off can differ from its solve); [`Solver::Plain`], [`Llt`]'s own solve, is the
+/// fallback when that factorization cannot be made, and the tests' reference.
 enum Solver<'a> {
     Supernodal {
         symbolic: Box<SymbolicCholesky<usize>>,
