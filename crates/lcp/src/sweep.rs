@@ -20,9 +20,18 @@ use crate::pivoting::columns::Columns;
 use crate::pivoting::pivot::{max_abs, Ending, Pivoter, Tolerances};
 use crate::{LoadPath, PathPoint, PathSolver, PathStatus, Residual};
 
-/// At most this many pivots remove the tightening at one load within the sweep; a point that
-/// needs more is computed as [`crate::PathSolver::solution_at`] computes it.
+/// The least number of pivots allowed for removing the tightening at one load within the
+/// sweep. The bound grows with the basis (see [`removal_cap`]); a point that needs more is
+/// computed as [`crate::PathSolver::solution_at`] computes it.
 pub(crate) const TIGHTENING_PIVOTS: usize = 12;
+
+/// Pivots allowed for removing the tightening on a copy of a basis with a kernel of order `k`
+/// in a problem of order `n`: a pivot costs about `n·k`, the fresh factorisation that
+/// `solution_at` starts from about `k³`, so up to `k²/n` pivots cost no more than that
+/// factorisation (at least [`TIGHTENING_PIVOTS`]). A point that needs more falls back.
+fn removal_cap(k: usize, n: usize) -> usize {
+    (k * k / n.max(1)).max(TIGHTENING_PIVOTS)
+}
 
 /// Relative kernel residual of a column solve above which the sweep's basis is refactorised
 /// (the engine's own threshold).
@@ -190,7 +199,7 @@ fn evaluate(
     let (ending, entering) = piv.run(
         driver,
         Some((solver.c0, true)),
-        TIGHTENING_PIVOTS.min(settings.cap(n)),
+        removal_cap(piv.basis.kernel_size(), n).min(settings.cap(n)),
         &mut records,
         &mut crossed,
     );

@@ -37,8 +37,11 @@ fn same_point(what: &str, got: &Option<PathPoint>, want: &Option<PathPoint>) -> 
         (Some(g), Some(w)) => {
             assert_close(&format!("{what} x"), &g.x, &w.x, AGREE)?;
             assert_close(&format!("{what} z"), &g.z, &w.z, AGREE)?;
-            if g.fallback != w.fallback {
-                return Err(format!("{what}: fallback {} vs {}", g.fallback, w.fallback));
+            // The sweep's own fallback is `solution_at`'s procedure, so it never needs a fresh
+            // solve where `solution_at` does not; it may succeed where `solution_at`'s
+            // refactorised basis did not verify (the values are then the same, checked above).
+            if g.fallback && !w.fallback {
+                return Err(format!("{what}: the sweep fell back, solution_at did not"));
             }
             Ok(())
         }
@@ -136,7 +139,16 @@ fn beam_solver(m: usize, seed: u64) -> (PathSolver, Vec<Vec<f64>>, Vec<f64>, Vec
 #[test]
 fn frictional_beams_agree_with_solution_at() {
     let mut removed = 0usize;
-    for (m, seed) in [(4, 1), (4, 2), (4, 3), (4, 5), (12, 7), (30, 7), (30, 11)] {
+    for (m, seed) in [
+        (4, 1),
+        (4, 2),
+        (4, 3),
+        (4, 5),
+        (12, 7),
+        (30, 7),
+        (30, 11),
+        (100, 7),
+    ] {
         let (solver, ..) = beam_solver(m, seed);
         let path = solver.follow();
         assert_ne!(path.status, PathStatus::NumericalFailure);
