@@ -35,6 +35,7 @@ pub fn end_load(sol: &ContactSolution) -> Option<f64> {
 }
 
 /// Evaluates the solution without tightening at `p = 0`, at every event load and at the end
+/// (above [`MAX_SAMPLES`] loads, at that many spread evenly over them by their index)
 /// (by the engine kept in the solution: nothing is solved or prepared again). A load off the
 /// traced path is skipped; an error of the solution at a load is returned. The loads are
 /// evaluated in one walk along the path ([`ContactSolution::at_many`]).
@@ -59,6 +60,7 @@ pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
         }
         loads.push(p);
     }
+    let loads = thin(loads, MAX_SAMPLES);
     let mut out = PathSamples {
         loads: Vec::new(),
         pairs: Vec::new(),
@@ -76,6 +78,20 @@ pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
         }
     }
     Ok(out)
+}
+
+/// At most this many loads are evaluated for the charts: a panel is 180 px wide, and each
+/// evaluation removes the tightening by pivots (the cost of the report).
+pub const MAX_SAMPLES: usize = 200;
+
+/// The loads thinned to at most `max` (`max ≥ 2`), evenly by their index along the path, the
+/// first and the last kept.
+fn thin(loads: Vec<f64>, max: usize) -> Vec<f64> {
+    let k = loads.len();
+    if k <= max || max < 2 {
+        return loads;
+    }
+    (0..max).map(|i| loads[i * (k - 1) / (max - 1)]).collect()
 }
 
 /// A short label of a step: `3: left.4 opens`.
@@ -203,8 +219,16 @@ pub fn chart(
     }
     if many_events {
         caption.push_str(&format!(
-            " The {} events are listed in the report's table of events.",
-            sol.steps.len()
+            " The {} events are listed in the report's table of events{}.",
+            sol.steps.len(),
+            if s.loads.len() < sol.steps.len() {
+                format!(
+                    "; the curves are exact at {} loads spread evenly over them",
+                    s.loads.len()
+                )
+            } else {
+                String::new()
+            }
         ));
     }
     let cap_lines = wrap(&caption, 9.0, width - 40.0);
@@ -648,4 +672,82 @@ pub fn ranked(s: &PathSamples, count: usize) -> Vec<usize> {
     order.truncate(count);
     order.sort_unstable();
     order
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pair(i: usize, x_n: f64, z_n: f64, state: PairState) -> PairResult {
+        PairResult {
+            name: format!("s{i}"),
+            x_n,
+            x_t: 0.0,
+            z_n,
+            z_t: 0.0,
+            state,
+        }
+    }
+
+    // Reference: by hand. Pair 1's force spans 0..10 (score 1), pair 3's opening spans
+    // 0..0.002 (score 1, in other units), pair 2 spans half of both (score 1), pair 0 a tenth
+    // of the force range (0.1) and pair 4 nothing: the three top pairs are 1, 2, 3, returned
+    // in pair order; a tie (pairs 0 and 5 both 0.1) goes to the lower index.
+    #[test]
+    fn ranking_by_normalised_ranges() {
+        let at = |v: [(f64, f64); 6]| -> Vec<PairResult> {
+            v.iter()
+                .enumerate()
+                .map(|(i, &(x, z))| pair(i, x, z, PairState::Stick))
+                .collect()
+        };
+        let s = PathSamples {
+            loads: vec![0.0, 1.0],
+            pairs: vec![
+                at([
+                    (1.0, 0.0),
+                    (0.0, 0.0),
+                    (5.0, 0.0),
+                    (3.0, 0.0),
+                    (2.0, 0.0),
+                    (0.0, 0.0),
+                ]),
+                at([
+                    (2.0, 0.0),
+                    (10.0, 0.0),
+                    (10.0, 0.001),
+                    (3.0, 0.002),
+                    (2.0, 0.0),
+                    (1.0, 0.0),
+                ]),
+            ],
+        };
+        assert_eq!(ranked(&s, 3), vec![1, 2, 3]);
+        assert_eq!(ranked(&s, 4), vec![0, 1, 2, 3]);
+        assert_eq!(ranked(&s, 10), vec![0, 1, 2, 3, 4, 5]);
+    }
+
+    // Reference: counted by hand. Pair 0: stick, stick, open, slip+ → 2 runs drawn; pair 1:
+    // open throughout → none; pair 2: slip−, slip−, slip−, stick → 2. One background rect,
+    // four legend swatches, and the picture's own white background: 1 + 4 + 4 + 1 = 10 rects.
+    #[test]
+    fn state_map_draws_one_rect_per_run() {
+        use PairState::*;
+        let rows = [
+            [Stick, Stick, Open, SlipPlus],
+            [Open, Open, Open, Open],
+            [SlipMinus, SlipMinus, SlipMinus, Stick],
+        ];
+        let s = PathSamples {
+            loads: vec![0.0, 1.0, 2.0, 3.0],
+            pairs: (0..4)
+                .map(|j| (0..3).map(|i| pair(i, 1.0, 0.0, rows[i][j])).collect())
+                .collect(),
+        };
+        let names: Vec<String> = (0..3).map(|i| format!("s{i}")).collect();
+        let mut g = Svg::new(400.0, 300.0, "map");
+        state_map(&mut g, &s, &names, 0.0, 400.0);
+        let svg = g.finish();
+        assert_eq!(svg.matches("<rect").count(), 10, "{svg}");
+    }
 }
