@@ -235,7 +235,7 @@ fn verified(
     z: Vec<f64>,
     pivots: usize,
 ) -> Option<PathPoint> {
-    if x.iter().chain(&z).any(|&v| !(v >= 0.0) || !v.is_finite()) {
+    if x.iter().chain(&z).any(|&v| !v.is_finite() || v < 0.0) {
         return None;
     }
     let problem = solver.problem();
