@@ -280,6 +280,26 @@ impl ContactSolution {
         Ok(Some((self.engine.read_point(&pt)?, pt.residual)))
     }
 
+    /// [`ContactSolution::at`] at many loads, one answer per load in the order given, in one
+    /// walk along the path ([`PathSolver::points_at`]): the cost of about one more trace of the
+    /// path instead of a fresh factorisation per load. The errors are those of
+    /// [`ContactSolution::at`].
+    #[allow(clippy::type_complexity)]
+    pub fn at_many(
+        &self,
+        loads: &[f64],
+    ) -> Result<Vec<Option<(Vec<PairResult>, Residual)>>, ContactError> {
+        self.engine
+            .solver
+            .points_at(&self.path, loads)?
+            .into_iter()
+            .map(|pt| {
+                pt.map(|pt| Ok((self.engine.read_point(&pt)?, pt.residual)))
+                    .transpose()
+            })
+            .collect()
+    }
+
     /// The tableaux of the path in the paper's layout and the user's units (at most
     /// `max_steps` steps). They are computed from [`ContactSolution::lcp`], the problem in the
     /// user's units, which is checked on the way ([`ContactError::Engine`] if the engine

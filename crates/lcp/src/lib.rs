@@ -49,6 +49,7 @@ mod residual;
 mod settings;
 mod solution;
 mod solver;
+mod sweep;
 mod tableau;
 mod var;
 

@@ -339,7 +339,7 @@ fn mechanism_mode(prep: &Prepared, piv: &Pivoter, entering: usize, alpha: &[f64]
 
 /// The solution at `p` on segment `seg` without the tightening.
 #[allow(clippy::too_many_arguments)]
-fn solution_on_segment(
+pub(crate) fn solution_on_segment(
     problem: &ParametricLcp,
     prep: &Prepared,
     path: &LoadPath,
@@ -487,7 +487,7 @@ fn drive_to_zero(
     (Some(slots), piv.pivots)
 }
 
-fn clamp(beta: &[f64]) -> Vec<f64> {
+pub(crate) fn clamp(beta: &[f64]) -> Vec<f64> {
     let hmax = max_abs(beta).max(f64::MIN_POSITIVE);
     beta.iter()
         .map(|&b| {

@@ -5,6 +5,7 @@ use std::fmt;
 
 use crate::parametric::{follow, point_at, tightening_of, validate};
 use crate::pivoting::prepare::Prepared;
+use crate::sweep;
 use crate::tableau::tableaux_of;
 use crate::{LcpError, LoadPath, ParametricLcp, PathOptions, PathPoint, Settings, Tableau};
 
@@ -127,6 +128,27 @@ impl PathSolver {
     pub fn solution_at(&self, path: &LoadPath, p: f64) -> Result<Option<PathPoint>, LcpError> {
         self.check_path(path)?;
         Ok(point_at(self, path, p))
+    }
+
+    /// The solutions without tightening at many loads of a path this solver followed, one per
+    /// load in the order given (`None` for a load off the traced path): the same answers as
+    /// [`PathSolver::solution_at`] at each load, in one walk along the path.
+    ///
+    /// The walk keeps one basis, updated by the path's own pivots (`O(n·k + k²)` a step, as
+    /// tracing), instead of rebuilding and factorising the basis of every load's segment
+    /// (`O(k³)` a load). At a load whose basis is infeasible without the tightening, the
+    /// tightening is removed on a copy for a few pivots at most; a load that needs more, or
+    /// whose point does not verify, is computed exactly as [`PathSolver::solution_at`] does.
+    /// Loads in increasing order make one walk; any order is accepted.
+    ///
+    /// A path of a problem of another order is refused ([`LcpError::Dimension`]).
+    pub fn points_at(
+        &self,
+        path: &LoadPath,
+        loads: &[f64],
+    ) -> Result<Vec<Option<PathPoint>>, LcpError> {
+        self.check_path(path)?;
+        Ok(sweep::points_at(self, path, loads))
     }
 
     /// All tableaux of a path this solver followed, in the paper's layout: the initial one, one

@@ -8,4 +8,5 @@ mod degenerate;
 mod hostile;
 mod paper_example1;
 mod solver;
+mod sweep;
 mod units;
