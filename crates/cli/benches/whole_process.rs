@@ -322,6 +322,8 @@ fn main() {
             let mut a = zone_args.to_vec();
             a.extend(["--csv", "csv", "--report", "rep"]);
             row("zone+out", &run(&a, d));
+            let html = std::fs::metadata(d.join("rep").join("report.html")).map_or(0, |m| m.len());
+            println!("{:>5} report.html: {:.1} MB", m, html as f64 / 1e6);
         }
         row("model", &run(&["solve", &model_s, "--json", "out.json"], d));
     }
