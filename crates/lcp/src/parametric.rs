@@ -356,12 +356,7 @@ pub(crate) fn solution_on_segment(
         let e = path.segment_entering(seg, n)?;
         slots[ds] = e;
     }
-    let q_real: Vec<f64> = problem
-        .q0
-        .iter()
-        .zip(&problem.d)
-        .map(|(q, d)| q + p * d)
-        .collect();
+    let q_real: Vec<f64> = problem.q_at(p);
     match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
         Some((x, z, pivots)) => {
             let residual = Residual::of_parametric(&problem.m, &problem.q0, &problem.d, p, &x, &z);
@@ -383,12 +378,7 @@ pub(crate) fn solution_on_segment(
 
 /// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified.
 fn fresh_solution(problem: &ParametricLcp, p: f64, settings: &Settings) -> Option<PathPoint> {
-    let q: Vec<f64> = problem
-        .q0
-        .iter()
-        .zip(&problem.d)
-        .map(|(q, d)| q + p * d)
-        .collect();
+    let q: Vec<f64> = problem.q_at(p);
     let lcp = Lcp {
         m: problem.m.clone(),
         q,

@@ -23,3 +23,14 @@ pub struct ParametricLcp {
     /// The direction `d` multiplied by the parameter (length `n`).
     pub d: Vec<f64>,
 }
+
+impl ParametricLcp {
+    /// The right-hand side `q0 + p·d` at load `p`.
+    pub fn q_at(&self, p: f64) -> Vec<f64> {
+        self.q0
+            .iter()
+            .zip(&self.d)
+            .map(|(q, d)| q + p * d)
+            .collect()
+    }
+}

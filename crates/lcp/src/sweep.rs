@@ -136,12 +136,7 @@ fn evaluate(
     let problem = solver.problem();
     let n = prep.n;
     let driver = 2 * n;
-    let q_real: Vec<f64> = problem
-        .q0
-        .iter()
-        .zip(&problem.d)
-        .map(|(q, d)| q + p * d)
-        .collect();
+    let q_real: Vec<f64> = problem.q_at(p);
     // Same `M` and driver direction as the path's columns, so the walk's basis serves.
     let cols = prep.columns(&q_real, &problem.d);
     let mut slots = b.slot_var.clone();

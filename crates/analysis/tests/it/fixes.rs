@@ -22,7 +22,7 @@ const BEAM_EI: f64 = 2.1e7;
 const BEAM_Q: f64 = 1.0e4;
 
 /// A nodal force `(fx, fy)` without moment.
-fn nodal(node: unilateral_fem::NodeId, fx: f64, fy: f64) -> Load {
+pub(crate) fn nodal(node: unilateral_fem::NodeId, fx: f64, fy: f64) -> Load {
     Load::Nodal {
         node,
         fx,

@@ -6,16 +6,9 @@ use std::time::{Duration, Instant};
 
 use unilateral_analysis::{analyze, Analysis};
 use unilateral_contact::{Follow, SolveSettings};
-use unilateral_fem::{ContactPairSpec, FrameSection, Load, LoadGroup, Model};
+use unilateral_fem::{ContactPairSpec, FrameSection, LoadGroup, Model};
 
-fn nodal(node: unilateral_fem::NodeId, fx: f64, fy: f64) -> Load {
-    Load::Nodal {
-        node,
-        fx,
-        fy,
-        m: 0.0,
-    }
-}
+use crate::fixes::nodal;
 
 /// `analyze` and the wall-clock time around it.
 fn timed(model: &Model, settings: &SolveSettings) -> (Analysis, Duration) {
