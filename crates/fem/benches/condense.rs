@@ -6,6 +6,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
+use unilateral_fem::mesh::BlockGrid;
 use unilateral_fem::{
     ContactPairSpec, ElementId, Load, LoadGroup, Model, NodeId, PlaneAnalysis, PlaneFormulation,
     PlaneMaterial, SupportDof,
@@ -17,37 +18,28 @@ use unilateral_fem::{
 pub fn soil_block(nx: usize, ny: usize, pairs: usize) -> Model {
     let h = 0.25;
     let mut m = Model::new();
-    let mut id = vec![NodeId(0); (nx + 1) * (ny + 1)];
-    for j in 0..=ny {
-        for i in 0..=nx {
-            id[j * (nx + 1) + i] = m.add_node(i as f64 * h, j as f64 * h);
-        }
-    }
+    let grid = BlockGrid::new([0.0; 2], nx as f64 * h, ny as f64 * h, nx, ny);
+    let id: Vec<NodeId> = grid
+        .points()
+        .iter()
+        .map(|p| m.add_node(p[0], p[1]))
+        .collect();
     let mat = PlaneMaterial::new(4.5e7, 0.27);
-    let node = |i: usize, j: usize| id[j * (nx + 1) + i];
-    let mut e = 0;
-    for j in 0..ny {
-        for i in 0..nx {
-            m.add_plane(
-                [
-                    node(i, j),
-                    node(i + 1, j),
-                    node(i + 1, j + 1),
-                    node(i, j + 1),
-                ],
-                mat,
-                PlaneAnalysis::PlaneStrain,
-                PlaneFormulation::QM6,
-            );
-            m.add_load(
-                LoadGroup::Constant,
-                Load::BodyForce {
-                    element: ElementId(e),
-                    force: [0.0, -18e3],
-                },
-            );
-            e += 1;
-        }
+    let node = |i: usize, j: usize| id[grid.index(i, j)];
+    for (e, cell) in grid.cells().into_iter().enumerate() {
+        m.add_plane(
+            cell.map(|k| id[k]),
+            mat,
+            PlaneAnalysis::PlaneStrain,
+            PlaneFormulation::QM6,
+        );
+        m.add_load(
+            LoadGroup::Constant,
+            Load::BodyForce {
+                element: ElementId(e),
+                force: [0.0, -18e3],
+            },
+        );
     }
     m.pin(node(0, 0));
     for j in 1..=ny {

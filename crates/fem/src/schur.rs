@@ -568,27 +568,20 @@ mod reference_tests {
     fn soil_block_agrees_with_the_reference() {
         let (nx, ny) = (40, 6);
         let mut m = Model::new();
-        let mut id = vec![NodeId(0); (nx + 1) * (ny + 1)];
-        for j in 0..=ny {
-            for i in 0..=nx {
-                id[j * (nx + 1) + i] = m.add_node(i as f64 * 0.5, j as f64 * 0.4);
-            }
-        }
-        let node = |i: usize, j: usize| id[j * (nx + 1) + i];
-        for j in 0..ny {
-            for i in 0..nx {
-                m.add_plane(
-                    [
-                        node(i, j),
-                        node(i + 1, j),
-                        node(i + 1, j + 1),
-                        node(i, j + 1),
-                    ],
-                    PlaneMaterial::new(3e4, 0.3),
-                    PlaneAnalysis::PlaneStrain,
-                    PlaneFormulation::QM6,
-                );
-            }
+        let grid = crate::mesh::BlockGrid::new([0.0; 2], 0.5 * nx as f64, 0.4 * ny as f64, nx, ny);
+        let id: Vec<NodeId> = grid
+            .points()
+            .iter()
+            .map(|p| m.add_node(p[0], p[1]))
+            .collect();
+        let node = |i: usize, j: usize| id[grid.index(i, j)];
+        for cell in grid.cells() {
+            m.add_plane(
+                cell.map(|k| id[k]),
+                PlaneMaterial::new(3e4, 0.3),
+                PlaneAnalysis::PlaneStrain,
+                PlaneFormulation::QM6,
+            );
         }
         m.pin(node(0, 0));
         for j in 1..=ny {
