@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 mod error;
+mod history;
 mod lcp;
 mod settings;
 mod solution;
@@ -28,6 +29,10 @@ mod units;
 mod zone;
 
 pub use error::ContactError;
+pub use history::{
+    History, HistoryResidual, HistorySolution, HistoryStep, LoadCase, Stage, StageSolution,
+    StageStatus,
+};
 pub use lcp::ContactLcp;
 pub use settings::SolveSettings;
 pub use solution::{
