@@ -19,6 +19,10 @@
 
 #![warn(missing_docs)]
 
+mod history;
+
+pub use history::HistoryAnalysis;
+
 use std::time::{Duration, Instant};
 
 use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
