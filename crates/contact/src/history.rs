@@ -7,10 +7,13 @@
 //! (`unilateral_lcp`), the accumulated slip carried from segment to segment like a
 //! tangential dislocation.
 
-use unilateral_lcp::Var;
+use unilateral_lcp::{EvolutionProblem, EvolutionSolver, StageEnding, Var};
 
-use crate::solution::{Event, PairResult};
-use crate::ContactLoad;
+use crate::lcp::ContactLcp;
+use crate::solution::{Event, EventKind, PairResult, PairState};
+use crate::solve::events_of;
+use crate::units::Units;
+use crate::{ContactError, ContactLoad, ContactZone};
 
 /// A load case by name: the link forces of the bonded structure under the case at factor 1
 /// (`R_case`, `formulation.md` §2).
@@ -201,5 +204,459 @@ impl HistorySolution {
                 .collect(),
             None => vec![0.0; self.cases.len()],
         }
+    }
+}
+
+/// Follows a load history on a contact zone with incremental Coulomb friction (`history.md`).
+///
+/// The zone's matrices, friction and gaps are used; its `constant`/`variable` loads are not
+/// (the loads are the history's cases). The structure starts unloaded, every pair at its gap
+/// with zero slip. Each stage is followed by parametric pivoting from the state where the
+/// previous one ended ([`unilateral_lcp::EvolutionSolver`]); the history stops at the first stage
+/// that cannot be completed. Every stage's final state is verified from the original data
+/// ([`HistoryResidual`]).
+///
+/// ```
+/// use faer::mat;
+/// use unilateral_contact::{
+///     follow_history, ContactLoad, ContactZone, History, LoadCase, PairState, Stage,
+/// };
+///
+/// // One pair on rigid ground: normal stiffness 10, tangential 2, friction 0.5; a constant
+/// // compression N = 1 and a tangential force T that goes to 1 (beyond f·N = 0.5) and back to 0.
+/// let mut zone = ContactZone::new(mat![[10.0]], mat![[2.0]]);
+/// zone.friction = vec![0.5];
+/// let case = |n: f64, t: f64, name: &str| LoadCase {
+///     name: name.into(),
+///     load: ContactLoad { normal: vec![n], tangential: vec![t] },
+/// };
+/// let history = History {
+///     cases: vec![case(1.0, 0.0, "dead"), case(0.0, 1.0, "push")],
+///     stages: vec![
+///         Stage { name: "dead".into(), factors: vec![Some(1.0), None] },
+///         Stage { name: "push".into(), factors: vec![None, Some(1.0)] },
+///         Stage { name: "release".into(), factors: vec![None, Some(0.0)] },
+///     ],
+/// };
+/// let h = follow_history(&zone, &history, &Default::default()).unwrap();
+/// // By hand: pushed to T = 1 the pair slides (x_t = +f·N = 0.5, z_t = −(T − f·N)/k_t = −0.25);
+/// let push = &h.stages[1].pairs[0];
+/// assert_eq!(push.state, PairState::SlipMinus);
+/// assert!((push.x_t - 0.5).abs() < 1e-12 && (push.z_t + 0.25).abs() < 1e-12);
+/// // released, it sticks with its slip kept: x_t = k_t·z_t = −0.5, still within f·N.
+/// let released = &h.stages[2].pairs[0];
+/// assert_eq!(released.state, PairState::Stick);
+/// assert!((released.z_t + 0.25).abs() < 1e-12 && (released.x_t + 0.5).abs() < 1e-12);
+/// ```
+pub fn follow_history(
+    zone: &ContactZone,
+    history: &History,
+    settings: &unilateral_lcp::Settings,
+) -> Result<HistorySolution, ContactError> {
+    zone.validate()?;
+    let m = zone.pairs();
+    for case in &history.cases {
+        for (what, v) in [
+            ("normal", &case.load.normal),
+            ("tangential", &case.load.tangential),
+        ] {
+            if v.len() != m {
+                return Err(ContactError::VectorSize {
+                    name: format!("load.{}.{what}", case.name),
+                    len: v.len(),
+                    pairs: m,
+                });
+            }
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Err(ContactError::NotFinite {
+                    name: format!("load.{}.{what}", case.name),
+                    index: format!("[{}]", i + 1),
+                });
+            }
+        }
+    }
+    let table = history.factor_table();
+    // Units from every case: a zone whose variable load holds the largest entry of each row.
+    let mut probe = zone.clone();
+    probe.constant = ContactLoad::zeros(m);
+    probe.variable = ContactLoad::zeros(m);
+    for case in &history.cases {
+        for i in 0..m {
+            let (n, t) = (case.load.normal[i], case.load.tangential[i]);
+            if n.abs() > probe.variable.normal[i].abs() {
+                probe.variable.normal[i] = n;
+            }
+            if t.abs() > probe.variable.tangential[i].abs() {
+                probe.variable.tangential[i] = t;
+            }
+        }
+    }
+    let units = Units::of(&probe, 0.0);
+    let mut normalised = units.normalise(&probe);
+    normalised.variable = ContactLoad::zeros(m);
+    let lcp = ContactLcp::build(&normalised);
+    let f = &zone.friction;
+    let stack = |l: &ContactLoad| -> Vec<f64> {
+        let rn: Vec<f64> = l
+            .normal
+            .iter()
+            .map(|&v| units.normalised_force(v))
+            .collect();
+        let rt: Vec<f64> = l
+            .tangential
+            .iter()
+            .map(|&v| units.normalised_force(v))
+            .collect();
+        let mut v = rn.clone();
+        v.extend((0..m).map(|i| f[i] * rn[i] + rt[i]));
+        v.extend((0..m).map(|i| f[i] * rn[i] - rt[i]));
+        v
+    };
+    let case_d: Vec<Vec<f64>> = history.cases.iter().map(|c| stack(&c.load)).collect();
+    let n = 3 * m;
+    if lcp
+        .problem
+        .m
+        .col_iter()
+        .any(|c| c.iter().any(|v| !v.is_finite()))
+        || case_d.iter().flatten().any(|v| !v.is_finite())
+    {
+        return Err(ContactError::OutOfRange(
+            "friction times the contact stiffness or the loads exceeds the floating-point range"
+                .into(),
+        ));
+    }
+    let engine = unilateral_lcp::Settings {
+        lexicographic_order: Some(lcp.lexicographic_order.clone()),
+        covering: Some(lcp.tightening_direction.clone()),
+        ..settings.clone()
+    };
+    let solver = EvolutionSolver::new(
+        EvolutionProblem {
+            m: lcp.problem.m.clone(),
+            q0: lcp.problem.q0.clone(),
+            incremental: (0..n).map(|i| i >= m).collect(),
+            start_direction: lcp.tightening_direction.clone(),
+        },
+        engine,
+    )?;
+    let names = zone.pair_names.clone();
+    let mut out = HistorySolution {
+        cases: history.cases.iter().map(|c| c.name.clone()).collect(),
+        names: names.clone(),
+        stages: Vec::new(),
+    };
+    let Some(mut state) = solver.start() else {
+        return Err(ContactError::OutOfRange(
+            "the unloaded structure has no state with every pair at its gap (the gaps are \
+             inconsistent with the contact stiffness)"
+                .into(),
+        ));
+    };
+    let reader = Reader {
+        zone,
+        units,
+        names: &names,
+    };
+    for (k, (stage, (start, end))) in history.stages.iter().zip(&table).enumerate() {
+        let mut d = vec![0.0; n];
+        for (c, dc) in case_d.iter().enumerate() {
+            let df = end[c] - start[c];
+            if df != 0.0 {
+                for (di, v) in d.iter_mut().zip(dc) {
+                    *di += df * v;
+                }
+            }
+        }
+        let run = solver.stage(&state, &d);
+        let factors_at = |s: f64| -> Vec<f64> {
+            start
+                .iter()
+                .zip(end)
+                .map(|(a, b)| a + s * (b - a))
+                .collect()
+        };
+        // States along the stage: start, every pivot, end (normalised x, z).
+        let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];
+        chain.extend(run.points.iter().map(|p| (p.x.as_slice(), p.z.as_slice())));
+        chain.push((&run.end.x, &run.end.z));
+        let mut open = (0..m)
+            .map(|i| reader.is_open(state.x[i], state.z[i]))
+            .collect::<Vec<_>>();
+        let mut steps = Vec::with_capacity(run.points.len());
+        for (j, p) in run.points.iter().enumerate() {
+            let next = chain[j + 2].1;
+            let pairs = reader.pairs(&p.x, &p.z, |i| {
+                (next[m + i] - p.z[m + i], next[2 * m + i] - p.z[2 * m + i])
+            });
+            let mut events = events_of(p.leaving, m, &names);
+            for e in &mut events {
+                match e.kind {
+                    EventKind::Opens => open[e.pair] = true,
+                    EventKind::Closes => open[e.pair] = false,
+                    _ => e.while_open = open[e.pair],
+                }
+            }
+            events.retain(|e| !e.while_open);
+            steps.push(HistoryStep {
+                step: j + 1,
+                s: p.s,
+                factors: factors_at(p.s),
+                entering: p.entering,
+                leaving: p.leaving,
+                entering_label: label(&lcp, p.entering),
+                leaving_label: label(&lcp, p.leaving),
+                events,
+                pairs,
+            });
+        }
+        let inc = &run.last_increment;
+        let pairs = reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i]));
+        let phi = factors_at(run.s_end);
+        let mut residual = reader.residual(&pairs, &phi, history, inc);
+        residual.dissipation = reader.dissipation(&chain);
+        let (status, reason, mechanism) = match &run.ending {
+            StageEnding::Completed => (StageStatus::Completed, None, None),
+            StageEnding::Mechanism(mode) => {
+                let dz = &mode.dz;
+                let v: Vec<(f64, f64)> = (0..m)
+                    .map(|i| (dz[i], (dz[m + i] - dz[2 * m + i]) / 2.0))
+                    .collect();
+                let top = v
+                    .iter()
+                    .fold(0.0f64, |a, &(x, y)| a.max(x.abs()).max(y.abs()));
+                let v = if top > 0.0 {
+                    v.into_iter().map(|(x, y)| (x / top, y / top)).collect()
+                } else {
+                    v
+                };
+                (
+                    StageStatus::Mechanism,
+                    Some(format!(
+                        "the structure becomes a mechanism at s = {} of stage {} (`{}`): the \
+                         load cannot be increased further",
+                        run.s_end,
+                        k + 1,
+                        stage.name
+                    )),
+                    Some(v),
+                )
+            }
+            StageEnding::TurnsBack => (
+                StageStatus::Indeterminate,
+                Some(format!(
+                    "at s = {} of stage {} (`{}`) the path can only go on with the load \
+                     decreasing: the rate problem has no solution or several there (possible \
+                     in 2D only with large friction); the evolution is not continued",
+                    run.s_end,
+                    k + 1,
+                    stage.name
+                )),
+                None,
+            ),
+            StageEnding::IterationLimit => (
+                StageStatus::IterationLimit,
+                Some(format!(
+                    "the pivot cap was reached at s = {} of stage {} (`{}`)",
+                    run.s_end,
+                    k + 1,
+                    stage.name
+                )),
+                None,
+            ),
+            StageEnding::Singular => (
+                StageStatus::NumericalFailure,
+                Some(format!(
+                    "a basis was numerically singular at s = {} of stage {} (`{}`) (the \
+                     program's fault, not the model's)",
+                    run.s_end,
+                    k + 1,
+                    stage.name
+                )),
+                None,
+            ),
+        };
+        out.stages.push(StageSolution {
+            stage: k + 1,
+            name: stage.name.clone(),
+            factors_start: start.clone(),
+            factors_end: end.clone(),
+            status,
+            s_end: run.s_end,
+            steps,
+            pairs,
+            residual,
+            mechanism,
+            reason,
+        });
+        state = run.end;
+        if out.stages.last().map(|s| &s.status) != Some(&StageStatus::Completed) {
+            break;
+        }
+    }
+    Ok(out)
+}
+
+/// Reads normalised states as pair results in the user's units and checks them.
+struct Reader<'a> {
+    zone: &'a ContactZone,
+    units: Units,
+    names: &'a [String],
+}
+
+impl Reader<'_> {
+    fn is_open(&self, x_n: f64, z_n: f64) -> bool {
+        z_n > 1e-9 || x_n <= 1e-12
+    }
+
+    /// Pair results from normalised `x`, `z`; `rate(i)` is the increment `(Δz_t+, Δz_t-)` of
+    /// pair `i` on the segment that follows (which decides slip against stick).
+    fn pairs(&self, x: &[f64], z: &[f64], rate: impl Fn(usize) -> (f64, f64)) -> Vec<PairResult> {
+        let m = self.names.len();
+        let xmax = x.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+        let zmax = z.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+        let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
+        let u = &self.units;
+        (0..m)
+            .map(|i| {
+                let x_n = x[i];
+                let x_t = (x[m + i] - x[2 * m + i]) / 2.0;
+                let (dp, dm) = rate(i);
+                let state = if z[i] > tz || x_n <= tx {
+                    PairState::Open
+                } else if dp > tz && dp > dm {
+                    PairState::SlipPlus
+                } else if dm > tz {
+                    PairState::SlipMinus
+                } else {
+                    PairState::Stick
+                };
+                let x_t = if state == PairState::Open && x_t.abs() <= tx {
+                    0.0
+                } else {
+                    x_t
+                };
+                PairResult {
+                    name: self.names[i].clone(),
+                    x_n: u.user_force(x_n),
+                    x_t: u.user_force(x_t),
+                    z_n: u.user_displacement(z[i]),
+                    z_t: u.user_displacement((z[m + i] - z[2 * m + i]) / 2.0),
+                    state,
+                }
+            })
+            .collect()
+    }
+
+    /// Equation, complementarity and feasibility of a final state, from the original data in
+    /// the user's units; `inc` the normalised slip increments of the last segment.
+    fn residual(
+        &self,
+        pairs: &[PairResult],
+        phi: &[f64],
+        history: &History,
+        inc: &[f64],
+    ) -> HistoryResidual {
+        let zone = self.zone;
+        let m = pairs.len();
+        let xs: f64 = pairs.iter().fold(f64::MIN_POSITIVE, |a, p| {
+            a.max(p.x_n.abs()).max(p.x_t.abs())
+        });
+        let zs: f64 = pairs.iter().fold(f64::MIN_POSITIVE, |a, p| {
+            a.max(p.z_n.abs()).max(p.z_t.abs())
+        });
+        let mut equation = 0.0f64;
+        for i in 0..m {
+            for (normal, x) in [(true, pairs[i].x_n), (false, pairs[i].x_t)] {
+                let (a, b) = if normal {
+                    (&zone.rnn, &zone.rnt)
+                } else {
+                    (&zone.rtn, &zone.rtt)
+                };
+                let mut size = x.abs();
+                let mut r = x;
+                for (c, case) in history.cases.iter().enumerate() {
+                    let v = phi[c]
+                        * if normal {
+                            case.load.normal[i]
+                        } else {
+                            case.load.tangential[i]
+                        };
+                    r -= v;
+                    size = size.max(v.abs());
+                }
+                for j in 0..m {
+                    let t1 = a[(i, j)] * (pairs[j].z_n - zone.gap[j]);
+                    let t2 = b[(i, j)] * pairs[j].z_t;
+                    r -= t1 + t2;
+                    size = size
+                        .max((a[(i, j)] * pairs[j].z_n).abs())
+                        .max((a[(i, j)] * zone.gap[j]).abs())
+                        .max(t2.abs());
+                }
+                equation = equation.max(r.abs() / size.max(xs));
+            }
+        }
+        let mut complementarity = 0.0f64;
+        let mut feasibility = 0.0f64;
+        let zi = &self.units;
+        for (i, p) in pairs.iter().enumerate() {
+            let f = zone.friction[i];
+            complementarity = complementarity.max((p.x_n * p.z_n).abs() / (xs * zs));
+            let (xp, xm) = (f * p.x_n + p.x_t, f * p.x_n - p.x_t);
+            let (dp, dm) = (
+                zi.user_displacement(inc[m + i]),
+                zi.user_displacement(inc[2 * m + i]),
+            );
+            complementarity = complementarity
+                .max((xp * dp).abs() / (xs * zs))
+                .max((xm * dm).abs() / (xs * zs));
+            feasibility = feasibility
+                .max(-p.x_n / xs)
+                .max(-p.z_n / zs)
+                .max(-xp / xs)
+                .max(-xm / xs);
+        }
+        HistoryResidual {
+            equation,
+            complementarity,
+            feasibility: feasibility.max(0.0),
+            dissipation: 0.0,
+        }
+    }
+
+    /// The largest violation of `x_t·Δz_t ≤ 0` over consecutive normalised states (relative to
+    /// the largest force and slip increment of the stage).
+    fn dissipation(&self, chain: &[(&[f64], &[f64])]) -> f64 {
+        let m = self.names.len();
+        let xs = chain
+            .iter()
+            .flat_map(|(x, _)| x.iter())
+            .fold(f64::MIN_POSITIVE, |a, b| a.max(b.abs()));
+        let mut worst = 0.0f64;
+        let mut dzs = f64::MIN_POSITIVE;
+        let mut products = Vec::new();
+        for w in chain.windows(2) {
+            let ((xa, za), (xb, zb)) = (w[0], w[1]);
+            for i in 0..m {
+                let dz = ((zb[m + i] - zb[2 * m + i]) - (za[m + i] - za[2 * m + i])) / 2.0;
+                dzs = dzs.max(dz.abs());
+                let xt_a = (xa[m + i] - xa[2 * m + i]) / 2.0;
+                let xt_b = (xb[m + i] - xb[2 * m + i]) / 2.0;
+                products.push((xt_a * dz).max(xt_b * dz));
+            }
+        }
+        for p in products {
+            worst = worst.max(p / (xs * dzs));
+        }
+        worst.max(0.0)
+    }
+}
+
+/// The label of an engine variable in a history: the paper's names, `s` for the stage parameter.
+fn label(lcp: &ContactLcp, v: Var) -> String {
+    match v {
+        Var::Driver => "s".into(),
+        _ => lcp.label(v),
     }
 }

@@ -30,8 +30,8 @@ mod zone;
 
 pub use error::ContactError;
 pub use history::{
-    History, HistoryResidual, HistorySolution, HistoryStep, LoadCase, Stage, StageSolution,
-    StageStatus,
+    follow_history, History, HistoryResidual, HistorySolution, HistoryStep, LoadCase, Stage,
+    StageSolution, StageStatus,
 };
 pub use lcp::ContactLcp;
 pub use settings::SolveSettings;

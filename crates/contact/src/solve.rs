@@ -265,7 +265,7 @@ fn start_diagnosis(lcp: &ContactLcp) -> Option<String> {
     ))
 }
 
-fn events_of(leaving: Var, m: usize, names: &[String]) -> Vec<Event> {
+pub(crate) fn events_of(leaving: Var, m: usize, names: &[String]) -> Vec<Event> {
     let ev = |i: usize, kind| {
         vec![Event {
             pair: i % m,

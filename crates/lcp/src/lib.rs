@@ -40,6 +40,7 @@
 
 pub mod binary;
 mod error;
+mod evolution;
 mod lemke;
 mod parametric;
 mod path;
@@ -54,6 +55,9 @@ mod tableau;
 mod var;
 
 pub use error::{LcpError, SettingsError};
+pub use evolution::{
+    EvolutionPoint, EvolutionProblem, EvolutionSolver, EvolutionState, StageEnding, StageRun,
+};
 pub use lemke::solve_lcp;
 pub use path::{
     Breakpoint, Follow, LoadPath, MechanismMode, PathOptions, PathPoint, PathStatus, Step,

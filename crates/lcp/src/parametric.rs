@@ -68,7 +68,8 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         (None, Some(c)) => c.clone(),
         (None, None) => vec![1.0; n],
     };
-    let (start_basis, start_pivots) = match start_basis(prep, problem, &h, &phase1_dir, settings) {
+    let (start_basis, start_pivots) = match start_basis(prep, &problem.d, &h, &phase1_dir, settings)
+    {
         (Some(b), pivots) => (b, pivots),
         (None, start_pivots) => {
             return LoadPath {
@@ -235,15 +236,15 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
 /// 3. Then Lemke's method with covering ones and, for `n ≤ 16`, enumeration of all bases.
 ///
 /// A basis is taken only if its values, recomputed from the data, are feasible.
-fn start_basis(
+pub(crate) fn start_basis(
     prep: &Prepared,
-    problem: &ParametricLcp,
+    d: &[f64],
     h: &[f64],
     dir: &[f64],
     settings: &Settings,
 ) -> (Option<Basis>, usize) {
     let n = prep.n;
-    let cols = prep.columns(h, &problem.d);
+    let cols = prep.columns(h, d);
     let hmax = max_abs(&cols.h).max(f64::MIN_POSITIVE);
     if cols.h.iter().all(|&v| v >= -1e-13 * hmax) {
         return (Some(Basis::slack(n)), 0);
@@ -310,7 +311,12 @@ fn basic_z(prep: &Prepared, slots: &[usize], beta: &[f64]) -> Vec<(usize, f64)> 
         .collect()
 }
 
-fn mechanism_mode(prep: &Prepared, piv: &Pivoter, entering: usize, alpha: &[f64]) -> MechanismMode {
+pub(crate) fn mechanism_mode(
+    prep: &Prepared,
+    piv: &Pivoter,
+    entering: usize,
+    alpha: &[f64],
+) -> MechanismMode {
     let n = prep.n;
     let mut dxs = vec![0.0; n];
     let mut dzs = vec![0.0; n];

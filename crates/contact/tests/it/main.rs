@@ -5,6 +5,7 @@ mod at_many;
 mod beam_zone;
 mod common;
 mod generated_beams;
+mod history;
 mod known_answers;
 mod scale_invariance;
 mod solution_engine;

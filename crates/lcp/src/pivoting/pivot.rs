@@ -48,7 +48,8 @@ const DRIFT: f64 = 1e-9;
 
 /// The state of a complementary pivoting run.
 pub(crate) struct Pivoter<'a> {
-    pub cols: &'a Columns,
+    /// The tableau's columns; owned once the right-hand side moves ([`Pivoter::rebase`]).
+    pub cols: std::borrow::Cow<'a, Columns>,
     pub basis: Basis,
     /// Basic values by slot.
     pub beta: Vec<f64>,
@@ -92,7 +93,7 @@ impl<'a> Pivoter<'a> {
             .fold(1.0f64, f64::max);
         let value_scale = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
         Self {
-            cols,
+            cols: std::borrow::Cow::Borrowed(cols),
             basis,
             beta,
             tol,
@@ -151,7 +152,7 @@ impl<'a> Pivoter<'a> {
         let n = self.cols.n;
         let mut alive: Vec<(usize, Vec<f64>)> = ties
             .iter()
-            .map(|&s| (s, self.basis.inverse_row_data(self.cols, s)))
+            .map(|&s| (s, self.basis.inverse_row_data(&self.cols, s)))
             .collect();
         // Entries are equal when they differ by round-off of the rows they belong to (times the
         // size of the start's structural columns they are applied to).
@@ -175,7 +176,7 @@ impl<'a> Pivoter<'a> {
                     .map(|(s, data)| self.basis.inverse_entry(*s, c, data) / alpha[*s])
                     .collect()
             } else {
-                let col = self.basis.ftran(self.cols, c);
+                let col = self.basis.ftran(&self.cols, c);
                 alive.iter().map(|(s, _)| col[*s] / alpha[*s]).collect()
             };
             if max_abs(&vals) <= thr {
@@ -297,7 +298,7 @@ impl<'a> Pivoter<'a> {
             *b -= theta * a;
         }
         self.beta[slot] = theta;
-        self.basis.pivot(self.cols, entering, slot, alpha);
+        self.basis.pivot(&self.cols, entering, slot, alpha);
         self.pivots += 1;
         self.since_refactor += 1;
         self.since_values += 1;
@@ -314,13 +315,13 @@ impl<'a> Pivoter<'a> {
     /// Basic values recomputed from the data with the current kernel inverse (`O(n·k + k²)`),
     /// free of the drift that the updates `β −= θ·α` accumulate.
     pub fn refresh_values(&mut self) {
-        self.beta = self.basis.solve(self.cols, &self.cols.h);
+        self.beta = self.basis.solve(&self.cols, &self.cols.h);
         self.since_values = 0;
     }
 
     /// The basic values of some slots recomputed from the data (`O(k²)` plus `O(k)` a slot).
     fn refresh_slots(&mut self, slots: &[usize]) {
-        let fresh = self.basis.values_at(self.cols, &self.cols.h, slots);
+        let fresh = self.basis.values_at(&self.cols, &self.cols.h, slots);
         for (&s, v) in slots.iter().zip(fresh) {
             self.beta[s] = v;
         }
@@ -328,8 +329,8 @@ impl<'a> Pivoter<'a> {
 
     /// Fresh factorisation of the kernel and recomputation of the basic values from the data.
     pub fn refactor(&mut self) -> Result<(), SingularBasis> {
-        self.basis.refactor(self.cols)?;
-        self.beta = self.basis.solve(self.cols, &self.cols.h);
+        self.basis.refactor(&self.cols)?;
+        self.beta = self.basis.solve(&self.cols, &self.cols.h);
         self.since_refactor = 0;
         self.since_values = 0;
         self.drift = 0.0;
@@ -355,6 +356,82 @@ impl<'a> Pivoter<'a> {
         }
     }
 
+    /// The entering column `α = B⁻¹ A[:, entering]` and the ratio test's choice on it, the
+    /// judgement made on accurate numbers: a ray on a fresh factorisation, a tiny pivot on basic
+    /// values recomputed from the data.
+    pub fn choose(
+        &mut self,
+        entering: usize,
+    ) -> Result<(Vec<f64>, Option<(usize, f64)>), SingularBasis> {
+        let (mut alpha, drift) = self.basis.ftran_checked(&self.cols, entering);
+        self.drift = drift;
+        let mut step = self.ratio_test(&alpha);
+        // A ray is judged on a fresh factorisation, never on updates. A tiny pivot is judged
+        // on basic values recomputed from the data (the updated ones drift, and near-zero
+        // values decide ties); the column itself is accurate while the kernel's residual is.
+        if (step.is_none() || drift > DRIFT) && self.since_refactor > 0 {
+            self.refactor()?;
+            alpha = self.basis.ftran(&self.cols, entering);
+            step = self.ratio_test(&alpha);
+        } else if let Some((slot, _)) = step {
+            if self.since_values > 0 {
+                if alpha[slot] < 1e-6 * max_abs(&alpha) {
+                    self.refresh_values();
+                    step = self.ratio_test(&alpha);
+                } else {
+                    let close = self.near_ties(&alpha, slot);
+                    if !close.is_empty() {
+                        self.refresh_slots(&close);
+                        step = self.ratio_test(&alpha);
+                    }
+                }
+            }
+        }
+        Ok((alpha, step))
+    }
+
+    /// Moves the right-hand side so that the basic `z` columns marked in `reset` read zero:
+    /// `ĥ += β_j·M̂_j` for each, `β_j ← 0`, and `acc[j] += β_j` (columns' units). The point does
+    /// not move; the lexicographic order restarts from the current basis, which is the start
+    /// of a new problem (its perturbation `B ε` is lexicographically positive there).
+    pub fn rebase(&mut self, reset: &[bool], acc: &mut [f64]) {
+        let n = self.cols.n;
+        self.refresh_values();
+        let moves: Vec<(usize, usize, f64)> = self
+            .basis
+            .slot_var
+            .iter()
+            .enumerate()
+            .filter(|&(s, &v)| v >= n && v < 2 * n && reset[v - n] && self.beta[s] != 0.0)
+            .map(|(s, &v)| (s, v - n, self.beta[s]))
+            .collect();
+        if !moves.is_empty() {
+            let cols = self.cols.to_mut();
+            let m = cols.m.clone();
+            for &(s, j, b) in &moves {
+                for (h, mj) in cols.h.iter_mut().zip(&m[j * n..(j + 1) * n]) {
+                    *h += b * mj;
+                }
+                acc[j] += b;
+                self.beta[s] = 0.0;
+            }
+        }
+        self.start = self.basis.slot_var.clone();
+        let mut col = vec![0.0; n];
+        self.start_scale = self
+            .start
+            .iter()
+            .filter(|&&c| c >= n)
+            .map(|&c| {
+                self.cols.col_into(c, &mut col);
+                max_abs(&col)
+            })
+            .fold(1.0f64, f64::max);
+        self.value_scale = max_abs(&self.cols.h)
+            .max(max_abs(&self.beta))
+            .max(f64::MIN_POSITIVE);
+    }
+
     /// Complementary pivoting from `entering` until the driver leaves, a ray, the target, or
     /// the pivot cap. `target = Some((t, stop))` (in the caller's units): when the driver would
     /// pass `t`, stop there if `stop`, otherwise note the segment index in `crossed` and go on.
@@ -369,32 +446,9 @@ impl<'a> Pivoter<'a> {
         let driver = self.cols.driver();
         let target = target.map(|(t, stop)| (self.cols.driver_scaled(t), stop));
         loop {
-            let (mut alpha, drift) = self.basis.ftran_checked(self.cols, entering);
-            self.drift = drift;
-            let mut step = self.ratio_test(&alpha);
-            // A ray is judged on a fresh factorisation, never on updates. A tiny pivot is judged
-            // on basic values recomputed from the data (the updated ones drift, and near-zero
-            // values decide ties); the column itself is accurate while the kernel's residual is.
-            if (step.is_none() || drift > DRIFT) && self.since_refactor > 0 {
-                if self.refactor().is_err() {
-                    return (Ending::Singular, entering);
-                }
-                alpha = self.basis.ftran(self.cols, entering);
-                step = self.ratio_test(&alpha);
-            } else if let Some((slot, _)) = step {
-                if self.since_values > 0 {
-                    if alpha[slot] < 1e-6 * max_abs(&alpha) {
-                        self.refresh_values();
-                        step = self.ratio_test(&alpha);
-                    } else {
-                        let close = self.near_ties(&alpha, slot);
-                        if !close.is_empty() {
-                            self.refresh_slots(&close);
-                            step = self.ratio_test(&alpha);
-                        }
-                    }
-                }
-            }
+            let Ok((alpha, step)) = self.choose(entering) else {
+                return (Ending::Singular, entering);
+            };
             let amax = max_abs(&alpha);
             // How far the driver moves along this segment.
             let (t_now, t_rate) = if entering == driver {

@@ -1,0 +1,210 @@
+//! Load histories with incremental friction (`follow_history`) against hand calculations and
+//! against the paper's method where slips only grow.
+
+use faer::mat;
+use unilateral_contact::{
+    follow_history, solve, ContactLoad, ContactZone, Follow, History, LoadCase, PairState,
+    SolveSettings, Stage, StageStatus,
+};
+
+use crate::beam_zone::beam_on_supports;
+
+fn case(name: &str, normal: Vec<f64>, tangential: Vec<f64>) -> LoadCase {
+    LoadCase {
+        name: name.into(),
+        load: ContactLoad { normal, tangential },
+    }
+}
+
+fn stage(name: &str, factors: Vec<Option<f64>>) -> Stage {
+    Stage {
+        name: name.into(),
+        factors,
+    }
+}
+
+/// One pair on rigid ground, `k_t = 2`, `f = 0.5`, a constant compression `N = 1` and a
+/// tangential force `T` taken to `T* = 0.8 > f·N`, released, reversed to `−T*`, released.
+///
+/// By hand (x_t = T + k_t·z_t; sliding where |x_t| = f·N = 0.5; sticking keeps z_t):
+/// * push to 0.8: slides from T = 0.5 (s = 0.625) with x_t = +0.5, z_t = −(0.8 − 0.5)/2 = −0.15;
+/// * release to 0: sticks, x_t = 2·(−0.15) = −0.3 (|x_t| < 0.5), z_t = −0.15 kept;
+/// * pull to −0.8: sticks until x_t = −0.5, i.e. T = −0.2 (s = 0.25), then slides back:
+///   z_t = (−0.5 − T)/2 = +0.15 at T = −0.8, x_t = −0.5;
+/// * release to 0: sticks, x_t = 2·0.15 = +0.3, z_t = +0.15 kept.
+///
+/// The paper's total-slip law would instead return the slip to zero on release.
+#[test]
+fn single_pair_loaded_released_reversed_released_by_hand() {
+    for scale in [1.0, 1e-3, 1e6] {
+        // In other units: forces × scale, displacements × scale (stiffness unchanged).
+        let mut zone = ContactZone::new(mat![[10.0]], mat![[2.0]]);
+        zone.friction = vec![0.5];
+        let history = History {
+            cases: vec![
+                case("dead", vec![scale], vec![0.0]),
+                case("push", vec![0.0], vec![0.8 * scale]),
+            ],
+            stages: vec![
+                stage("dead", vec![Some(1.0), None]),
+                stage("push", vec![None, Some(1.0)]),
+                stage("release", vec![None, Some(0.0)]),
+                stage("pull", vec![None, Some(-1.0)]),
+                stage("release again", vec![None, Some(0.0)]),
+            ],
+        };
+        let h = follow_history(&zone, &history, &Default::default()).unwrap();
+        assert_eq!(h.stages.len(), 5);
+        let expect = [
+            (0.0, 0.0, PairState::Stick),
+            (-0.15, 0.5, PairState::SlipMinus),
+            (-0.15, -0.3, PairState::Stick),
+            (0.15, -0.5, PairState::SlipPlus),
+            (0.15, 0.3, PairState::Stick),
+        ];
+        for (st, (z_t, x_t, state)) in h.stages.iter().zip(expect) {
+            assert_eq!(st.status, StageStatus::Completed, "{}", st.name);
+            let p = &st.pairs[0];
+            assert_eq!(p.state, state, "{}: {p:?}", st.name);
+            assert!(
+                (p.z_t - z_t * scale).abs() < 1e-12 * scale,
+                "{}: {p:?}",
+                st.name
+            );
+            assert!(
+                (p.x_t - x_t * scale).abs() < 1e-12 * scale,
+                "{}: {p:?}",
+                st.name
+            );
+            assert!((p.x_n - scale).abs() < 1e-12 * scale);
+            assert!(st.residual.max() < 1e-12, "{}: {:?}", st.name, st.residual);
+        }
+        // Where the slip starts: s = 0.625 in the push, s = 0.25 in the pull.
+        let starts = |k: usize| -> Vec<f64> {
+            h.stages[k]
+                .steps
+                .iter()
+                .filter(|s| {
+                    s.events
+                        .iter()
+                        .any(|e| e.kind != unilateral_contact::EventKind::Sticks)
+                })
+                .map(|s| s.s)
+                .collect()
+        };
+        assert!(
+            starts(1).iter().any(|s| (s - 0.625).abs() < 1e-12),
+            "{:?}",
+            h.stages[1].steps
+        );
+        assert!(
+            starts(3).iter().any(|s| (s - 0.25).abs() < 1e-12),
+            "{:?}",
+            h.stages[3].steps
+        );
+    }
+}
+
+/// Below the friction limit nothing slips: T* = 0.4 < f·N, every stage sticks and the
+/// tangential force is the applied one, x_t = T (hand: z_t = 0).
+#[test]
+fn below_the_limit_nothing_slips() {
+    let mut zone = ContactZone::new(mat![[10.0]], mat![[2.0]]);
+    zone.friction = vec![0.5];
+    let history = History {
+        cases: vec![
+            case("dead", vec![1.0], vec![0.0]),
+            case("push", vec![0.0], vec![0.4]),
+        ],
+        stages: vec![
+            stage("dead", vec![Some(1.0), None]),
+            stage("push", vec![None, Some(1.0)]),
+            stage("pull", vec![None, Some(-1.0)]),
+        ],
+    };
+    let h = follow_history(&zone, &history, &Default::default()).unwrap();
+    for (st, t) in h.stages.iter().zip([0.0, 0.4, -0.4]) {
+        let p = &st.pairs[0];
+        assert_eq!(p.state, PairState::Stick);
+        assert!(p.z_t.abs() < 1e-15 && (p.x_t - t).abs() < 1e-12, "{p:?}");
+    }
+}
+
+/// One stage that applies every load proportionally from zero is the paper's method at the same
+/// load (slips only grow then): generated beams on frictional supports with a constant and a
+/// variable load, the history `[{constant = 1, variable = 1}]` against `solve` without
+/// tightening at p = 1.
+#[test]
+fn one_proportional_stage_is_the_papers_method() {
+    let mut compared = 0;
+    let mut slipping = 0;
+    for seed in 1..=6u64 {
+        let zone = beam_on_supports(6, seed);
+        let history = History {
+            cases: vec![
+                case(
+                    "constant",
+                    zone.constant.normal.clone(),
+                    zone.constant.tangential.clone(),
+                ),
+                case(
+                    "variable",
+                    zone.variable.normal.clone(),
+                    zone.variable.tangential.clone(),
+                ),
+            ],
+            stages: vec![stage("all", vec![Some(1.0), Some(1.0)])],
+        };
+        let settings = SolveSettings {
+            tightening: 0.0,
+            follow: Follow::ToTarget,
+            ..Default::default()
+        };
+        let Ok(paper) = solve(&zone, &settings) else {
+            continue;
+        };
+        if paper.pairs.is_empty() {
+            continue;
+        }
+        // Only where the paper's path is monotone: its proportional program from zero makes
+        // the same load on both; the comparison holds where every slip only grows.
+        let h = follow_history(&zone, &history, &Default::default()).unwrap();
+        let st = &h.stages[0];
+        assert_eq!(st.status, StageStatus::Completed, "seed {seed}");
+        let scale = paper.pairs.iter().fold(0.0f64, |a, p| a.max(p.x_n.abs()));
+        let zscale = paper
+            .pairs
+            .iter()
+            .fold(0.0f64, |a, p| a.max(p.z_n.abs()).max(p.z_t.abs()));
+        for (a, b) in st.pairs.iter().zip(&paper.pairs) {
+            assert!(
+                (a.x_n - b.x_n).abs() <= 1e-9 * scale,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+            assert!(
+                (a.x_t - b.x_t).abs() <= 1e-9 * scale,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+            assert!(
+                (a.z_n - b.z_n).abs() <= 1e-9 * zscale,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+            assert!(
+                (a.z_t - b.z_t).abs() <= 1e-9 * zscale,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+        }
+        assert!(st.residual.max() < 1e-9, "seed {seed}: {:?}", st.residual);
+        compared += 1;
+        slipping += st
+            .pairs
+            .iter()
+            .filter(|p| matches!(p.state, PairState::SlipPlus | PairState::SlipMinus))
+            .count();
+    }
+    // The comparison is not empty, and friction is at work in it.
+    assert!(
+        compared >= 5 && slipping > 0,
+        "{compared} zones, {slipping} slipping pairs"
+    );
+}

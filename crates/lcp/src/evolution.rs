@@ -1,0 +1,385 @@
+//! Quasi-static evolution of an LCP whose complementarity holds, for some components, between
+//! `x_i` and the *increment* of `z_i` (incremental friction), followed exactly along a
+//! piecewise-linear load program.
+//!
+//! The problem is `x = q0 + ℓ(s) + M z`, `x ≥ 0`, `z ≥ 0`, with a load `ℓ` that moves linearly
+//! within each stage, `ℓ = ℓ_start + s·d`, `s ∈ [0, 1]`. For an ordinary ("total") component
+//! `x_i·z_i = 0` at every instant. For an *incremental* component the unknown is the rate:
+//! `z_i` only grows, and only while `x_i = 0` (`x_i·ż_i = 0`, `ż_i ≥ 0`); it keeps its value
+//! otherwise. Between two breakpoints the basis is constant and everything is linear in `s`, so
+//! each segment is one segment of the parametric Lemke path of the LCP in the increments. At
+//! every breakpoint that moved the point, the incremental values reached are absorbed into the
+//! right-hand side (`ĥ += M̂_j z_j`, [`crate::pivoting`]'s `rebase`) and read zero again: where
+//! the next segment would make such a component decrease, the ratio test meets a zero at once
+//! and the component leaves the basis (the slip stops, its value kept); the degenerate vertex is
+//! left by the lexicographic rule restarted from the current basis, never by luck.
+//!
+//! The engine knows nothing of mechanics: `unilateral-contact` maps friction onto it.
+
+use faer::Mat;
+
+use crate::parametric::{mechanism_mode, start_basis};
+use crate::pivoting::basis::Basis;
+use crate::pivoting::pivot::{max_abs, Pivoter, Tolerances};
+use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
+use crate::{LcpError, MechanismMode, Settings, Var};
+
+/// The data of an evolution: `x = q0 + ℓ + M z` at load `ℓ` (zero at the start).
+#[derive(Debug, Clone)]
+pub struct EvolutionProblem {
+    /// The matrix `M` (`n × n`).
+    pub m: Mat<f64>,
+    /// The constant part (for contact: the initial gaps).
+    pub q0: Vec<f64>,
+    /// Which components of `z` are incremental.
+    pub incremental: Vec<bool>,
+    /// A positive direction along which `q0` is made feasible to find the start (as the
+    /// tightening direction of the parametric method).
+    pub start_direction: Vec<f64>,
+}
+
+/// A state of the evolution: the load reached, the values, and the basis to go on from.
+#[derive(Debug, Clone)]
+pub struct EvolutionState {
+    /// The load part `ℓ` of the right-hand side reached (`q0` not included).
+    pub load: Vec<f64>,
+    /// `x` at the state.
+    pub x: Vec<f64>,
+    /// `z` at the state: current values of total components, accumulated values of
+    /// incremental ones.
+    pub z: Vec<f64>,
+    /// The complementary basis (none at a state the evolution cannot go on from).
+    basis: Option<Basis>,
+}
+
+impl EvolutionState {
+    /// Whether the evolution can go on from this state.
+    pub fn can_continue(&self) -> bool {
+        self.basis.is_some()
+    }
+}
+
+/// One pivot of a stage: a change of the working scheme at stage parameter `s`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EvolutionPoint {
+    /// The stage parameter.
+    pub s: f64,
+    /// The entering variable (`Var::Driver` is `s`).
+    pub entering: Var,
+    /// The leaving variable.
+    pub leaving: Var,
+    /// `x` just after the pivot.
+    pub x: Vec<f64>,
+    /// `z` just after the pivot (accumulated values of incremental components).
+    pub z: Vec<f64>,
+}
+
+/// How a stage ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StageEnding {
+    /// `s = 1` was reached.
+    Completed,
+    /// The entering variable grows without bound at fixed `s`: a mechanism at `s`.
+    Mechanism(MechanismMode),
+    /// The path would turn back (`s` decreasing) or leave `s = 0`: the rate problem has no
+    /// solution or several here.
+    TurnsBack,
+    /// The pivot cap was hit.
+    IterationLimit,
+    /// A basis could not be factorised.
+    Singular,
+}
+
+/// The result of one stage.
+#[derive(Debug, Clone)]
+pub struct StageRun {
+    /// How it ended.
+    pub ending: StageEnding,
+    /// The stage parameter reached.
+    pub s_end: f64,
+    /// Every pivot in order.
+    pub points: Vec<EvolutionPoint>,
+    /// The state at `s_end`.
+    pub end: EvolutionState,
+    /// The increment of every incremental `z` on the stage's last segment (zero for the
+    /// others): which components are still growing at the end.
+    pub last_increment: Vec<f64>,
+    /// Pivots spent.
+    pub pivots: usize,
+}
+
+/// The evolution solver: the problem checked and equilibrated once.
+pub struct EvolutionSolver {
+    problem: EvolutionProblem,
+    settings: Settings,
+    n: usize,
+    prep: Prepared,
+}
+
+impl std::fmt::Debug for EvolutionSolver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("EvolutionSolver")
+            .field("order", &self.n)
+            .field("settings", &self.settings)
+            .finish_non_exhaustive()
+    }
+}
+
+impl EvolutionSolver {
+    /// Validates the problem and the settings, and equilibrates `M`.
+    pub fn new(problem: EvolutionProblem, settings: Settings) -> Result<Self, LcpError> {
+        let n = check_matrix(&problem.m)?;
+        check_vector("q0", &problem.q0, n)?;
+        check_vector("start direction", &problem.start_direction, n)?;
+        if problem.incremental.len() != n {
+            return Err(LcpError::Dimension(format!(
+                "the incremental mask has {} entries, M has order {n}",
+                problem.incremental.len()
+            )));
+        }
+        settings.validate(n)?;
+        let prep = Prepared::new(&problem.m);
+        Ok(Self {
+            problem,
+            settings,
+            n,
+            prep,
+        })
+    }
+
+    /// The order `n`.
+    pub fn order(&self) -> usize {
+        self.n
+    }
+
+    /// The problem as given.
+    pub fn problem(&self) -> &EvolutionProblem {
+        &self.problem
+    }
+
+    fn tolerances(&self) -> Tolerances {
+        Tolerances {
+            pivot: self.settings.pivot_tol(),
+            value: 1e-13,
+        }
+    }
+
+    /// The state at zero load: the solution of `x = q0 + M z` (every incremental component
+    /// starts at its value there, normally zero). `None` when there is none.
+    pub fn start(&self) -> Option<EvolutionState> {
+        let n = self.n;
+        let zero = vec![0.0; n];
+        let (basis, _) = start_basis(
+            &self.prep,
+            &zero,
+            &self.problem.q0,
+            &self.problem.start_direction,
+            &self.settings,
+        );
+        let basis = basis?;
+        let cols = self.prep.columns(&self.problem.q0, &zero);
+        let beta = basis.solve(&cols, &cols.h);
+        let (x, z) = self.prep.unscale(
+            &basis.slot_var,
+            &cols.values(&crate::parametric::clamp(&beta)),
+        );
+        Some(EvolutionState {
+            load: zero,
+            x,
+            z,
+            basis: Some(basis),
+        })
+    }
+
+    /// The right-hand side `q0 + ℓ + M_inc z_inc` of the LCP in the increments at `state`.
+    fn rhs_at(&self, state: &EvolutionState) -> Vec<f64> {
+        let n = self.n;
+        let mut h: Vec<f64> = self
+            .problem
+            .q0
+            .iter()
+            .zip(&state.load)
+            .map(|(a, b)| a + b)
+            .collect();
+        for j in 0..n {
+            let zj = state.z[j];
+            if self.problem.incremental[j] && zj != 0.0 {
+                for (i, hi) in h.iter_mut().enumerate() {
+                    *hi += self.problem.m[(i, j)] * zj;
+                }
+            }
+        }
+        h
+    }
+
+    /// Follows one stage from `from`: the load moves by `s·d`, `s` from 0 to 1.
+    pub fn stage(&self, from: &EvolutionState, d: &[f64]) -> StageRun {
+        let n = self.n;
+        let failed = |ending| StageRun {
+            ending,
+            s_end: 0.0,
+            points: vec![],
+            end: EvolutionState {
+                basis: None,
+                ..from.clone()
+            },
+            last_increment: vec![0.0; n],
+            pivots: 0,
+        };
+        let Some(basis) = from.basis.clone() else {
+            return failed(StageEnding::Singular);
+        };
+        if d.len() != n {
+            return failed(StageEnding::Singular);
+        }
+        let h = self.rhs_at(from);
+        let cols = self.prep.columns(&h, d);
+        let tol = self.tolerances();
+        let mut piv = Pivoter::new(
+            &cols,
+            basis,
+            tol,
+            self.settings.priority(n),
+            self.settings.refactor_interval,
+        );
+        let reset = &self.problem.incremental;
+        let driver = 2 * n;
+        let target = cols.driver_scaled(1.0);
+        let cap = self.settings.cap(n);
+        // Incremental values absorbed into the right-hand side during this stage (columns' units).
+        let mut acc = vec![0.0; n];
+        let mut points = Vec::new();
+        let mut entering = driver;
+        let point = |piv: &Pivoter, acc: &[f64]| -> (Vec<f64>, Vec<f64>) {
+            let mut zc = acc.to_vec();
+            let mut xc = vec![0.0; n];
+            for (slot, &v) in piv.basis.slot_var.iter().enumerate() {
+                if v < n {
+                    xc[v] = piv.beta[slot].max(0.0);
+                } else if v < 2 * n {
+                    zc[v - n] += piv.beta[slot].max(0.0);
+                }
+            }
+            let x = self.prep.scaling.unscale_x(&piv.cols.values(&xc));
+            let dz = self.prep.scaling.unscale_z(&piv.cols.values(&zc));
+            let z = from.z.iter().zip(&dz).enumerate().map(
+                |(j, (z0, dzj))| {
+                    if reset[j] {
+                        z0 + dzj
+                    } else {
+                        *dzj
+                    }
+                },
+            );
+            (x, z.collect())
+        };
+        let ending = loop {
+            let Ok((alpha, step)) = piv.choose(entering) else {
+                break StageEnding::Singular;
+            };
+            let amax = max_abs(&alpha);
+            let ds = piv.driver_slot();
+            let (t_now, t_rate) = if entering == driver {
+                (0.0, 1.0)
+            } else if let Some(ds) = ds {
+                let a = alpha[ds];
+                let a = if a.abs() <= tol.pivot * amax { 0.0 } else { a };
+                (piv.beta[ds], -a)
+            } else {
+                (0.0, 0.0)
+            };
+            if t_rate > 0.0 {
+                let theta_t = (target - t_now) / t_rate;
+                let hit = match step {
+                    None => true,
+                    Some((_, th)) => theta_t <= th + 1e-9 * th.abs().max(theta_t.abs()),
+                };
+                if hit {
+                    // The end of the stage lies on this segment: move there and take `s` out of
+                    // the basis, leaving a complementary basis at `s = 1`.
+                    // The values are moved by hand and the basis updated without a
+                    // refactorisation: recomputed from the data with `s` non-basic they would
+                    // be the values at `s = 0`.
+                    for (b, a) in piv.beta.iter_mut().zip(&alpha) {
+                        *b -= theta_t * a;
+                    }
+                    if entering != driver {
+                        let Some(ds) = ds else {
+                            break StageEnding::Singular;
+                        };
+                        piv.beta[ds] = theta_t;
+                        piv.basis.pivot(&piv.cols, entering, ds, &alpha);
+                    }
+                    break StageEnding::Completed;
+                }
+            }
+            let Some((slot, theta)) = step else {
+                if t_rate == 0.0 {
+                    break StageEnding::Mechanism(mechanism_mode(
+                        &self.prep, &piv, entering, &alpha,
+                    ));
+                }
+                break StageEnding::TurnsBack;
+            };
+            let zero = tol.value * max_abs(&piv.beta).max(max_abs(&piv.cols.h));
+            if t_rate < 0.0 && theta > zero {
+                break StageEnding::TurnsBack;
+            }
+            if piv.pivots >= cap {
+                break StageEnding::IterationLimit;
+            }
+            let Ok(leaving) = piv.pivot(entering, slot, theta, &alpha) else {
+                break StageEnding::Singular;
+            };
+            if leaving == driver {
+                break StageEnding::TurnsBack;
+            }
+            if theta > zero {
+                piv.rebase(reset, &mut acc);
+            }
+            let s = piv.cols.driver_real(piv.driver_value_scaled());
+            let (x, z) = point(&piv, &acc);
+            points.push(EvolutionPoint {
+                s,
+                entering: Var::from_col(entering, n),
+                leaving: Var::from_col(leaving, n),
+                x,
+                z,
+            });
+            entering = piv
+                .cols
+                .complement(leaving)
+                .expect("only the driver has no complement");
+        };
+        let completed = ending == StageEnding::Completed;
+        let s_end = if completed {
+            1.0
+        } else {
+            piv.cols.driver_real(piv.driver_value_scaled())
+        };
+        // The increments of the last segment: the incremental values since the last rebase.
+        let mut last = vec![0.0; n];
+        for (slot, &v) in piv.basis.slot_var.iter().enumerate() {
+            if v >= n && v < 2 * n && reset[v - n] {
+                last[v - n] = piv.beta[slot].max(0.0);
+            }
+        }
+        let last_increment = self.prep.scaling.unscale_z(&piv.cols.values(&last));
+        let (x, z) = point(&piv, &acc);
+        let load = from
+            .load
+            .iter()
+            .zip(d)
+            .map(|(l, di)| l + s_end * di)
+            .collect();
+        let basis = completed.then(|| piv.basis.clone());
+        StageRun {
+            ending,
+            s_end,
+            points,
+            end: EvolutionState { load, x, z, basis },
+            last_increment,
+            pivots: piv.pivots,
+        }
+    }
+}
