@@ -40,6 +40,9 @@ pub(crate) enum Ending {
     Singular,
 }
 
+/// The ratio test's choice: the leaving slot and the step length.
+pub(crate) type Choice = (usize, f64);
+
 /// Relative size of a tie in the ratio test.
 const TIE: f64 = 1e-9;
 
@@ -362,7 +365,7 @@ impl<'a> Pivoter<'a> {
     pub fn choose(
         &mut self,
         entering: usize,
-    ) -> Result<(Vec<f64>, Option<(usize, f64)>), SingularBasis> {
+    ) -> Result<(Vec<f64>, Option<Choice>), SingularBasis> {
         let (mut alpha, drift) = self.basis.ftran_checked(&self.cols, entering);
         self.drift = drift;
         let mut step = self.ratio_test(&alpha);
