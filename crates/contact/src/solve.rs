@@ -195,6 +195,15 @@ pub fn solve(
                 .into(),
         );
     }
+    if let Some((p, pair)) = first_slip_decrease(&path, m) {
+        notes.push(format!(
+            "at p = {p} the slip of pair {} decreases along the path: from there the paper's \
+             friction law (total slip tied to total force) is not a real one — a slip that \
+             reverses or is given back dissipates no energy in it; a [[history]] gives the \
+             path-dependent answer",
+            names[pair]
+        ));
+    }
     let solution = normalised_solution;
     if let Some(p_art) = path.artificial_mechanism {
         notes.push(format!(
@@ -237,6 +246,34 @@ pub fn solve(
         out.set_point(&sol)?;
     }
     Ok(out)
+}
+
+/// The first breakpoint (load, pair) at which a slip part `z_t±` of the traced path is smaller
+/// than at the breakpoint before (relative to the largest slip of the two), while the load grows.
+fn first_slip_decrease(path: &unilateral_lcp::LoadPath, m: usize) -> Option<(f64, usize)> {
+    let slips = |b: &unilateral_lcp::Breakpoint| -> Vec<f64> {
+        let mut v = vec![0.0; 2 * m];
+        for &(i, z) in &b.z {
+            if i >= m && i < 3 * m {
+                v[i - m] = z;
+            }
+        }
+        v
+    };
+    let mut prev = slips(path.breakpoints.first()?);
+    let mut p_prev = path.breakpoints.first()?.p;
+    for b in path.breakpoints.iter().skip(1) {
+        let now = slips(b);
+        let top = prev.iter().chain(&now).fold(0.0f64, |a, v| a.max(v.abs()));
+        if b.p > p_prev {
+            if let Some(k) = (0..2 * m).find(|&k| prev[k] - now[k] > 1e-9 * top) {
+                return Some((b.p, k % m));
+            }
+        }
+        prev = now;
+        p_prev = b.p;
+    }
+    None
 }
 
 /// Why p = 0 may have no solution: the pairs whose normal link the constant load (with the

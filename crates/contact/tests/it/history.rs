@@ -208,3 +208,44 @@ fn one_proportional_stage_is_the_papers_method() {
         "{compared} zones, {slipping} slipping pairs"
     );
 }
+
+/// The paper's method says so when a slip of its path decreases (its friction law is not a
+/// real one from there on). Reference: the traced breakpoints themselves — a slip part basic at
+/// one breakpoint and smaller at the next while p grows — checked here independently of the
+/// note's code by reading the path's breakpoints.
+#[test]
+fn papers_method_flags_a_slip_that_decreases() {
+    let settings = SolveSettings {
+        tightening: 0.0,
+        follow: Follow::ToEnd,
+        ..Default::default()
+    };
+    let (mut flagged, mut decreasing) = (0, 0);
+    for seed in 1..=40u64 {
+        let zone = beam_on_supports(8, seed);
+        let Ok(sol) = solve(&zone, &settings) else {
+            continue;
+        };
+        let m = zone.pairs();
+        let mut has = false;
+        for w in sol.path.breakpoints.windows(2) {
+            let get = |b: &unilateral_lcp::Breakpoint, k: usize| {
+                b.z.iter().find(|&&(i, _)| i == k).map_or(0.0, |&(_, v)| v)
+            };
+            let top = (m..3 * m)
+                .map(|k| get(&w[0], k).abs().max(get(&w[1], k).abs()))
+                .fold(0.0f64, f64::max);
+            if w[1].p > w[0].p && (m..3 * m).any(|k| get(&w[0], k) - get(&w[1], k) > 1e-9 * top) {
+                has = true;
+            }
+        }
+        let noted = sol.notes.iter().any(|n| n.contains("[[history]]"));
+        assert_eq!(has, noted, "seed {seed}: {:?}", sol.notes);
+        decreasing += has as usize;
+        flagged += noted as usize;
+    }
+    assert!(
+        decreasing > 0 && flagged == decreasing,
+        "{decreasing} decreasing, {flagged} flagged"
+    );
+}

@@ -362,10 +362,7 @@ impl<'a> Pivoter<'a> {
     /// The entering column `α = B⁻¹ A[:, entering]` and the ratio test's choice on it, the
     /// judgement made on accurate numbers: a ray on a fresh factorisation, a tiny pivot on basic
     /// values recomputed from the data.
-    pub fn choose(
-        &mut self,
-        entering: usize,
-    ) -> Result<(Vec<f64>, Option<Choice>), SingularBasis> {
+    pub fn choose(&mut self, entering: usize) -> Result<(Vec<f64>, Option<Choice>), SingularBasis> {
         let (mut alpha, drift) = self.basis.ftran_checked(&self.cols, entering);
         self.drift = drift;
         let mut step = self.ratio_test(&alpha);
