@@ -336,6 +336,7 @@ pub fn follow_history(
             m: lcp.problem.m.clone(),
             q0: lcp.problem.q0.clone(),
             incremental: (0..n).map(|i| i >= m).collect(),
+            guard: (0..n).map(|i| (i >= m).then_some(i % m)).collect(),
             start_direction: lcp.tightening_direction.clone(),
         },
         engine,
@@ -625,29 +626,32 @@ impl Reader<'_> {
         }
     }
 
-    /// The largest violation of `x_t·Δz_t ≤ 0` over consecutive normalised states (relative to
-    /// the largest force and slip increment of the stage).
+    /// The largest violation of `x_t·Δz_t ≤ 0` over consecutive normalised states, relative to
+    /// the largest force times the largest mutual displacement of the stage (the scale of the
+    /// work the data can do: a round-off increment of a large slip is no violation).
     fn dissipation(&self, chain: &[(&[f64], &[f64])]) -> f64 {
         let m = self.names.len();
         let xs = chain
             .iter()
             .flat_map(|(x, _)| x.iter())
             .fold(f64::MIN_POSITIVE, |a, b| a.max(b.abs()));
+        let zs = chain
+            .iter()
+            .flat_map(|(_, z)| z.iter())
+            .fold(f64::MIN_POSITIVE, |a, b| a.max(b.abs()));
         let mut worst = 0.0f64;
-        let mut dzs = f64::MIN_POSITIVE;
         let mut products = Vec::new();
         for w in chain.windows(2) {
             let ((xa, za), (xb, zb)) = (w[0], w[1]);
             for i in 0..m {
                 let dz = ((zb[m + i] - zb[2 * m + i]) - (za[m + i] - za[2 * m + i])) / 2.0;
-                dzs = dzs.max(dz.abs());
                 let xt_a = (xa[m + i] - xa[2 * m + i]) / 2.0;
                 let xt_b = (xb[m + i] - xb[2 * m + i]) / 2.0;
                 products.push((xt_a * dz).max(xt_b * dz));
             }
         }
         for p in products {
-            worst = worst.max(p / (xs * dzs));
+            worst = worst.max(p / (xs * zs));
         }
         worst.max(0.0)
     }

@@ -33,6 +33,13 @@ pub struct EvolutionProblem {
     pub q0: Vec<f64>,
     /// Which components of `z` are incremental.
     pub incremental: Vec<bool>,
+    /// For an incremental component, the index `g` of a `z_g` whose being basic suspends it
+    /// (`None`: never suspended): while `z_g` is basic the component is a total. For friction
+    /// the opening of the pair: the slip of an open pair is its free
+    /// tangential motion, a total measured from where it opened, and only a closed pair's slip
+    /// is absorbed at breakpoints. That spares the pivots a free motion's every change of
+    /// direction would cost, and is exact: an open pair transmits no force either way.
+    pub guard: Vec<Option<usize>>,
     /// A positive direction along which `q0` is made feasible to find the start (as the
     /// tightening direction of the parametric method).
     pub start_direction: Vec<f64>,
@@ -131,6 +138,12 @@ impl EvolutionSolver {
         let n = check_matrix(&problem.m)?;
         check_vector("q0", &problem.q0, n)?;
         check_vector("start direction", &problem.start_direction, n)?;
+        if problem.guard.len() != n || problem.guard.iter().flatten().any(|&g| g >= n) {
+            return Err(LcpError::Dimension(format!(
+                "the guards have {} entries (each < n), M has order {n}",
+                problem.guard.len()
+            )));
+        }
         if problem.incremental.len() != n {
             return Err(LcpError::Dimension(format!(
                 "the incremental mask has {} entries, M has order {n}",
@@ -242,7 +255,9 @@ impl EvolutionSolver {
             self.settings.priority(n),
             self.settings.refactor_interval,
         );
+        piv.restart_lex();
         let reset = &self.problem.incremental;
+        let guard = &self.problem.guard;
         let driver = 2 * n;
         let target = cols.driver_scaled(1.0);
         let cap = self.settings.cap(n);
@@ -335,7 +350,10 @@ impl EvolutionSolver {
                 break StageEnding::TurnsBack;
             }
             if theta > zero {
-                piv.rebase(reset, &mut acc);
+                let mask: Vec<bool> = (0..n)
+                    .map(|j| reset[j] && guard[j].is_none_or(|g| !piv.basis.is_basic(n + g)))
+                    .collect();
+                piv.rebase(&mask, &mut acc);
             }
             let s = piv.cols.driver_real(piv.driver_value_scaled());
             let (x, z) = point(&piv, &acc);

@@ -249,3 +249,90 @@ fn papers_method_flags_a_slip_that_decreases() {
         "{decreasing} decreasing, {flagged} flagged"
     );
 }
+
+/// Random coupled zones (definite stiffness, friction up to 0.8, some gaps) under random cyclic
+/// histories of three cases (a pressing dead load, two cases reversed back and forth): every
+/// stage ends cleanly with a status, and every completed stage's final state satisfies
+/// equilibrium, feasibility, complementarity and `x_t·Δz_t ≤ 0` on every segment — checked from
+/// the original data by `HistoryResidual` (its formulas are the contract's definitions).
+#[test]
+fn random_cyclic_histories_end_verified() {
+    use unilateral_oracle::fixtures::random::Lcg;
+    let mut completed = 0;
+    let mut reversing = 0;
+    for seed in 1..=40u64 {
+        let mut rng = Lcg::new(seed);
+        let m = 2 + (seed as usize % 5);
+        let b: Vec<f64> = (0..4 * m * m).map(|_| rng.unit() - 0.5).collect();
+        let friction: Vec<f64> = (0..m).map(|_| 0.8 * rng.unit()).collect();
+        let gap: Vec<f64> = (0..m)
+            .map(|_| {
+                if rng.unit() < 0.3 {
+                    0.05 * rng.unit()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let zone =
+            crate::common::definite_zone(m, |i, j| b[i * 2 * m + j], friction, gap, |_, _| 0.0);
+        let press: Vec<f64> = (0..m).map(|_| 1.0 + rng.unit()).collect();
+        let c1: (Vec<f64>, Vec<f64>) = (
+            (0..m).map(|_| rng.unit() - 0.5).collect(),
+            (0..m).map(|_| 2.0 * rng.unit() - 1.0).collect(),
+        );
+        let c2: (Vec<f64>, Vec<f64>) = (
+            (0..m).map(|_| rng.unit() - 0.5).collect(),
+            (0..m).map(|_| 2.0 * rng.unit() - 1.0).collect(),
+        );
+        let mut stages = vec![stage("dead", vec![Some(1.0), None, None])];
+        for k in 0..6 {
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            stages.push(stage(
+                &format!("cycle {k}"),
+                vec![
+                    None,
+                    Some(sign * (0.5 + rng.unit())),
+                    Some(rng.unit() - 0.5),
+                ],
+            ));
+        }
+        let history = History {
+            cases: vec![
+                case("dead", press, vec![0.0; m]),
+                case("a", c1.0, c1.1),
+                case("b", c2.0, c2.1),
+            ],
+            stages,
+        };
+        let h = follow_history(&zone, &history, &Default::default()).unwrap();
+        for st in &h.stages {
+            if st.status == StageStatus::Completed {
+                completed += 1;
+                assert!(
+                    st.residual.max() < 1e-9,
+                    "seed {seed} {}: {:?}",
+                    st.name,
+                    st.residual
+                );
+                reversing += st
+                    .steps
+                    .iter()
+                    .flat_map(|s| &s.events)
+                    .filter(|e| e.kind == unilateral_contact::EventKind::Sticks)
+                    .count();
+            } else {
+                assert!(
+                    st.reason.is_some(),
+                    "seed {seed} {}: {:?}",
+                    st.name,
+                    st.status
+                );
+            }
+        }
+    }
+    assert!(
+        completed > 150 && reversing > 20,
+        "{completed} stages, {reversing} sticks"
+    );
+}

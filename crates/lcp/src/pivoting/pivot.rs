@@ -59,6 +59,8 @@ pub(crate) struct Pivoter<'a> {
     pub tol: Tolerances,
     /// Lexicographic priority of the start basis' slots.
     pub priority: Vec<usize>,
+    /// Rank of each row in the priority given at the start (row `i` ↔ variable `x_i`).
+    row_rank: Vec<usize>,
     /// The start basis (slot → column) against which lexicographic rows are measured.
     start: Vec<usize>,
     /// The largest entry of the start's structural columns (1 for the slack start).
@@ -100,6 +102,15 @@ impl<'a> Pivoter<'a> {
             basis,
             beta,
             tol,
+            row_rank: {
+                let mut r = vec![0; priority.len()];
+                for (k, &i) in priority.iter().enumerate() {
+                    if i < r.len() {
+                        r[i] = k;
+                    }
+                }
+                r
+            },
             priority,
             start,
             start_scale,
@@ -416,7 +427,34 @@ impl<'a> Pivoter<'a> {
                 self.beta[s] = 0.0;
             }
         }
+        self.restart_lex();
+        self.value_scale = max_abs(&self.cols.h)
+            .max(max_abs(&self.beta))
+            .max(f64::MIN_POSITIVE);
+    }
+
+    /// Restarts the lexicographic rule from the current basis: the perturbation becomes `B ε`,
+    /// each basic variable perturbed by its own power of `ε` — the `x`'s in the order of the
+    /// rows' priority, then the `z`'s in the same order, the driver last — which is
+    /// lexicographically positive at once (`B⁻¹ B = I`). Ranking by variable, not by slot, keeps
+    /// what the row priority guarantees from the slack start: combinations of the `x`'s that the
+    /// data fix (for friction `x_t+ + x_t- − 2f·x_n = 0`) keep the sign of the perturbation of
+    /// the variables they hold.
+    pub fn restart_lex(&mut self) {
+        let n = self.cols.n;
         self.start = self.basis.slot_var.clone();
+        let key = |v: usize| -> usize {
+            if v < n {
+                self.row_rank[v]
+            } else if v < 2 * n {
+                n + self.row_rank[v - n]
+            } else {
+                2 * n
+            }
+        };
+        let mut order: Vec<usize> = (0..n).collect();
+        order.sort_by_key(|&s| key(self.start[s]));
+        self.priority = order;
         let mut col = vec![0.0; n];
         self.start_scale = self
             .start
@@ -427,9 +465,6 @@ impl<'a> Pivoter<'a> {
                 max_abs(&col)
             })
             .fold(1.0f64, f64::max);
-        self.value_scale = max_abs(&self.cols.h)
-            .max(max_abs(&self.beta))
-            .max(f64::MIN_POSITIVE);
     }
 
     /// Complementary pivoting from `entering` until the driver leaves, a ray, the target, or
