@@ -49,6 +49,7 @@
 
 mod enumerate;
 pub mod fixtures;
+pub mod history;
 mod lemke;
 mod linalg;
 mod parametric;
