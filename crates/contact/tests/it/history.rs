@@ -336,3 +336,112 @@ fn random_cyclic_histories_end_verified() {
         "{completed} stages, {reversing} sticks"
     );
 }
+
+/// The exact path against the oracle's independent small-step computation
+/// (`unilateral_oracle::history::small_steps`: backward Euler, each increment's LCP solved by
+/// enumeration) on random coupled zones of 2 and 3 pairs with gaps, a dead load and a case
+/// pushed, released, reversed and released: at every stage end the oracle's error against the
+/// exact path shrinks with the step (it is bounded by step × rate), and on the finest grid it is
+/// small everywhere.
+#[test]
+fn exact_path_agrees_with_the_small_step_oracle() {
+    use unilateral_oracle::fixtures::random::Lcg;
+    use unilateral_oracle::history::{small_steps, HistoryZone};
+    let rows = crate::common::rows;
+    let (mut compared, mut coarse_worst, mut fine_worst) = (0, 0.0f64, 0.0f64);
+    for seed in 1..=10u64 {
+        let mut rng = Lcg::new(100 + seed);
+        let m = 2 + (seed as usize % 2);
+        let b: Vec<f64> = (0..4 * m * m).map(|_| rng.unit() - 0.5).collect();
+        let friction: Vec<f64> = (0..m).map(|_| 0.1 + 0.4 * rng.unit()).collect();
+        let gap: Vec<f64> = (0..m)
+            .map(|_| {
+                if rng.unit() < 0.3 {
+                    0.02 * rng.unit()
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let zone =
+            crate::common::definite_zone(m, |i, j| b[i * 2 * m + j], friction, gap, |_, _| 0.0);
+        let press: Vec<f64> = (0..m).map(|_| 0.5 + rng.unit()).collect();
+        let push: (Vec<f64>, Vec<f64>) = (
+            (0..m).map(|_| 0.4 * (rng.unit() - 0.5)).collect(),
+            (0..m).map(|_| 2.0 * rng.unit() - 1.0).collect(),
+        );
+        let factors = [[1.0, 0.0], [1.0, 1.0], [1.0, 0.0], [1.0, -1.0], [1.0, 0.0]];
+        let history = History {
+            cases: vec![
+                case("dead", press.clone(), vec![0.0; m]),
+                case("push", push.0.clone(), push.1.clone()),
+            ],
+            stages: factors
+                .iter()
+                .enumerate()
+                .map(|(k, f)| stage(&format!("stage {}", k + 1), vec![Some(f[0]), Some(f[1])]))
+                .collect(),
+        };
+        let exact = follow_history(&zone, &history, &Default::default()).unwrap();
+        if exact.stages.len() < factors.len()
+            || exact
+                .stages
+                .iter()
+                .any(|s| s.status != StageStatus::Completed)
+        {
+            continue;
+        }
+        let oz = HistoryZone {
+            rnn: rows(&zone.rnn),
+            rnt: rows(&zone.rnt),
+            rtn: rows(&zone.rtn),
+            rtt: rows(&zone.rtt),
+            friction: zone.friction.clone(),
+            gap: zone.gap.clone(),
+            cases: vec![(press.clone(), vec![0.0; m]), push.clone()],
+        };
+        let stages: Vec<Vec<f64>> = factors.iter().map(|f| f.to_vec()).collect();
+        let error = |steps: usize| -> Option<f64> {
+            let run = small_steps(&oz, &stages, steps).ok()?;
+            let mut worst = 0.0f64;
+            for (st, states) in exact.stages.iter().zip(&run) {
+                let o = states.last()?;
+                let xs = st.pairs.iter().fold(1e-300f64, |a, p| a.max(p.x_n.abs()));
+                let zs = st
+                    .pairs
+                    .iter()
+                    .fold(1e-300f64, |a, p| a.max(p.z_n.abs()).max(p.z_t.abs()))
+                    .max(xs / 10.0);
+                for (i, p) in st.pairs.iter().enumerate() {
+                    worst = worst
+                        .max((p.x_n - o.x_n[i]).abs() / xs)
+                        .max((p.x_t - o.x_t[i]).abs() / xs)
+                        .max((p.z_n - o.z_n[i]).abs() / zs)
+                        .max((p.z_t - o.z_t[i]).abs() / zs);
+                }
+            }
+            Some(worst)
+        };
+        let (Some(coarse), Some(mid), Some(fine)) = (error(12), error(192), error(768)) else {
+            continue;
+        };
+        assert!(
+            fine <= mid + 1e-12 && mid <= coarse + 1e-12,
+            "seed {seed}: error {coarse:.2e} → {mid:.2e} → {fine:.2e}"
+        );
+        assert!(
+            fine < 5e-3,
+            "seed {seed}: error {fine:.2e} on the fine grid"
+        );
+        compared += 1;
+        coarse_worst = coarse_worst.max(coarse);
+        fine_worst = fine_worst.max(fine);
+    }
+    assert!(compared >= 8, "only {compared} zones compared");
+    // The comparison can fail: the coarse grid is visibly off, the fine one has converged
+    // (first order in the step, as backward Euler through changes of the working scheme).
+    assert!(
+        coarse_worst > 1e-3 && fine_worst < coarse_worst / 10.0,
+        "error {coarse_worst:.2e} (12 steps) → {fine_worst:.2e} (768)"
+    );
+}
