@@ -92,16 +92,23 @@ fn graded(h: f64, fine: usize, ratio: f64, cap: f64, length: f64) -> Vec<f64> {
     }
 }
 
-/// The two blocks, condensed to their contact zone; returns the zone and the pairs' `x`.
-fn two_cylinders() -> (ContactZone, Vec<f64>) {
-    let half = graded(H, FINE, GROWTH, CAP, HALF_WIDTH);
-    let mut xs: Vec<f64> = half.iter().skip(1).rev().map(|x| -x).collect();
-    xs.extend(&half);
+/// The two blocks with the element size `h` and `fine` pairs each side of the centre, condensed
+/// to their contact zone, in units whose length is `length` mm and whose force is `force` N;
+/// returns the zone and the pairs' `x` (in those units).
+fn two_cylinders(h: f64, fine: usize, length: f64, force: f64) -> (ContactZone, Vec<f64>) {
+    let l = |v: f64| v / length;
+    let half = graded(h, fine, GROWTH, CAP, HALF_WIDTH);
+    let mut xs: Vec<f64> = half.iter().skip(1).rev().map(|&x| -l(x)).collect();
+    xs.extend(half.iter().map(|&x| l(x)));
     // Depth coordinates from the contact plane, fine at the contact.
-    let ys = graded(H, 0, GROWTH, CAP, DEPTH);
+    let ys: Vec<f64> = graded(h, 0, GROWTH, CAP, DEPTH)
+        .into_iter()
+        .map(l)
+        .collect();
     let (nx, ny) = (xs.len(), ys.len());
     let mut model = Model::new();
-    let material = PlaneMaterial::new(E, NU);
+    // Plane strain per unit thickness of 1 mm (a length too).
+    let material = PlaneMaterial::new(E * length * length / force, NU).with_thickness(l(1.0));
     let mut blocks: Vec<Vec<Vec<NodeId>>> = Vec::new();
     for upper in [false, true] {
         // Rows bottom to top; the upper block is the lower one reflected (y → −y).
@@ -138,20 +145,20 @@ fn two_cylinders() -> (ContactZone, Vec<f64>) {
             dof,
             value,
         };
-        model.add_load(LoadGroup::Constant, settle(SupportDof::Uy, -DELTA));
-        model.add_load(LoadGroup::Variable, settle(SupportDof::Ux, D_UNIT));
+        model.add_load(LoadGroup::Constant, settle(SupportDof::Uy, -l(DELTA)));
+        model.add_load(LoadGroup::Variable, settle(SupportDof::Ux, l(D_UNIT)));
     }
     // Coincident node pairs on the touching faces, normal from the lower block into the
     // upper one, gap x²/(2R) from each cylinder.
     let centre = nx / 2;
     let mut px = Vec::new();
-    for i in centre - FINE..=centre + FINE {
+    for i in centre - fine..=centre + fine {
         let x = xs[i];
         px.push(x);
         model.add_contact_pair(
             ContactPairSpec::between(lower[ny - 1][i], upper[0][i], [0.0, 1.0])
                 .friction(FRICTION)
-                .gap(x * x / RADIUS),
+                .gap(x * x / l(RADIUS)),
         );
     }
     let condensed = model.condense().unwrap();
@@ -278,7 +285,7 @@ fn sticking(p: &PairResult) -> bool {
 
 #[test]
 fn mindlin_deresiewicz_on_two_identical_blocks() {
-    let (zone, px) = two_cylinders();
+    let (zone, px) = two_cylinders(H, FINE, 1.0, 1.0);
     // The premise of the closed forms: uncoupled normal and tangential contact (β = 0), here
     // by the mirror symmetry of the mesh and of its supports.
     let rnn = zone.rnn.norm_max();
@@ -451,5 +458,88 @@ fn mindlin_deresiewicz_on_two_identical_blocks() {
     for (r, l) in reloaded.iter().zip(loaded) {
         assert!((r.z_t - l.z_t).abs() <= 1e-9 * zt_scale, "{}", r.name);
         assert!((r.x_t - l.x_t).abs() <= 1e-9 * xt_scale, "{}", r.name);
+    }
+}
+
+/// The same history in other units: every force, slip and event the same, scaled. Reference:
+/// the history in N and mm (on the coarser mesh h = a/22, to keep it quick), against the same
+/// model typed in kN and m and in units 10⁴ mm and 10⁻⁵ N; factors are dimensionless, so the
+/// same stages apply: pressed, sheared, partly unsheared, resheared, sheared the other way.
+#[test]
+fn the_history_does_not_depend_on_the_units() {
+    let shear = [0.3, 0.05, 0.3, -0.3];
+    let (zone, _) = two_cylinders(0.05, 28, 1.0, 1.0);
+    let reference = run(&zone, &shear);
+    // Every stage of shear changes the working scheme: partial slip, forward or back.
+    for r in &reference.stages[1..] {
+        let slipping = r
+            .pairs
+            .iter()
+            .filter(|p| matches!(p.state, PairState::SlipPlus | PairState::SlipMinus))
+            .count();
+        let stuck = r.pairs.iter().filter(|p| sticking(p)).count();
+        assert!(
+            slipping > 0 && stuck > 0,
+            "{}: {slipping} slip, {stuck} stick",
+            r.name
+        );
+    }
+    for (length, force) in [(1e3, 1e3), (1e4, 1e-5)] {
+        let (zone, _) = two_cylinders(0.05, 28, length, force);
+        let h = run(&zone, &shear);
+        assert_eq!(h.stages.len(), reference.stages.len());
+        for (s, r) in h.stages.iter().zip(&reference.stages) {
+            let fs = r
+                .pairs
+                .iter()
+                .fold(0.0f64, |a, p| a.max(p.x_n.abs()).max(p.x_t.abs()));
+            let zs = r
+                .pairs
+                .iter()
+                .fold(0.0f64, |a, p| a.max(p.z_n.abs()).max(p.z_t.abs()));
+            for (p, q) in s.pairs.iter().zip(&r.pairs) {
+                assert_eq!(
+                    p.state, q.state,
+                    "{}: {} in units ({length}, {force})",
+                    s.name, p.name
+                );
+                for (v, w, scale, unit) in [
+                    (p.x_n, q.x_n, fs, force),
+                    (p.x_t, q.x_t, fs, force),
+                    (p.z_n, q.z_n, zs, length),
+                    (p.z_t, q.z_t, zs, length),
+                ] {
+                    assert!(
+                        (v * unit - w).abs() <= 1e-9 * scale,
+                        "{}: {}",
+                        s.name,
+                        p.name
+                    );
+                }
+            }
+            // The changes of the working scheme strictly inside the stage: the same events at
+            // the same s.
+            let inside = |h: &unilateral_contact::StageSolution| -> Vec<(f64, Vec<String>)> {
+                h.steps
+                    .iter()
+                    .filter(|st| st.s > 1e-9 && !st.events.is_empty())
+                    .map(|st| {
+                        (
+                            st.s,
+                            st.events
+                                .iter()
+                                .map(|e| format!("{}:{:?}", e.pair, e.kind))
+                                .collect(),
+                        )
+                    })
+                    .collect()
+            };
+            let (a, b) = (inside(s), inside(r));
+            assert_eq!(a.len(), b.len(), "{}", s.name);
+            for ((sa, ea), (sb, eb)) in a.iter().zip(&b) {
+                assert_eq!(ea, eb, "{}", s.name);
+                assert!((sa - sb).abs() <= 1e-9, "{}: s = {sa} vs {sb}", s.name);
+            }
+        }
     }
 }
