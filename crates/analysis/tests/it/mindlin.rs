@@ -319,11 +319,11 @@ fn mindlin_deresiewicz_on_two_identical_blocks() {
     );
     assert!((a_fe - a).abs() <= H, "a = {a_fe}, Hertz {a}");
 
-    // Loading to Q* = 0.8·f·P, unloading to Q = 0.1·f·P, reloading to Q* (rather than the
-    // 0.6/0.2 of the textbook figure: the ring c' < |x| < a that slips back is then 0.19·a,
-    // 17 elements, and c = 0.45·a, c' = 0.81·a lie far apart and far from a). The factors come from
-    // the loading curve: d* where it transmits Q*, and the turning point of the unloading branch
-    // by Masing's rule, d* − 2·d_load((Q* − Q)/2).
+    // Loading to Q* = 0.8·f·P, unloading to Q = 0.1·f·P, reloading to Q* (rather than 0.6 and
+    // 0.2: the ring c' < |x| < a that slips back is then 0.19·a wide, 17 elements, and
+    // c = 0.45·a, c' = 0.81·a lie far apart and far from a). The factors come from the loading
+    // curve: d* where it transmits Q*, and the end of the unloading branch by Masing's rule,
+    // d* − 2·d_load((Q* − Q)/2).
     let (q_star_target, q_target) = (0.8 * fp, 0.1 * fp);
     let loading = curve(&probe, 1);
     let d_star = factor_at(&loading, q_star_target);
@@ -406,7 +406,8 @@ fn mindlin_deresiewicz_on_two_identical_blocks() {
     }
     assert!(back >= 4, "only {back} pairs slip back");
     // The loop is open at Q: the unloading branch transmits less than the loading curve at the
-    // same plate displacement (Q_load(d_back) is read off the loading curve).
+    // same plate displacement (Q_load(d_back) is read off the loading curve; a friction law
+    // tying the total slip to the total force, as the paper's, would retrace it: width 0).
     let q_load_at_back = q_at(&loading, d_back);
     println!("loop width at d: {:.4} f·P", (q_load_at_back - q_back) / fp);
     assert!(q_load_at_back - q_back > 0.01 * fp);
@@ -415,7 +416,7 @@ fn mindlin_deresiewicz_on_two_identical_blocks() {
     // `p0 = 2P/(πa)`; the shear at Q* against Cattaneo–Mindlin, `q(x) = f·p(x) − f·p0·(c/a)·
     // sqrt(1 − x²/c²)` (the second term inside the stick zone only); after unloading against
     // Mindlin–Deresiewicz, `q(x) − 2·(f·p(x) − f·p0·(c'/a)·sqrt(1 − x²/c'²))`. A pair carries
-    // the traction over its element, `x/h`. Next to a square-root edge a nodal value is off by
+    // the traction over its element: `x_n/h`, `−x_t/h`. Next to a square-root edge a nodal value is off by
     // the order of `p0·sqrt(h/a)` (0.106·p0 here); half of that is required of the pressure
     // and of the shear at Q* (measured: 0.024·p0 and 0.024·f·p0, both at the contact edge),
     // all of it of the shear after unloading, which carries the doubled correction with its
