@@ -7,5 +7,6 @@ mod example2;
 mod example3;
 mod fixes;
 mod keys;
+mod mindlin;
 mod scale;
 mod timings;
