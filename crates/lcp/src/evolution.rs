@@ -24,6 +24,11 @@ use crate::pivoting::pivot::{max_abs, Pivoter, Tolerances};
 use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
 use crate::{LcpError, MechanismMode, Settings, Var};
 
+/// Differences of the stage parameter (a pure number in `[0, 1]`) at or below this are
+/// round-off: the breakpoint is reported at the previous one's `s` (at the stage's start for
+/// the pivots that settle the scheme there).
+const S_ROUNDOFF: f64 = 1e-12;
+
 /// The data of an evolution: `x = q0 + ℓ + M z` at load `ℓ` (zero at the start).
 #[derive(Debug, Clone)]
 pub struct EvolutionProblem {
@@ -355,7 +360,15 @@ impl EvolutionSolver {
                     .collect();
                 piv.rebase(&mask, &mut acc);
             }
-            let s = piv.cols.driver_real(piv.driver_value_scaled());
+            // `s` is a pure number in [0, 1]: a distance from the stage's start of the order
+            // of round-off of one is the start (or the previous breakpoint) itself.
+            let s_now = piv.cols.driver_real(piv.driver_value_scaled());
+            let s_last = points.last().map_or(0.0, |p: &EvolutionPoint| p.s);
+            let s = if (s_now - s_last).abs() <= S_ROUNDOFF {
+                s_last
+            } else {
+                s_now
+            };
             let (x, z) = point(&piv, &acc);
             points.push(EvolutionPoint {
                 s,
