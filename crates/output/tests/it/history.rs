@@ -926,3 +926,154 @@ fn a_long_cyclic_history_of_many_pairs() {
         20
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// ParaView
+
+/// The values of the data array `name` of a VTK file, as numbers.
+fn data_array(text: &str, name: &str) -> Vec<f64> {
+    let at = text
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("no array {name}"));
+    let body = &text[at..];
+    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+    body.split_ascii_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect()
+}
+
+/// Example 1 of the paper (a beam on frictional supports, `examples/example1-beam.toml`)
+/// analysed at its load, then a hand-made history of two stages over it: stage 1 ends with
+/// the analysis' results, stage 2 stops at s = 0.5 with the displacements doubled and every
+/// pair slipping (+) with z_t = 1e-3·(pair number). Reference: those hand-set values, the
+/// model's node and pair counts, and the pseudo-times 0, 1, 1.5.
+#[test]
+fn paraview_files_over_the_history() {
+    use unilateral_analysis::{analyze, HistoryAnalysis};
+    use unilateral_io::{read_problem, Problem};
+    use unilateral_output::{history_vtk, HISTORY_PVD};
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/example1-beam.toml");
+    let Problem::Structural(problem) = read_problem(&path).unwrap() else {
+        panic!("a structural model");
+    };
+    let a = analyze(&problem.model, &problem.settings).unwrap();
+    let r1 = a.results.clone().unwrap();
+    let mut r2 = r1.clone();
+    for d in &mut r2.displacements {
+        for v in d.iter_mut() {
+            *v *= 2.0;
+        }
+    }
+    let m = problem.model.pairs().len();
+    let n = problem.model.nodes().len();
+    let names: Vec<String> = (0..m).map(|i| format!("p{i}")).collect();
+    let pairs_at = |slip: bool| -> Vec<PairResult> {
+        (0..m)
+            .map(|i| {
+                if slip {
+                    pair(&names[i], 5.0, -1.0, 1e-3 * (i + 1) as f64, SlipPlus)
+                } else {
+                    pair(&names[i], 5.0, 0.0, 0.0, Stick)
+                }
+            })
+            .collect()
+    };
+    let stage = |k: usize, s_end: f64, slip: bool| StageSolution {
+        stage: k,
+        name: format!("stage {k}"),
+        factors_start: vec![(k - 1) as f64],
+        factors_end: vec![k as f64],
+        status: if s_end < 1.0 {
+            StageStatus::Mechanism
+        } else {
+            StageStatus::Completed
+        },
+        s_end,
+        steps: vec![],
+        pairs: pairs_at(slip),
+        residual: HistoryResidual::default(),
+        mechanism: None,
+        reason: None,
+    };
+    let gaps = a.zone.gap.clone();
+    let ha = HistoryAnalysis {
+        condensed: a.condensed,
+        zone: a.zone,
+        history: HistorySolution {
+            cases: vec!["variable".into()],
+            names: names.clone(),
+            stages: vec![stage(1, 1.0, false), stage(2, 0.5, true)],
+        },
+        stage_results: vec![r1.clone(), r2.clone()],
+        timings: a.timings,
+    };
+    let files = history_vtk(&ha).unwrap();
+    let get = |name: &str| {
+        &files
+            .iter()
+            .find(|f| f.0 == name)
+            .unwrap_or_else(|| panic!("{name}"))
+            .1
+    };
+    assert_eq!(
+        files.len(),
+        7,
+        "mesh and pairs at 3 states, and the collection"
+    );
+    assert_eq!(files.last().unwrap().0, HISTORY_PVD);
+    let pvd = get(HISTORY_PVD);
+    let steps: Vec<&str> = pvd
+        .split("timestep=\"")
+        .skip(1)
+        .map(|p| p.split('"').next().unwrap())
+        .collect();
+    assert_eq!(steps, ["0", "0", "1", "1", "1.5", "1.5"]);
+    assert!(pvd.contains("file=\"history_pairs_002.vtu\""));
+    // The start: unloaded, the pairs at their gaps.
+    let start = get("history_mesh_000.vtu");
+    assert!(data_array(start, "displacement").iter().all(|v| *v == 0.0));
+    assert_eq!(data_array(get("history_pairs_000.vtu"), "z_n"), gaps);
+    // Stage 2's end: the doubled displacements (ux, uy, 0 per node) and the hand slips.
+    let d = data_array(get("history_mesh_002.vtu"), "displacement");
+    assert_eq!(d.len(), 3 * n);
+    for (i, dn) in r2.displacements.iter().enumerate() {
+        assert_eq!((d[3 * i], d[3 * i + 1], d[3 * i + 2]), (dn[0], dn[1], 0.0));
+    }
+    let p2 = get("history_pairs_002.vtu");
+    let z: Vec<f64> = (0..m).map(|i| 1e-3 * (i + 1) as f64).collect();
+    assert_eq!(data_array(p2, "z_t"), z);
+    assert!(data_array(p2, "state").iter().all(|s| *s == 2.0));
+    assert_eq!(data_array(p2, "TimeValue"), [1.5]);
+    assert_eq!(data_array(p2, "stage"), [2.0]);
+    for (name, text) in &files {
+        tags_xml(text, name);
+    }
+    // A non-finite displacement is refused and named.
+    let mut bad = ha;
+    bad.stage_results[1].displacements[0][1] = f64::NAN;
+    let e = history_vtk(&bad).unwrap_err();
+    let nf = unilateral_output::NonFiniteOutput::in_io_error(&e).unwrap();
+    assert_eq!(nf.field, "history[2].nodes[1].uy");
+}
+
+/// The VTK files are XML with one root: the same checker as the pictures' after the
+/// declaration.
+fn tags_xml(text: &str, name: &str) {
+    let body = text
+        .strip_prefix("<?xml version=\"1.0\"?>\n")
+        .unwrap_or_else(|| panic!("{name}"));
+    let mut stack: Vec<&str> = Vec::new();
+    let mut rest = body;
+    while let Some(i) = rest.find('<') {
+        let end = rest[i..].find('>').unwrap() + i;
+        let tag = &rest[i + 1..end];
+        rest = &rest[end + 1..];
+        if let Some(close) = tag.strip_prefix('/') {
+            assert_eq!(stack.pop(), Some(close), "{name}");
+        } else if !tag.ends_with('/') {
+            stack.push(tag.split_whitespace().next().unwrap());
+        }
+    }
+    assert!(stack.is_empty(), "{name}: unclosed {stack:?}");
+}
