@@ -62,6 +62,7 @@ pub use structure::state_style;
 // The outputs of a load history (`history.md`): JSON, CSV, summary, pictures, ParaView.
 mod history;
 mod history_chart;
+mod history_structure;
 mod history_vtk;
 pub use history::{
     change_word, history_csv, history_document, history_event_sentence, history_json,
@@ -72,6 +73,7 @@ pub use history_chart::{
     busiest_case, curve_pairs, history_curves_svg, history_states_svg, state_runs, CurveKind,
     HistoryChartOptions, StateRun, CURVE_PAIRS,
 };
+pub use history_structure::history_structural_document;
 pub use history_vtk::{history_vtk, HISTORY_PVD};
 
 /// The stress that colours plane elements.

@@ -1077,3 +1077,67 @@ fn tags_xml(text: &str, name: &str) {
     }
     assert!(stack.is_empty(), "{name}: unclosed {stack:?}");
 }
+
+/// The structural document of a history holds the final state's results with the keys and
+/// values of the structural document of one load. Reference: `structural_json` of Example 2
+/// (the cantilever) analysed at its load, the same results handed over as the end of a
+/// one-stage history.
+#[test]
+fn structural_history_document_matches_the_structural_document() {
+    use unilateral_analysis::{analyze, HistoryAnalysis};
+    use unilateral_io::{read_problem, Problem};
+    use unilateral_output::{history_structural_document, structural_json};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/example2-cantilever.toml");
+    let Problem::Structural(problem) = read_problem(&path).unwrap() else {
+        panic!("a structural model");
+    };
+    let a = analyze(&problem.model, &problem.settings).unwrap();
+    let reference = structural_json(&a).unwrap();
+    let r = a.results.clone().unwrap();
+    let pairs = a.solution.pairs.clone();
+    let names: Vec<String> = pairs.iter().map(|p| p.name.clone()).collect();
+    let ha = HistoryAnalysis {
+        condensed: a.condensed,
+        zone: a.zone,
+        history: HistorySolution {
+            cases: vec!["variable".into()],
+            names,
+            stages: vec![StageSolution {
+                stage: 1,
+                name: "all".into(),
+                factors_start: vec![0.0],
+                factors_end: vec![1.0],
+                status: StageStatus::Completed,
+                s_end: 1.0,
+                steps: vec![],
+                pairs,
+                residual: HistoryResidual::default(),
+                mechanism: None,
+                reason: None,
+            }],
+        },
+        stage_results: vec![r],
+        timings: a.timings,
+    };
+    let doc = history_structural_document(&ha).unwrap();
+    for key in [
+        "nodes",
+        "reactions",
+        "frames",
+        "plane_elements",
+        "equilibrium",
+        "pairs",
+    ] {
+        assert_eq!(doc[key], reference[key], "{key}");
+        if key != "pairs" {
+            assert_eq!(doc["history"][0]["structure"][key], reference[key], "{key}");
+        }
+    }
+    let mut bad = ha;
+    bad.stage_results[0].displacements[2][0] = f64::INFINITY;
+    assert_eq!(
+        history_structural_document(&bad).unwrap_err().field,
+        "history[1].structure.nodes[3].ux"
+    );
+}
