@@ -570,6 +570,8 @@ pub fn history_states_svg(h: &HistorySolution) -> Result<String, NonFiniteOutput
         "#999999",
         0.6,
     );
+    // Crisp edges: adjacent runs and rows meet without anti-aliased seams.
+    g.raw(r#"<g shape-rendering="crispEdges">"#);
     for (i, runs) in state_runs(h).iter().enumerate() {
         let y = top + i as f64 * row_h;
         for r in runs {
@@ -597,6 +599,7 @@ pub fn history_states_svg(h: &HistorySolution) -> Result<String, NonFiniteOutput
             );
         }
     }
+    g.raw("</g>");
     if !label_rows && m > 0 {
         g.text(
             &h.names[0],
@@ -619,7 +622,24 @@ pub fn history_states_svg(h: &HistorySolution) -> Result<String, NonFiniteOutput
     let every = n.div_ceil(20).max(1);
     for st in &h.stages {
         let (a, b) = (sx(st.stage as f64 - 1.0), sx(st.stage as f64));
-        g.line((b, top - 4.0), (b, top + grid_h + 4.0), "#333333", 0.8, "");
+        // Every stage boundary as a tick; through the map only for every `every`-th (all of
+        // them up to 20 stages), so that many stages do not hide the states.
+        let through = st.stage % every == 0;
+        let (y0, y1) = if through {
+            (top - 4.0, top + grid_h + 4.0)
+        } else {
+            (top - 4.0, top)
+        };
+        g.line((b, y0), (b, y1), "#333333", 0.8, "");
+        if !through {
+            g.line(
+                (b, top + grid_h),
+                (b, top + grid_h + 4.0),
+                "#333333",
+                0.8,
+                "",
+            );
+        }
         if st.stage == 1 {
             g.line((a, top - 4.0), (a, top + grid_h + 4.0), "#333333", 0.8, "");
         }

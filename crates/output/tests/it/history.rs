@@ -506,6 +506,7 @@ fn csv_tables_hold_the_hand_data() {
 #[test]
 fn summary_has_a_line_per_stage_and_the_final_pairs() {
     let s = history_summary(&history(), "two pairs").unwrap();
+    keep("summary.txt", &s);
     let lines: Vec<&str> = s.lines().collect();
     assert_eq!(lines[0], "two pairs");
     assert!(lines[1].starts_with("status: completed"), "{s}");
