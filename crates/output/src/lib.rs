@@ -59,6 +59,23 @@ pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};
 pub use structure::state_style;
 
+// The outputs of a load history (`history.md`): JSON, CSV, summary, pictures, ParaView.
+mod history;
+mod history_chart;
+mod history_structure;
+mod history_vtk;
+pub use history::{
+    change_word, history_csv, history_document, history_event_sentence, history_json,
+    history_reading, history_summary, pseudo_time, stage_table_name, with_history,
+    HISTORY_BREAKPOINTS_CSV, HISTORY_EVENTS_CSV, SUMMARY_PAIRS,
+};
+pub use history_chart::{
+    busiest_case, curve_pairs, history_curves_svg, history_states_svg, state_runs, CurveKind,
+    HistoryChartOptions, StateRun, CURVE_PAIRS,
+};
+pub use history_structure::history_structural_document;
+pub use history_vtk::{history_vtk, HISTORY_PVD};
+
 /// The stress that colours plane elements.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub enum StressComponent {

@@ -2,4 +2,5 @@
 //! one link for all of them.
 
 mod examples;
+mod history;
 mod vtk;

@@ -1,0 +1,327 @@
+//! ParaView files over a load history of a structural model: a `.pvd` collection whose
+//! timestep is the pseudo-time `stage − 1 + s`, with the unloaded start (`t = 0`) and the end
+//! of every stage run (`t = K − 1 + s_end`, the full results of that stage).
+//!
+//! Files (`NNN` = 0-based snapshot number, zero-padded): `history_mesh_NNN.vtu` (points =
+//! nodes, cells = elements as `VTK_LINE` or `VTK_QUAD`; point data `displacement`
+//! (`ux, uy, 0`) and `rotation`; cell data `element`), `history_pairs_NNN.vtu` (one cell per
+//! pair: a `VTK_VERTEX` at node B for a pair with the ground, a `VTK_LINE` A–B otherwise; cell
+//! data `state` (0 open, 1 stick, 2 slip+, 3 slip−), `x_n`, `x_t`, `z_n`, `z_t` (the
+//! accumulated slip), `pair`), and [`HISTORY_PVD`]. Each `.vtu` carries its pseudo-time as
+//! the field `TimeValue` and its stage as the field `stage`.
+//!
+//! The writer of one state here is small on purpose: it holds what a history needs to be
+//! stepped through in ParaView. The full set of fields of `vtk.rs` (stresses, forces,
+//! normals) would come from that module's writer of one state once it takes a state rather
+//! than an `Analysis`.
+
+use std::fmt::Write as _;
+
+use unilateral_analysis::HistoryAnalysis;
+use unilateral_contact::{PairResult, PairState};
+use unilateral_fem::{Element, Endpoint, Model, Results};
+
+use crate::finite::finite;
+use crate::history::{check, pseudo_time};
+
+/// The collection file of a history.
+pub const HISTORY_PVD: &str = "history.pvd";
+
+/// One state of the history: its pseudo-time, stage (0 for the start), pairs and results.
+struct State<'a> {
+    t: f64,
+    stage: usize,
+    pairs: Option<&'a [PairResult]>,
+    results: Option<&'a Results>,
+}
+
+/// The ParaView files of a history as `(file name, text)`, the collection [`HISTORY_PVD`]
+/// last. Every number is checked finite first (else an error carrying a
+/// [`NonFiniteOutput`](crate::NonFiniteOutput), see
+/// [`in_io_error`](crate::NonFiniteOutput::in_io_error)), and the sizes of the results
+/// against the model (else an [`std::io::ErrorKind::InvalidInput`] error: results that are
+/// not the analysed model's are the program's fault, as in [`crate::write_vtk_for`]).
+pub fn history_vtk(a: &HistoryAnalysis) -> std::io::Result<Vec<(String, String)>> {
+    check(&a.history)?;
+    let model = a.condensed.model();
+    let mut states = vec![State {
+        t: 0.0,
+        stage: 0,
+        pairs: None,
+        results: None,
+    }];
+    for (k, st) in a.history.stages.iter().enumerate() {
+        let results = a.stage_results.get(k);
+        if let Some(r) = results {
+            check_results(model, &st.pairs, r, st.stage)?;
+        }
+        states.push(State {
+            t: pseudo_time(st.stage, st.s_end),
+            stage: st.stage,
+            pairs: Some(&st.pairs),
+            results,
+        });
+    }
+    let width = (states.len() - 1).to_string().len().max(3);
+    let mut files = Vec::with_capacity(2 * states.len() + 1);
+    let mut pvd = String::from(
+        "<?xml version=\"1.0\"?>\n\
+         <VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
+         \x20 <Collection>\n",
+    );
+    let m = model.pairs().len();
+    for (k, s) in states.iter().enumerate() {
+        let mesh = format!("history_mesh_{k:0width$}.vtu");
+        let _ = writeln!(
+            pvd,
+            "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{mesh}\"/>",
+            Num(s.t)
+        );
+        files.push((mesh, mesh_vtu(model, s)));
+        if m > 0 {
+            let pairs = format!("history_pairs_{k:0width$}.vtu");
+            let _ = writeln!(
+                pvd,
+                "    <DataSet timestep=\"{}\" group=\"\" part=\"1\" file=\"{pairs}\"/>",
+                Num(s.t)
+            );
+            files.push((pairs, pairs_vtu(model, &a.zone.gap, s)));
+        }
+    }
+    pvd.push_str("  </Collection>\n</VTKFile>\n");
+    files.push((HISTORY_PVD.to_string(), pvd));
+    Ok(files)
+}
+
+/// Every number of a stage's results that the files print is finite, and the sizes are the
+/// model's.
+fn check_results(
+    model: &Model,
+    pairs: &[PairResult],
+    r: &Results,
+    stage: usize,
+) -> std::io::Result<()> {
+    let (n, m) = (model.nodes().len(), model.pairs().len());
+    if r.displacements.len() != n || pairs.len() != m {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!(
+                "stage {stage} has results of {} nodes and {} pairs but the model {n} nodes \
+                 and {m} pairs: not the analysed model (a fault of the program)",
+                r.displacements.len(),
+                pairs.len()
+            ),
+        ));
+    }
+    for (i, d) in r.displacements.iter().enumerate() {
+        for (c, v) in d.iter().enumerate() {
+            finite(*v, || {
+                format!(
+                    "history[{stage}].nodes[{}].{}",
+                    i + 1,
+                    ["ux", "uy", "rz"][c]
+                )
+            })?;
+        }
+    }
+    Ok(())
+}
+
+fn header(s: &State, points: usize, cells: usize) -> String {
+    format!(
+        "<?xml version=\"1.0\"?>\n\
+         <VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
+         \x20 <UnstructuredGrid>\n\
+         \x20   <FieldData>\n\
+         \x20     <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{}</DataArray>\n\
+         \x20     <DataArray type=\"Int32\" Name=\"stage\" NumberOfTuples=\"1\" format=\"ascii\">{}</DataArray>\n\
+         \x20   </FieldData>\n\
+         \x20   <Piece NumberOfPoints=\"{points}\" NumberOfCells=\"{cells}\">\n",
+        Num(s.t),
+        s.stage
+    )
+}
+
+const FOOTER: &str = "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+
+/// A number as plain decimals where that is short, else in exponent form; both read back to
+/// the same `f64` (Rust's shortest round trip).
+struct Num(f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let x = self.0;
+        if x == 0.0 {
+            f.write_str("0")
+        } else if (1e-4..1e15).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
+    }
+}
+
+/// A data array of `ty`, its tuples one a line.
+fn array<T: std::fmt::Display>(
+    out: &mut String,
+    ty: &str,
+    name: &str,
+    components: usize,
+    values: impl IntoIterator<Item = T>,
+) {
+    let _ = write!(
+        out,
+        "        <DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{components}\" format=\"ascii\">"
+    );
+    for (k, v) in values.into_iter().enumerate() {
+        out.push_str(if k % components.max(1) == 0 {
+            "\n          "
+        } else {
+            " "
+        });
+        let _ = write!(out, "{v}");
+    }
+    out.push_str("\n        </DataArray>\n");
+}
+
+fn cells(out: &mut String, connectivity: Vec<usize>, offsets: Vec<usize>, types: Vec<u8>) {
+    out.push_str("      <Cells>\n");
+    array(out, "Int64", "connectivity", 1, connectivity);
+    array(out, "Int64", "offsets", 1, offsets);
+    array(out, "UInt8", "types", 1, types);
+    out.push_str("      </Cells>\n");
+}
+
+fn mesh_vtu(model: &Model, s: &State) -> String {
+    let nodes = model.nodes();
+    let elements = model.elements();
+    let mut out = header(s, nodes.len(), elements.len());
+    let disp = |i: usize| s.results.map_or([0.0; 3], |r| r.displacements[i]);
+    out.push_str("      <PointData Vectors=\"displacement\">\n");
+    array(
+        &mut out,
+        "Float64",
+        "displacement",
+        3,
+        (0..nodes.len()).flat_map(|i| {
+            let d = disp(i);
+            [d[0], d[1], 0.0].map(Num)
+        }),
+    );
+    array(
+        &mut out,
+        "Float64",
+        "rotation",
+        1,
+        (0..nodes.len()).map(|i| Num(disp(i)[2])),
+    );
+    out.push_str("      </PointData>\n      <Points>\n");
+    array(
+        &mut out,
+        "Float64",
+        "Points",
+        3,
+        nodes.iter().flat_map(|&[x, y]| [x, y, 0.0].map(Num)),
+    );
+    out.push_str("      </Points>\n");
+    let (mut conn, mut offs, mut types) = (Vec::new(), Vec::new(), Vec::new());
+    for e in elements {
+        let (ns, ty): (&[unilateral_fem::NodeId], u8) = match e {
+            Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => (nodes, 3),
+            Element::Plane { nodes, .. } => (nodes, 9),
+        };
+        conn.extend(ns.iter().map(|n| n.0));
+        offs.push(conn.len());
+        types.push(ty);
+    }
+    cells(&mut out, conn, offs, types);
+    out.push_str("      <CellData Scalars=\"element\">\n");
+    array(&mut out, "Int64", "element", 1, 0..elements.len());
+    out.push_str("      </CellData>\n");
+    out.push_str(FOOTER);
+    out
+}
+
+fn state_code(s: PairState) -> u8 {
+    match s {
+        PairState::Open => 0,
+        PairState::Stick => 1,
+        PairState::SlipPlus => 2,
+        PairState::SlipMinus => 3,
+    }
+}
+
+fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
+    let specs = model.pairs();
+    let m = specs.len();
+    // Points 0..m are the B nodes; the A nodes of node-to-node pairs follow.
+    let mut point_node: Vec<usize> = specs.iter().map(|p| p.b.0).collect();
+    let (mut conn, mut offs, mut types) = (Vec::new(), Vec::new(), Vec::new());
+    for (i, p) in specs.iter().enumerate() {
+        match p.a {
+            Endpoint::Ground => types.push(1u8),
+            Endpoint::Node(n) => {
+                conn.push(point_node.len());
+                point_node.push(n.0);
+                types.push(3u8);
+            }
+        }
+        conn.push(i);
+        offs.push(conn.len());
+    }
+    let mut out = header(s, point_node.len(), m);
+    out.push_str("      <Points>\n");
+    let nodes = model.nodes();
+    array(
+        &mut out,
+        "Float64",
+        "Points",
+        3,
+        point_node.iter().flat_map(|&n| {
+            let [x, y] = nodes[n];
+            [x, y, 0.0].map(Num)
+        }),
+    );
+    out.push_str("      </Points>\n");
+    cells(&mut out, conn, offs, types);
+    out.push_str("      <CellData Scalars=\"state\">\n");
+    // The unloaded start: no force, no slip, every pair at its initial gap (`z_n = gap`).
+    let at = |i: usize| s.pairs.and_then(|p| p.get(i));
+    let start = |i: usize| PairResult {
+        name: String::new(),
+        x_n: 0.0,
+        x_t: 0.0,
+        z_n: gaps.get(i).copied().unwrap_or(0.0),
+        z_t: 0.0,
+        state: if gaps.get(i).is_some_and(|g| *g > 0.0) {
+            PairState::Open
+        } else {
+            PairState::Stick
+        },
+    };
+    array(
+        &mut out,
+        "UInt8",
+        "state",
+        1,
+        (0..m).map(|i| at(i).map_or_else(|| state_code(start(i).state), |r| state_code(r.state))),
+    );
+    for (name, f) in [
+        ("x_n", (|r: &PairResult| r.x_n) as fn(&PairResult) -> f64),
+        ("x_t", |r| r.x_t),
+        ("z_n", |r| r.z_n),
+        ("z_t", |r| r.z_t),
+    ] {
+        array(
+            &mut out,
+            "Float64",
+            name,
+            1,
+            (0..m).map(|i| Num(at(i).map_or_else(|| f(&start(i)), f))),
+        );
+    }
+    array(&mut out, "Int64", "pair", 1, 0..m);
+    out.push_str("      </CellData>\n");
+    out.push_str(FOOTER);
+    out
+}
