@@ -160,7 +160,10 @@ fn recovery_at_case_factors_matches_hand_values() {
     assert!(r.equilibrium.relative() < 1e-12);
     // the heated, clamped and propped beam: axial force −EAαΔT in every element
     let r = c
-        .recover_at(&[0.0, 0.0, 1.0, 0.0], &c.bonded_at(&[0.0, 0.0, 1.0, 0.0], 0.0))
+        .recover_at(
+            &[0.0, 0.0, 1.0, 0.0],
+            &c.bonded_at(&[0.0, 0.0, 1.0, 0.0], 0.0),
+        )
         .unwrap();
     let n_axial = E * A * ALPHA * DT;
     for line in &r.lines {
@@ -192,22 +195,20 @@ fn recovery_at_case_factors_is_the_superposition_of_the_cases() {
             .map(|i| parts.iter().zip(&factors).map(|(v, f)| f * v[i]).sum())
             .collect()
     };
-    let checks: [(&str, Box<dyn Fn(&Results) -> Vec<f64>>); 3] = [
-        (
-            "displacements",
-            Box::new(|r: &Results| r.displacements.iter().flatten().copied().collect()),
-        ),
-        (
-            "reactions",
-            Box::new(|r: &Results| r.reactions.iter().map(|x| x.value).collect()),
-        ),
-        (
-            "end forces",
-            Box::new(|r: &Results| r.lines.iter().flat_map(|l| l.end_forces).collect()),
-        ),
+    type Part = fn(&Results) -> Vec<f64>;
+    let checks: [(&str, Part); 3] = [
+        ("displacements", |r| {
+            r.displacements.iter().flatten().copied().collect()
+        }),
+        ("reactions", |r| {
+            r.reactions.iter().map(|x| x.value).collect()
+        }),
+        ("end forces", |r| {
+            r.lines.iter().flat_map(|l| l.end_forces).collect()
+        }),
     ];
     for (what, get) in &checks {
-        let want = combine(get.as_ref());
+        let want = combine(get);
         let got = get(&all);
         let scale = want.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         assert!(scale > 0.0, "{what}");
