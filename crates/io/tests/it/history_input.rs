@@ -96,6 +96,37 @@ fn a_structural_model_reads_its_cases_and_stages() {
     );
     assert_eq!(zone.variable.normal, [0.0]);
     zone.validate().unwrap();
+
+    // The full results at the end of stage "pull" (dead = 1.5, push = −1) with the tip stuck:
+    // the clamp takes 11P/16 vertically, the moment 3PL/16 (counter-clockwise on the beam)
+    // and half the axial force, each times its factor (P = 16, L = 4, F = 4).
+    let factors = [1.5, -1.0];
+    let bonded = c.bonded_at(&factors, 4.0);
+    let pairs = [unilateral_contact::PairResult {
+        name: "tip".into(),
+        x_n: bonded.x_n[0],
+        x_t: bonded.x_t[0],
+        z_n: bonded.z_n[0],
+        z_t: bonded.z_t[0],
+        state: unilateral_contact::PairState::Stick,
+    }];
+    let r = unilateral_analysis::recover_at(&c, &factors, 4.0, &pairs).unwrap();
+    assert_eq!(r.p, 4.0);
+    let at = |label: unilateral_fem::DofLabel| {
+        r.reactions
+            .iter()
+            .find(|x| x.node.0 == 0 && x.dof.label() == Some(label))
+            .unwrap()
+            .value
+    };
+    assert!(close(at(unilateral_fem::DofLabel::Uy), 1.5 * 11.0), "{r:?}");
+    assert!(close(
+        at(unilateral_fem::DofLabel::Rz),
+        1.5 * 3.0 * 16.0 * 4.0 / 16.0
+    ));
+    assert!(close(at(unilateral_fem::DofLabel::Ux), 2.0));
+    // one factor per case, or a located refusal of the call (not a panic)
+    assert!(unilateral_analysis::recover_at(&c, &[1.0], 0.0, &pairs).is_err());
 }
 
 // Reference: the files of the paper's method mean what they meant (no history, the two
