@@ -25,7 +25,9 @@ pub use history::HistoryAnalysis;
 
 use std::time::{Duration, Instant};
 
-use unilateral_contact::{ContactError, ContactLoad, ContactZone, PairResult, SolveSettings};
+use unilateral_contact::{
+    ContactError, ContactLoad, ContactZone, LoadCase, PairResult, SolveSettings,
+};
 use unilateral_fem::{
     Condensed, DofLabel, ElementId, FemError, LinkValues, Model, NodeId, Results, Subject,
 };
@@ -394,7 +396,52 @@ fn pulled_apart(c: &Condensed) -> Option<AnalysisError> {
     })
 }
 
-/// The contact zone of a condensed model.
+/// The link values of pair results, labelled `p`.
+fn link_values(p: f64, pairs: &[PairResult]) -> LinkValues {
+    LinkValues {
+        p,
+        x_n: pairs.iter().map(|r| r.x_n).collect(),
+        x_t: pairs.iter().map(|r| r.x_t).collect(),
+        z_n: pairs.iter().map(|r| r.z_n).collect(),
+        z_t: pairs.iter().map(|r| r.z_t).collect(),
+    }
+}
+
+/// Recovered results that are finite and in equilibrium, or the error that says which not.
+fn checked(r: Results, p: f64) -> Result<Results, AnalysisError> {
+    if !r.all_finite() {
+        return Err(AnalysisError::Internal {
+            what: format!("recovering the results at p = {p}"),
+            message: "a recovered displacement, force or stress is not a finite number".into(),
+        });
+    }
+    let relative = r.equilibrium.relative();
+    if relative.is_nan() || relative > EQUILIBRIUM_TOLERANCE {
+        return Err(AnalysisError::Equilibrium { p, relative });
+    }
+    Ok(r)
+}
+
+/// The full structural results (displacements, reactions, element forces, stresses) for the
+/// pair results `pairs` under the load `Σ factors[c]·(case c)`, the factors indexed like the
+/// model's load cases ([`Condensed::case_names`]): any point of a load history. `label` (a
+/// history's pseudo-time, say) is what [`Results::p`] and the errors call the point. The
+/// results are checked as those of [`analyze`] are: finite, and in equilibrium within
+/// [`EQUILIBRIUM_TOLERANCE`].
+pub fn recover_at(
+    c: &Condensed,
+    factors: &[f64],
+    label: f64,
+    pairs: &[PairResult],
+) -> Result<Results, AnalysisError> {
+    let r = c
+        .recover_at(factors, &link_values(label, pairs))
+        .map_err(|source| AnalysisError::Recovery { p: label, source })?;
+    checked(r, label)
+}
+
+/// The contact zone of a condensed model, with every load case of the model
+/// ([`ContactZone::cases`], in the model's order).
 pub fn zone_of(c: &Condensed) -> ContactZone {
     ContactZone {
         rnn: c.rnn.clone(),
@@ -411,6 +458,18 @@ pub fn zone_of(c: &Condensed) -> ContactZone {
             normal: c.variable.normal.clone(),
             tangential: c.variable.tangential.clone(),
         },
+        cases: c
+            .case_names
+            .iter()
+            .zip(&c.cases)
+            .map(|(name, v)| LoadCase {
+                name: name.clone(),
+                load: ContactLoad {
+                    normal: v.normal.clone(),
+                    tangential: v.tangential.clone(),
+                },
+            })
+            .collect(),
         pair_names: c.pair_names.clone(),
     }
 }
@@ -463,28 +522,11 @@ impl Analysis {
     }
 
     fn recover(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
-        let sol = LinkValues {
-            p,
-            x_n: pairs.iter().map(|r| r.x_n).collect(),
-            x_t: pairs.iter().map(|r| r.x_t).collect(),
-            z_n: pairs.iter().map(|r| r.z_n).collect(),
-            z_t: pairs.iter().map(|r| r.z_t).collect(),
-        };
         let r = self
             .condensed
-            .recover(&sol)
+            .recover(&link_values(p, pairs))
             .map_err(|source| AnalysisError::Recovery { p, source })?;
-        if !r.all_finite() {
-            return Err(AnalysisError::Internal {
-                what: format!("recovering the results at p = {p}"),
-                message: "a recovered displacement, force or stress is not a finite number".into(),
-            });
-        }
-        let relative = r.equilibrium.relative();
-        if relative.is_nan() || relative > EQUILIBRIUM_TOLERANCE {
-            return Err(AnalysisError::Equilibrium { p, relative });
-        }
-        Ok(r)
+        checked(r, p)
     }
 
     /// The pair results (without tightening) and full structural results at another load `p`

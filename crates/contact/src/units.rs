@@ -136,6 +136,14 @@ impl Units {
                 .collect(),
             constant: load(&zone.constant),
             variable: load(&zone.variable),
+            cases: zone
+                .cases
+                .iter()
+                .map(|c| crate::LoadCase {
+                    name: c.name.clone(),
+                    load: load(&c.load),
+                })
+                .collect(),
             pair_names: zone.pair_names.clone(),
         }
     }

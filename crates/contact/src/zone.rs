@@ -2,7 +2,7 @@
 
 use faer::Mat;
 
-use crate::ContactError;
+use crate::{ContactError, LoadCase};
 
 /// Contact load vector (CLV) of one load group: link forces of the bonded structure,
 /// compression positive, one entry per contact pair.
@@ -46,12 +46,17 @@ pub struct ContactZone {
     pub constant: ContactLoad,
     /// Variable load part `R_v`, multiplied by the load parameter `p`.
     pub variable: ContactLoad,
+    /// Every load case by name, in the order of the file or the model (`constant` and
+    /// `variable` among them when the problem has them): what a load history's stages
+    /// multiply by their factors. The paper's method reads `constant` and `variable` only.
+    pub cases: Vec<LoadCase>,
     /// Display names of the pairs (default `"1"`, `"2"`, …).
     pub pair_names: Vec<String>,
 }
 
 impl ContactZone {
-    /// A frictionless, load-free zone with the given normal stiffness and zero coupling blocks.
+    /// A frictionless, load-free zone with the given normal stiffness and zero coupling blocks
+    /// (and no load cases).
     pub fn new(rnn: Mat<f64>, rtt: Mat<f64>) -> Self {
         let m = rnn.nrows();
         Self {
@@ -63,6 +68,7 @@ impl ContactZone {
             gap: vec![0.0; m],
             constant: ContactLoad::zeros(m),
             variable: ContactLoad::zeros(m),
+            cases: Vec::new(),
             pair_names: (1..=m).map(|i| i.to_string()).collect(),
         }
     }
@@ -72,7 +78,8 @@ impl ContactZone {
         self.rnn.nrows()
     }
 
-    /// Checks sizes, finiteness, signs and the symmetry of `Rnn` and `Rtt`.
+    /// Checks sizes, finiteness, signs and the symmetry of `Rnn` and `Rtt`, and the size and
+    /// finiteness of every load case (`load.NAME.normal`, `load.NAME.tangential`).
     ///
     /// Symmetry is checked relative to the largest entry of the matrix (`1e-8`), since matrices
     /// computed by other programs carry round-off.
@@ -155,6 +162,27 @@ impl ContactZone {
                     name: name.to_string(),
                     index: format!("[{}]", i + 1),
                 });
+            }
+        }
+        for case in &self.cases {
+            for (part, v) in [
+                ("normal", &case.load.normal),
+                ("tangential", &case.load.tangential),
+            ] {
+                let name = format!("load.{}.{part}", case.name);
+                if v.len() != m {
+                    return Err(ContactError::VectorSize {
+                        name,
+                        len: v.len(),
+                        pairs: m,
+                    });
+                }
+                if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                    return Err(ContactError::NotFinite {
+                        name,
+                        index: format!("[{}]", i + 1),
+                    });
+                }
             }
         }
         if let Some(i) = self.friction.iter().position(|&f| f < 0.0) {

@@ -1,5 +1,6 @@
 //! Sparse assembly of the bonded structure in generalized DOFs: `K_II` (lower triangle),
-//! `K_Iz`, `K_zz`, and the generalized loads of both load groups, settlements included.
+//! `K_Iz`, `K_zz`, and the generalized loads of every load case, settlements included (and of
+//! the paper's two groups, the cases `constant` and `variable`, for the condensation).
 
 use crate::condense::{check_memory, dense_condensation_bytes};
 use crate::dofs::{build_dof_map, merge, DofMap, Row};
@@ -7,6 +8,18 @@ use crate::elements::spring::spring_matrix;
 use crate::elements::{element_stiffness, unit as element_unit, ElemMat};
 use crate::error::FemError;
 use crate::model::{same_dof, ElementId, Load, LoadGroup, Model};
+
+/// The assembled loads of one load case at factor 1.
+#[derive(Clone)]
+pub(crate) struct CaseVectors {
+    /// Physical equivalent loads, without settlement terms.
+    pub f_phys: Vec<f64>,
+    /// Prescribed values.
+    pub s: Vec<f64>,
+    /// Generalized loads: I part and z part (settlements included).
+    pub b_i: Vec<f64>,
+    pub b_z: Vec<f64>,
+}
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 
@@ -19,6 +32,10 @@ pub(crate) struct Assembled {
     /// Columns of K_Iz: for link DOF r, the (free index, value) pairs.
     pub kiz: Vec<Row>,
     pub kzz: Mat<f64>,
+    /// The loads of every case of the model, indexed like [`Model::cases`].
+    pub cases: Vec<CaseVectors>,
+    /// The index of the case of each group (constant, variable), `None` when absent.
+    pub group_case: [Option<usize>; 2],
     /// Physical equivalent loads per group (constant, variable), without settlement terms.
     pub f_phys: [Vec<f64>; 2],
     /// Prescribed values per group.
@@ -28,13 +45,6 @@ pub(crate) struct Assembled {
     pub b_z: [Vec<f64>; 2],
 }
 
-fn group_index(g: LoadGroup) -> usize {
-    match g {
-        LoadGroup::Constant => 0,
-        LoadGroup::Variable => 1,
-    }
-}
-
 pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
     let map = build_dof_map(model)?;
     let (n_i, m) = (map.n_i, map.m);
@@ -42,11 +52,12 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
     let z0 = map.z0();
     let p0 = map.p0();
     let nphys = 3 * model.nodes.len();
-    // loads
-    let mut f_phys = [vec![0.0; nphys], vec![0.0; nphys]];
-    let mut s = [vec![0.0; map.n_p], vec![0.0; map.n_p]];
-    for (g, l) in &model.loads {
-        let gi = group_index(*g);
+    // loads, case by case
+    let nc = model.cases.len();
+    let mut f_phys = vec![vec![0.0; nphys]; nc];
+    let mut s = vec![vec![0.0; map.n_p]; nc];
+    for (c, l) in &model.loads {
+        let gi = c.0;
         match *l {
             Load::Nodal { node, fx, fy, m } => {
                 f_phys[gi][3 * node.0] += fx;
@@ -79,15 +90,12 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
             }
         }
     }
-    let has_settlement = [
-        s[0].iter().any(|v| *v != 0.0),
-        s[1].iter().any(|v| *v != 0.0),
-    ];
+    let has_settlement: Vec<bool> = s.iter().map(|s| s.iter().any(|v| *v != 0.0)).collect();
     check_memory(
         &format!("{m} contact pairs"),
         dense_condensation_bytes(m, n_i),
     )?;
-    let mut f_set = [vec![0.0; nphys], vec![0.0; nphys]];
+    let mut f_set = vec![vec![0.0; nphys]; nc];
     let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::new();
     let mut kiz: Vec<Row> = vec![Row::new(); nz];
     let mut kzz = Mat::<f64>::zeros(nz, nz);
@@ -127,7 +135,7 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
             }
         }
         // settlement: f -= k u0
-        for g in 0..2 {
+        for g in 0..nc {
             if !has_settlement[g] {
                 continue;
             }
@@ -176,9 +184,9 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
         *r = merge(std::mem::take(r));
     }
     // generalized loads
-    let mut b_i = [vec![0.0; n_i], vec![0.0; n_i]];
-    let mut b_z = [vec![0.0; nz], vec![0.0; nz]];
-    for g in 0..2 {
+    let mut b_i = vec![vec![0.0; n_i]; nc];
+    let mut b_z = vec![vec![0.0; nz]; nc];
+    for g in 0..nc {
         for d in 0..nphys {
             let f = f_phys[g][d] + f_set[g][d];
             if f == 0.0 {
@@ -205,6 +213,26 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
     } else {
         None
     };
+    let cases: Vec<CaseVectors> = (0..nc)
+        .map(|c| CaseVectors {
+            f_phys: std::mem::take(&mut f_phys[c]),
+            s: std::mem::take(&mut s[c]),
+            b_i: std::mem::take(&mut b_i[c]),
+            b_z: std::mem::take(&mut b_z[c]),
+        })
+        .collect();
+    // The paper's two groups are the cases of their names (zero when the model has none).
+    let group_case =
+        [LoadGroup::Constant, LoadGroup::Variable].map(|g| model.case(g.case_name()).map(|c| c.0));
+    let group = |part: fn(&CaseVectors) -> &Vec<f64>, len: usize| {
+        group_case.map(|c| c.map_or_else(|| vec![0.0; len], |c| part(&cases[c]).clone()))
+    };
+    let (f_phys, s, b_i, b_z) = (
+        group(|c| &c.f_phys, nphys),
+        group(|c| &c.s, map.n_p),
+        group(|c| &c.b_i, n_i),
+        group(|c| &c.b_z, nz),
+    );
     Ok(Assembled {
         map,
         kii,
@@ -212,6 +240,8 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
         diag,
         kiz,
         kzz,
+        cases,
+        group_case,
         f_phys,
         s,
         b_i,

@@ -11,9 +11,9 @@
 
 use crate::assemble::{assemble, Assembled};
 use crate::error::FemError;
-use crate::model::{LoadGroup, Model};
-use crate::results::ContactLoadVector;
-use crate::schur::{condense, CHUNK};
+use crate::model::{CaseId, LoadGroup, Model};
+use crate::results::{ContactLoadVector, LinkValues};
+use crate::schur::{condense, CHUNK, ROUND_OFF};
 use crate::stability::factorize;
 use faer::sparse::linalg::solvers::Llt;
 use faer::Mat;
@@ -52,6 +52,12 @@ pub struct Condensed {
     pub constant: ContactLoadVector,
     /// `R_v`: bonded link forces under the variable group (per unit `p`).
     pub variable: ContactLoadVector,
+    /// The names of the load cases, as [`Model::cases`].
+    pub case_names: Vec<String>,
+    /// The bonded link forces of every load case at factor 1, indexed like `case_names`
+    /// (those of the cases `constant` and `variable` are [`Condensed::constant`] and
+    /// [`Condensed::variable`]).
+    pub cases: Vec<ContactLoadVector>,
     /// Friction coefficient per pair.
     pub friction: Vec<f64>,
     /// Initial gap per pair.
@@ -80,6 +86,8 @@ impl std::fmt::Debug for Condensed {
             .field("rtt", &self.rtt)
             .field("constant", &self.constant)
             .field("variable", &self.variable)
+            .field("case_names", &self.case_names)
+            .field("cases", &self.cases)
             .field("friction", &self.friction)
             .field("gap", &self.gap)
             .field("pair_names", &self.pair_names)
@@ -91,7 +99,8 @@ impl std::fmt::Debug for Condensed {
 impl Model {
     /// Validates the model, assembles the bonded structure (every pair a rigid normal and
     /// tangential link), factorizes it once (sparse Cholesky) and condenses it to the contact
-    /// zone: `R = [[Rnn, Rnt], [Rtn, Rtt]]` and the CLVs `R_c`, `R_v`.
+    /// zone: `R = [[Rnn, Rnt], [Rtn, Rtt]]`, the CLVs `R_c`, `R_v` and those of every load
+    /// case.
     ///
     /// Errors: any [`FemError`] from [`Model::validate`], link placement problems, and
     /// [`FemError::Unstable`] naming the free DOFs when the bonded structure is a mechanism.
@@ -108,6 +117,8 @@ impl Model {
         let (c, t_con) = timed(|| condense(&asm, kii.as_ref(), kzz, llt.as_ref()));
         drop(kii);
         let m = asm.map.m;
+        let (case_rf, t_cases) = timed(|| case_vectors(&asm, &c.rf, llt.as_ref()));
+        let t_con = t_con + t_cases;
         let block = |r0: usize, c0: usize| Mat::<f64>::from_fn(m, m, |i, j| c.r[(r0 + i, c0 + j)]);
         let clv = |g: usize| ContactLoadVector {
             normal: c.rf[g][..m].to_vec(),
@@ -127,6 +138,7 @@ impl Model {
         };
         if c.r.col_iter().any(|col| col.iter().any(|v| !v.is_finite()))
             || c.rf.iter().flatten().any(|v| !v.is_finite())
+            || case_rf.iter().flatten().any(|v| !v.is_finite())
         {
             return Err(FemError::LinearAlgebra(
                 "non-finite contact stiffness (ill-conditioned bonded structure)".into(),
@@ -139,6 +151,14 @@ impl Model {
             rtt: block(m, m),
             constant: clv(0),
             variable: clv(1),
+            case_names: self.cases.clone(),
+            cases: case_rf
+                .iter()
+                .map(|rf| ContactLoadVector {
+                    normal: rf[..m].to_vec(),
+                    tangential: rf[m..].to_vec(),
+                })
+                .collect(),
             friction: self.pairs.iter().map(|p| p.friction).collect(),
             gap: self.pairs.iter().map(|p| p.gap).collect(),
             pair_names: (0..m).map(|i| self.pair_name(i)).collect(),
@@ -178,6 +198,51 @@ impl Condensed {
         r
     }
 
+    /// The resultant `[Fx, Fy]` of a load case's equivalent nodal loads at factor 1.
+    ///
+    /// # Panics
+    ///
+    /// When `case` is not a case of the model.
+    pub fn case_resultant(&self, case: CaseId) -> [f64; 2] {
+        let f = &self.asm.cases[case.0].f_phys;
+        let mut r = [0.0; 2];
+        for node in f.chunks_exact(3) {
+            r[0] += node[0];
+            r[1] += node[1];
+        }
+        r
+    }
+
+    /// The bonded link values at the case factors `factors` (indexed like
+    /// [`Condensed::case_names`]): every link at its undeformed length and
+    /// `x = Σ factor·R_case`; `p` is set to `p`, a label for the results.
+    ///
+    /// # Panics
+    ///
+    /// When `factors` does not have one entry per case.
+    pub fn bonded_at(&self, factors: &[f64], p: f64) -> LinkValues {
+        assert_eq!(factors.len(), self.cases.len(), "one factor per load case");
+        let m = self.pairs();
+        let sum = |part: fn(&ContactLoadVector) -> &Vec<f64>| -> Vec<f64> {
+            (0..m)
+                .map(|i| {
+                    self.cases
+                        .iter()
+                        .zip(factors)
+                        .map(|(c, f)| f * part(c)[i])
+                        .sum()
+                })
+                .collect()
+        };
+        LinkValues {
+            p,
+            x_n: sum(|c| &c.normal),
+            x_t: sum(|c| &c.tangential),
+            z_n: self.gap.clone(),
+            z_t: vec![0.0; m],
+        }
+    }
+
     /// The full contact stiffness matrix `[[Rnn, Rnt], [Rtn, Rtt]]` (2m × 2m).
     pub fn csm(&self) -> Mat<f64> {
         let m = self.pairs();
@@ -188,6 +253,57 @@ impl Condensed {
             (false, false) => self.rtt[(i - m, j - m)],
         })
     }
+}
+
+/// The contact load vectors `R_F = K_zI K_II⁻¹ b_I − b_z` of every load case (normal entries,
+/// then tangential). The cases `constant` and `variable` take the condensation's own vectors
+/// (`group_rf`), so that they are the same bit for bit as [`Condensed::constant`] and
+/// [`Condensed::variable`]; every other case is solved here, all in one solve, and an entry
+/// is set to zero as round-off when it is below [`ROUND_OFF`] of the magnitude of the terms
+/// that formed it (`|b_z|` and the products of `K_zI·x`).
+fn case_vectors(
+    asm: &Assembled,
+    group_rf: &[Vec<f64>; 2],
+    llt: Option<&Llt<usize, f64>>,
+) -> Vec<Vec<f64>> {
+    use faer::linalg::solvers::SolveCore;
+    let nz = 2 * asm.map.m;
+    let n_i = asm.map.n_i;
+    let group_of = |c: usize| asm.group_case.iter().position(|g| *g == Some(c));
+    let others: Vec<usize> = (0..asm.cases.len())
+        .filter(|&c| group_of(c).is_none())
+        .collect();
+    let mut x = Mat::<f64>::from_fn(n_i, others.len(), |i, j| asm.cases[others[j]].b_i[i]);
+    if let Some(llt) = llt {
+        if !others.is_empty() {
+            llt.solve_in_place_with_conj(faer::Conj::No, x.as_mut());
+        }
+    }
+    (0..asm.cases.len())
+        .map(|c| {
+            if let Some(g) = group_of(c) {
+                return group_rf[g].clone();
+            }
+            let j = others.iter().position(|&o| o == c).expect("listed");
+            let b_z = &asm.cases[c].b_z;
+            (0..nz)
+                .map(|row| {
+                    let col = &asm.kiz[row];
+                    let xs = x.col_as_slice(j);
+                    let (mut v, mut mag) = (-b_z[row], b_z[row].abs());
+                    if llt.is_some() {
+                        v += col.iter().map(|&(i, k)| k * xs[i]).sum::<f64>();
+                        mag += col.iter().map(|&(i, k)| (k * xs[i]).abs()).sum::<f64>();
+                    }
+                    if v != 0.0 && v.abs() <= ROUND_OFF * mag {
+                        0.0
+                    } else {
+                        v
+                    }
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// Bytes of the dense matrices the condensation of `m` pairs with `n_i` free DOFs holds at

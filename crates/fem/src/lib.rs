@@ -1,11 +1,19 @@
 //! Linear elastic 2D structural finite elements and condensation to the contact zone.
 //!
-//! Build a [`Model`] (nodes, frames, bars, plane elements, springs, supports, loads in a
-//! constant and a variable [`LoadGroup`], contact pairs), call [`Model::condense`] to obtain
-//! the contact stiffness matrix `R = [[Rnn, Rnt], [Rtn, Rtt]]` and the contact load vectors
-//! `R_c`, `R_v` of `formulation.md` §2 ([`Condensed`]), solve the contact problem elsewhere,
-//! and call [`Condensed::recover`] with the [`LinkValues`] of a solution to get displacements,
-//! reactions, internal forces and stresses ([`Results`]).
+//! Build a [`Model`] (nodes, frames, bars, plane elements, springs, supports, loads in named
+//! load cases, contact pairs), call [`Model::condense`] to obtain the contact stiffness
+//! matrix `R = [[Rnn, Rnt], [Rtn, Rtt]]` and the contact load vectors of `formulation.md` §2
+//! ([`Condensed`]), solve the contact problem elsewhere, and call [`Condensed::recover`] with
+//! the [`LinkValues`] of a solution to get displacements, reactions, internal forces and
+//! stresses ([`Results`]).
+//!
+//! Load cases: every load belongs to a case ([`Model::add_case`] → [`CaseId`],
+//! [`Model::add_case_load`]); the paper's two groups ([`LoadGroup::Constant`],
+//! [`LoadGroup::Variable`], [`Model::add_load`]) are the cases named `constant` and
+//! `variable`. [`Condensed::cases`] holds the link forces of every case at factor 1 and
+//! [`Condensed::constant`] / [`Condensed::variable`] those of the two groups (zero when the
+//! model has no such case); [`Condensed::recover`] is the paper's load `constant + p·variable`,
+//! [`Condensed::recover_at`] any combination of the cases (a stage of a load history).
 //!
 //! A model may carry the names of its items ([`Names`], [`Model::names`]); structured meshes
 //! (block grids, divided members, coincident nodes) are pure geometry in [`mesh`].
@@ -64,9 +72,9 @@ pub use condense::{
 };
 pub use error::{DofLabel, FemError, FreeDof, Subject};
 pub use model::{
-    ContactPairSpec, Element, ElementId, Endpoint, FrameSection, Load, LoadFrame, LoadGroup, Model,
-    NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring, SpringKind,
-    SupportDof,
+    CaseId, ContactPairSpec, Element, ElementId, Endpoint, FrameSection, Load, LoadFrame,
+    LoadGroup, Model, NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring,
+    SpringKind, SupportDof,
 };
 pub use names::Names;
 pub use results::{

@@ -221,14 +221,30 @@ impl SupportDof {
     }
 }
 
-/// The load group a load belongs to (formulation.md §2: `R_F = R_c + p·R_v`).
+/// The two load groups of the paper's method (formulation.md §2: `R_F = R_c + p·R_v`): the
+/// load cases named `constant` and `variable` (see [`Model::add_case`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LoadGroup {
-    /// Dead load, always present.
+    /// Dead load, always present: the case `constant`.
     Constant,
-    /// Multiplied by the load parameter `p`.
+    /// Multiplied by the load parameter `p`: the case `variable`.
     Variable,
 }
+
+impl LoadGroup {
+    /// The name of the load case of this group: `"constant"` or `"variable"`.
+    pub fn case_name(self) -> &'static str {
+        match self {
+            LoadGroup::Constant => "constant",
+            LoadGroup::Variable => "variable",
+        }
+    }
+}
+
+/// A load case of a model (its index in [`Model::cases`]): every load belongs to one, and a
+/// load history multiplies each case's loads by the case's factor.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct CaseId(pub usize);
 
 /// Reference frame of a distributed load on a frame or bar.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -240,7 +256,8 @@ pub enum LoadFrame {
     Local,
 }
 
-/// A load. Every load belongs to a [`LoadGroup`].
+/// A load. Every load belongs to a load case ([`CaseId`]; the paper's [`LoadGroup`]s are the
+/// cases `constant` and `variable`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Load {
     /// Force and moment at a node (global components; moment counter-clockwise positive).
@@ -380,7 +397,9 @@ pub struct Model {
     pub(crate) elements: Vec<Element>,
     pub(crate) springs: Vec<Spring>,
     pub(crate) supports: Vec<(NodeId, SupportDof)>,
-    pub(crate) loads: Vec<(LoadGroup, Load)>,
+    /// The names of the load cases, in the order they were added.
+    pub(crate) cases: Vec<String>,
+    pub(crate) loads: Vec<(CaseId, Load)>,
     pub(crate) pairs: Vec<ContactPairSpec>,
     pub(crate) names: Names,
 }
@@ -476,10 +495,56 @@ impl Model {
         self.add_support(node, SupportDof::Along(normal));
     }
 
-    /// Adds a load to a group; returns its index among all loads.
+    /// Adds a load to a group (the case `constant` or `variable`, added when it is not yet
+    /// there); returns its index among all loads.
     pub fn add_load(&mut self, group: LoadGroup, load: Load) -> usize {
-        self.loads.push((group, load));
+        let case = self.add_case(group.case_name());
+        self.add_case_load(case, load)
+    }
+
+    /// The load case of this name, added (after the cases there are) when the model has none
+    /// of that name yet.
+    pub fn add_case(&mut self, name: impl Into<String>) -> CaseId {
+        let name = name.into();
+        match self.case(&name) {
+            Some(id) => id,
+            None => {
+                self.cases.push(name);
+                CaseId(self.cases.len() - 1)
+            }
+        }
+    }
+
+    /// The load case of this name, if the model has it.
+    pub fn case(&self, name: &str) -> Option<CaseId> {
+        self.cases.iter().position(|c| c == name).map(CaseId)
+    }
+
+    /// The names of the load cases, indexed by [`CaseId`].
+    pub fn cases(&self) -> &[String] {
+        &self.cases
+    }
+
+    /// Adds a load to a load case; returns its index among all loads.
+    ///
+    /// # Panics
+    ///
+    /// When `case` is not a case of this model (a [`CaseId`] of another model): a fault of
+    /// the calling program, as an index out of bounds is.
+    pub fn add_case_load(&mut self, case: CaseId, load: Load) -> usize {
+        assert!(
+            case.0 < self.cases.len(),
+            "load case {} is not a case of this model ({} cases)",
+            case.0,
+            self.cases.len()
+        );
+        self.loads.push((case, load));
         self.loads.len() - 1
+    }
+
+    /// Every load with its case, in the order they were added.
+    pub fn loads(&self) -> &[(CaseId, Load)] {
+        &self.loads
     }
 
     /// Adds a contact pair; returns its index.

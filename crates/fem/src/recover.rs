@@ -6,18 +6,101 @@ use crate::condense::Condensed;
 use crate::elements::spring::{spring_force, spring_matrix};
 use crate::elements::{element_stiffness, unit as element_unit, Recovered};
 use crate::error::FemError;
-use crate::model::{ElementId, Endpoint, Load, LoadGroup};
+use crate::model::{ElementId, Endpoint, Load};
 use crate::results::{ratio, ContactLoadVector, Equilibrium, LinkValues, Reaction, Results};
 use faer::linalg::solvers::SolveCore;
 use faer::{Conj, Mat};
 
+/// The applied load of one recovery: the generalized loads at the free DOFs, the prescribed
+/// values, the physical equivalent loads, and the factor of every load case (for the element
+/// loads).
+struct Applied {
+    b_i: Vec<f64>,
+    s: Vec<f64>,
+    f: Vec<f64>,
+    case_factor: Vec<f64>,
+}
+
 impl Condensed {
     /// Recovers displacements, reactions, internal forces, stresses and the equilibrium check
-    /// for a contact solution at load parameter `sol.p`.
+    /// for a contact solution at load parameter `sol.p`: the case `constant` at factor 1, the
+    /// case `variable` at factor `p`, every other case at 0.
     pub fn recover(&self, sol: &LinkValues) -> Result<Results, FemError> {
-        let model = &self.model;
-        let map = &self.asm.map;
-        let m = map.m;
+        self.check_links(sol)?;
+        let p = sol.p;
+        let asm = &self.asm;
+        let map = &asm.map;
+        let applied = Applied {
+            b_i: (0..map.n_i)
+                .map(|i| asm.b_i[0][i] + p * asm.b_i[1][i])
+                .collect(),
+            s: (0..map.n_p)
+                .map(|k| asm.s[0][k] + p * asm.s[1][k])
+                .collect(),
+            f: (0..asm.f_phys[0].len())
+                .map(|d| asm.f_phys[0][d] + p * asm.f_phys[1][d])
+                .collect(),
+            case_factor: (0..asm.cases.len())
+                .map(|c| {
+                    if asm.group_case[0] == Some(c) {
+                        1.0
+                    } else if asm.group_case[1] == Some(c) {
+                        p
+                    } else {
+                        0.0
+                    }
+                })
+                .collect(),
+        };
+        self.recover_applied(sol, &applied)
+    }
+
+    /// Recovers the full results (as [`Condensed::recover`]) for the link values `sol` under
+    /// the load `Σ factors[c]·(case c)`, the factors indexed like [`Condensed::case_names`]:
+    /// every load of a case (nodal, distributed, body, settlement, temperature) is multiplied
+    /// by its case's factor. `sol.p` is not read as a load; it is copied to [`Results::p`] as
+    /// the caller's label of the point (a history's pseudo-time, say).
+    ///
+    /// Errors: [`FemError::BadSolution`] when `factors` does not have one finite entry per
+    /// case, or the link values do not fit the model.
+    pub fn recover_at(&self, factors: &[f64], sol: &LinkValues) -> Result<Results, FemError> {
+        let asm = &self.asm;
+        if factors.len() != asm.cases.len() {
+            return Err(FemError::BadSolution(format!(
+                "{} load factors given, the model has {} load cases",
+                factors.len(),
+                asm.cases.len()
+            )));
+        }
+        if let Some(c) = factors.iter().position(|f| !f.is_finite()) {
+            return Err(FemError::BadSolution(format!(
+                "the factor of load case `{}` is not finite",
+                self.case_names[c]
+            )));
+        }
+        self.check_links(sol)?;
+        let combine = |part: fn(&crate::assemble::CaseVectors) -> &Vec<f64>, len: usize| {
+            let mut v = vec![0.0; len];
+            for (c, f) in asm.cases.iter().zip(factors) {
+                if *f != 0.0 {
+                    for (a, b) in v.iter_mut().zip(part(c)) {
+                        *a += f * b;
+                    }
+                }
+            }
+            v
+        };
+        let applied = Applied {
+            b_i: combine(|c| &c.b_i, asm.map.n_i),
+            s: combine(|c| &c.s, asm.map.n_p),
+            f: combine(|c| &c.f_phys, 3 * self.model.nodes.len()),
+            case_factor: factors.to_vec(),
+        };
+        self.recover_applied(sol, &applied)
+    }
+
+    fn check_links(&self, sol: &LinkValues) -> Result<(), FemError> {
+        let m = self.asm.map.m;
         for (name, v) in [
             ("x_n", &sol.x_n),
             ("x_t", &sol.x_t),
@@ -37,11 +120,14 @@ impl Condensed {
         if !sol.p.is_finite() {
             return Err(FemError::BadSolution("p is not finite".into()));
         }
+        Ok(())
+    }
+
+    fn recover_applied(&self, sol: &LinkValues, applied: &Applied) -> Result<Results, FemError> {
+        let model = &self.model;
+        let map = &self.asm.map;
+        let m = map.m;
         let p = sol.p;
-        let fac = |g: LoadGroup| match g {
-            LoadGroup::Constant => 1.0,
-            LoadGroup::Variable => p,
-        };
         let (n_i, z0, p0) = (map.n_i, map.z0(), map.p0());
         // The link dislocations are the mutual displacements n·(u_B − u_A) = z_n − η and
         // t·(u_B − u_A) = z_t: the LCP measures z_n from closed contact (formulation §3, the
@@ -56,8 +142,7 @@ impl Condensed {
         // free DOFs
         let mut v_i = vec![0.0; n_i];
         if let Some(llt) = &self.llt {
-            let mut rhs =
-                Mat::<f64>::from_fn(n_i, 1, |i, _| self.asm.b_i[0][i] + p * self.asm.b_i[1][i]);
+            let mut rhs = Mat::<f64>::from_fn(n_i, 1, |i, _| applied.b_i[i]);
             for (r, col) in self.asm.kiz.iter().enumerate() {
                 for &(i, v) in col {
                     rhs[(i, 0)] -= v * z[r];
@@ -68,9 +153,7 @@ impl Condensed {
                 *x = rhs[(i, 0)];
             }
         }
-        let s: Vec<f64> = (0..map.n_p)
-            .map(|k| self.asm.s[0][k] + p * self.asm.s[1][k])
-            .collect();
+        let s = &applied.s;
         let gen = |g: usize| -> f64 {
             if g < z0 {
                 v_i[g]
@@ -96,15 +179,15 @@ impl Condensed {
             match l {
                 Load::Distributed { element, .. }
                 | Load::BodyForce { element, .. }
-                | Load::Temperature { element, .. } => loads_of[element.0].push((fac(*g), l)),
+                | Load::Temperature { element, .. } => {
+                    loads_of[element.0].push((applied.case_factor[g.0], l))
+                }
                 _ => {}
             }
         }
 
         // residual r = K u − f, element by element
-        let f: Vec<f64> = (0..3 * nn)
-            .map(|d| self.asm.f_phys[0][d] + p * self.asm.f_phys[1][d])
-            .collect();
+        let f = &applied.f;
         let mut r: Vec<f64> = f.iter().map(|v| -v).collect();
         // magnitude of the forces that meet at each DOF (the scale of its residual)
         let mut r_mag: Vec<f64> = f.iter().map(|v| v.abs()).collect();

@@ -24,6 +24,7 @@
 
 mod dat;
 mod error;
+mod history;
 mod json;
 mod model;
 mod msh;

@@ -4,7 +4,9 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use faer::Mat;
-use unilateral_contact::{ContactError, ContactLoad, ContactZone, Follow, SolveSettings};
+use unilateral_contact::{
+    ContactError, ContactLoad, ContactZone, Follow, LoadCase, SolveSettings, Stage,
+};
 use unilateral_lcp::Lcp;
 
 use crate::dat::read_siconos_lcp;
@@ -19,11 +21,13 @@ pub struct ContactZoneProblem {
     pub zone: ContactZone,
     /// The `[solve]` settings (defaults where the file gives none).
     pub settings: SolveSettings,
+    /// The stages of the file's `[[history]]`, their factors indexed like the zone's load
+    /// cases ([`ContactZone::cases`]); `None` without a history (the paper's single load path).
+    pub history: Option<Vec<Stage>>,
 }
 
-const TOP_KEYS: &[&str] = &["contact_zone", "load", "solve"];
+const TOP_KEYS: &[&str] = &["contact_zone", "load", "solve", "history"];
 const ZONE_KEYS: &[&str] = &["friction", "gap", "Rnn", "Rtt", "Rnt", "Rtn", "names"];
-const LOAD_KEYS: &[&str] = &["constant", "variable"];
 const LOAD_PART_KEYS: &[&str] = &["normal", "tangential"];
 const SOLVE_KEYS: &[&str] = &[
     "tightening",
@@ -42,6 +46,12 @@ const SOLVE_KEYS: &[&str] = &[
 /// `tangential` per-pair vectors (a missing one is zero); `[solve]` (optional) with
 /// `tightening`, `target`, `trace` (`"target"` or `"end"`), and the expert keys
 /// `pivot_tolerance` and `max_pivots`.
+///
+/// With `[[history]]` stages (`history.md`), `[load.NAME]` may name any load case (each with
+/// `normal` and/or `tangential`; `[load.variable]` is then not required), the stages'
+/// `factors` name those cases, and `tightening`, `target` and `trace` are refused. Every case
+/// is in [`ContactZone::cases`] in file order; `constant` and `variable` also fill the
+/// zone's fields of those names (zero when absent).
 ///
 /// A matrix is an inline array of rows, or the name of a Matrix Market file relative to the
 /// problem file. The number of pairs `m` is the size of `Rnn`. Unknown keys are errors.
@@ -173,21 +183,33 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
     };
 
     // Loads.
+    let has_history = top.get("history").is_some();
     let load = top.table("load")?;
+    let mut cases: Vec<LoadCase> = Vec::new();
     if let Some(load) = &load {
-        load.check_keys(LOAD_KEYS)?;
+        for e in load.entries {
+            if !has_history {
+                if let Some(err) = crate::history::case_without_history(load, &e.key) {
+                    return Err(err);
+                }
+            }
+            let t = doc.table(&e.node, &load.child(&e.key))?;
+            cases.push(LoadCase {
+                name: e.key.clone(),
+                load: contact_load(&t, m, e.key != "constant")?,
+            });
+        }
     }
-    let constant = match load
-        .as_ref()
-        .map(|l| l.table("constant"))
-        .transpose()?
-        .flatten()
-    {
-        Some(t) => contact_load(&t, m, false)?,
-        None => ContactLoad::zeros(m),
+    let case = |name: &str| {
+        cases
+            .iter()
+            .find(|c| c.name == name)
+            .map(|c| c.load.clone())
     };
-    let variable = match load.as_ref().map(|l| l.table("variable")).transpose()?.flatten() {
-        Some(t) => contact_load(&t, m, true)?,
+    let constant = case("constant").unwrap_or_else(|| ContactLoad::zeros(m));
+    let variable = match case("variable") {
+        Some(v) => v,
+        None if has_history => ContactLoad::zeros(m),
         None => {
             return Err(doc.err(
                 load.as_ref().and_then(|l| l.pos),
@@ -200,6 +222,9 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
             ))
         }
     };
+    crate::history::refuse_path_keys(&top)?;
+    let names: Vec<String> = cases.iter().map(|c| c.name.clone()).collect();
+    let history = crate::history::read_history(&top, &names, "load")?;
 
     let settings = match top.table("solve")? {
         Some(t) => solve_settings(&t)?,
@@ -219,6 +244,7 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
         gap,
         constant,
         variable,
+        cases,
         pair_names,
     };
     if let Err(e) = zone.validate() {
@@ -263,7 +289,11 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
             doc.err(None, &key, InputErrorKind::Invalid, msg)
         }));
     }
-    Ok(ContactZoneProblem { zone, settings })
+    Ok(ContactZoneProblem {
+        zone,
+        settings,
+        history,
+    })
 }
 
 fn optional_matrix(t: &Table, k: &str) -> Result<Option<MatrixInput>, InputError> {

@@ -6,4 +6,5 @@ mod errors;
 mod example1;
 mod fine_mesh;
 mod frames;
+mod load_cases;
 mod plane;

@@ -5,6 +5,7 @@ mod bad_inputs;
 mod common;
 mod corpus;
 mod gmsh;
+mod history_input;
 mod layouts;
 mod model_bad;
 mod model_read;

@@ -1,10 +1,17 @@
-//! `[loads.constant]` and `[loads.variable]`: nodal, distributed, body, settlement and temperature loads.
+//! `[loads.NAME]`: the load cases (`constant` and `variable` for the paper's method, any name
+//! with a `[[history]]`), each with nodal, distributed, body, settlement and temperature loads.
 
 use super::*;
 
 impl Builder<'_> {
-    pub(super) fn loads(&mut self, top: &Table) -> Result<(), InputError> {
+    /// Reads `[loads.NAME]`. Without a history (`history` false) only the cases `constant`
+    /// and `variable` are accepted and the variable one must load something, as in the
+    /// paper's method; with one, any case. The cases are added to the model in file order.
+    pub(super) fn loads(&mut self, top: &Table, history: bool) -> Result<(), InputError> {
         let Some(loads) = top.table("loads")? else {
+            if history {
+                return Ok(());
+            }
             return Err(self.err(
                 Some(Pos { line: 1, col: 1 }),
                 "loads.variable",
@@ -12,12 +19,18 @@ impl Builder<'_> {
                 "the model has no variable load ([loads.variable]): it is the load multiplied by the parameter p".into(),
             ));
         };
-        loads.check_keys(&["constant", "variable"])?;
+        let names: Vec<String> = loads.entries.iter().map(|e| e.key.clone()).collect();
+        if !history {
+            if let Some(e) = names
+                .iter()
+                .find_map(|n| crate::history::case_without_history(&loads, n))
+            {
+                return Err(e);
+            }
+        }
+        let cases: Vec<CaseId> = names.iter().map(|n| self.model.add_case(n)).collect();
         let mut any_variable = false;
-        for (k, group) in [
-            ("constant", LoadGroup::Constant),
-            ("variable", LoadGroup::Variable),
-        ] {
+        for (k, group) in names.iter().zip(cases) {
             let Some(g) = loads.table(k)? else { continue };
             g.check_keys(&["nodal", "distributed", "body", "settlement", "temperature"])?;
             let before = self.model_load_count();
@@ -84,11 +97,11 @@ impl Builder<'_> {
                     );
                 }
             }
-            if group == LoadGroup::Variable && self.model_load_count() > before {
+            if k == "variable" && self.model_load_count() > before {
                 any_variable = true;
             }
         }
-        if !any_variable {
+        if !any_variable && !history {
             return Err(self.err(
                 loads.pos,
                 "loads.variable",
@@ -103,12 +116,12 @@ impl Builder<'_> {
         self.load_count
     }
 
-    pub(super) fn push_load(&mut self, group: LoadGroup, load: Load) {
-        self.model.add_load(group, load);
+    pub(super) fn push_load(&mut self, case: CaseId, load: Load) {
+        self.model.add_case_load(case, load);
         self.load_count += 1;
     }
 
-    pub(super) fn distributed(&mut self, t: &Table, group: LoadGroup) -> Result<(), InputError> {
+    pub(super) fn distributed(&mut self, t: &Table, group: CaseId) -> Result<(), InputError> {
         t.check_keys(&["elements", "q", "start", "end", "frame"])?;
         let elems = self.fe_elements(t, "elements")?;
         let frame = match choice(
@@ -193,7 +206,7 @@ impl Builder<'_> {
         Ok(())
     }
 
-    pub(super) fn settlement(&mut self, t: &Table, group: LoadGroup) -> Result<(), InputError> {
+    pub(super) fn settlement(&mut self, t: &Table, group: CaseId) -> Result<(), InputError> {
         t.check_keys(&["nodes", "dof", "value"])?;
         let nodes = self.fe_nodes_of(t, "nodes", "the supported nodes that settle")?;
         let dof = match choice(t, "dof", &["ux", "uy", "rz"], None, "settled DOF")? {

@@ -26,9 +26,9 @@ use unilateral_fem::mesh::{
     coincidence_tolerance, divide_segment, BlockGrid, NodeMerge, PointIndex,
 };
 use unilateral_fem::{
-    ContactPairSpec, Element, ElementId, Endpoint, FemError, FrameSection, Load, LoadFrame,
-    LoadGroup, Model, NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring,
-    SpringKind, SupportDof,
+    CaseId, ContactPairSpec, Element, ElementId, Endpoint, FemError, FrameSection, Load, LoadFrame,
+    Model, NodeId, PlaneAnalysis, PlaneFormulation, PlaneMaterial, Releases, Spring, SpringKind,
+    SupportDof,
 };
 use unilateral_fem::{Names, Subject};
 
@@ -57,6 +57,7 @@ const TOP_KEYS: &[&str] = &[
     "loads",
     "contact",
     "solve",
+    "history",
 ];
 
 /// The largest number of nodes the structured blocks and members of a model may create, each
@@ -179,8 +180,11 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
     b.number_nodes()?;
     b.supports(top)?;
     b.springs(top)?;
-    b.loads(top)?;
+    let has_history = top.get("history").is_some();
+    b.loads(top, has_history)?;
     b.contact(top)?;
+    crate::history::refuse_path_keys(top)?;
+    let history = crate::history::read_history(top, b.model.cases(), "loads")?;
     let settings = match top.table("solve")? {
         Some(t) => solve_settings(&t)?,
         None => Default::default(),
@@ -200,6 +204,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         model: b.model,
         settings,
         title,
+        history,
     })
 }
 
