@@ -207,6 +207,9 @@ impl HistorySolution {
     }
 }
 
+/// The largest relative residual of a stage's final state that counts as verified.
+pub const VERIFIED: f64 = 1e-8;
+
 /// Follows a load history on a contact zone with incremental Coulomb friction (`history.md`).
 ///
 /// The zone's matrices, friction and gaps are used; its `constant`/`variable` loads are not
@@ -476,6 +479,23 @@ pub fn follow_history(
                 )),
                 None,
             ),
+        };
+        // A state that fails its own check is not an answer: the program's fault.
+        let (status, reason) = if residual.max() > VERIFIED && status != StageStatus::NumericalFailure
+        {
+            (
+                StageStatus::NumericalFailure,
+                Some(format!(
+                    "the state reached at s = {} of stage {} (`{}`) fails its check (largest \
+                     relative residual {:.1e} > {VERIFIED:e}): the program's fault, not the model's",
+                    run.s_end,
+                    k + 1,
+                    stage.name,
+                    residual.max()
+                )),
+            )
+        } else {
+            (status, reason)
         };
         out.stages.push(StageSolution {
             stage: k + 1,
