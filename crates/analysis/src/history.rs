@@ -1,10 +1,15 @@
 //! Load histories of structural models: the history followed on the condensed contact zone,
-//! and the full structural results at the end of every stage (`history.md`).
+//! and the full structural results at the end of every stage and at any point of the history
+//! (`history.md`).
 
-use unilateral_contact::{ContactZone, HistorySolution};
-use unilateral_fem::{Condensed, Results};
+use std::time::Instant;
 
-use crate::Timings;
+use unilateral_contact::{
+    follow_history, ContactError, ContactZone, History, HistorySolution, PairResult, Stage,
+};
+use unilateral_fem::{Condensed, Model, Results};
+
+use crate::{analysis_bytes, fem_error, recover_at, zone_of, AnalysisError, Timings};
 
 /// A finished history analysis of a structural model.
 #[derive(Debug)]
@@ -20,4 +25,145 @@ pub struct HistoryAnalysis {
     pub stage_results: Vec<Results>,
     /// Wall-clock times of condensation, solve and recovery.
     pub timings: Timings,
+}
+
+/// Condenses the model once and follows the load history `stages` (factors indexed like the
+/// model's load cases, [`Model::cases`]) on its contact zone with incremental friction; then
+/// recovers the full results at the end of every stage run, each checked for equilibrium.
+pub fn analyze_history(
+    model: &Model,
+    stages: &[Stage],
+    settings: &unilateral_lcp::Settings,
+) -> Result<HistoryAnalysis, AnalysisError> {
+    let started = Instant::now();
+    let names = model.names();
+    let m = model.pairs().len();
+    unilateral_fem::check_memory(&format!("{m} contact pairs"), analysis_bytes(m))
+        .map_err(|e| fem_error(e, names))?;
+    let condensed = model.condense().map_err(|e| fem_error(e, names))?;
+    let zone = zone_of(&condensed);
+    zone.validate().map_err(|e| AnalysisError::Internal {
+        what: "the contact zone condensed from the model was refused".into(),
+        message: e.to_string(),
+    })?;
+    let condense = started.elapsed();
+    let started = Instant::now();
+    let history = History {
+        cases: zone.cases.clone(),
+        stages: stages.to_vec(),
+    };
+    let solution = follow_history(&zone, &history, settings).map_err(|e| match e {
+        ContactError::Settings(_) => AnalysisError::Contact(e),
+        other => AnalysisError::Internal {
+            what: "the contact solver refused the condensed contact zone".into(),
+            message: other.to_string(),
+        },
+    })?;
+    let solve = started.elapsed();
+    let started = Instant::now();
+    let mut stage_results = Vec::with_capacity(solution.stages.len());
+    for st in &solution.stages {
+        let factors: Vec<f64> = st
+            .factors_start
+            .iter()
+            .zip(&st.factors_end)
+            .map(|(a, b)| a + st.s_end * (b - a))
+            .collect();
+        let t = (st.stage - 1) as f64 + st.s_end;
+        stage_results.push(recover_at(&condensed, &factors, t, &st.pairs)?);
+    }
+    let recover = started.elapsed();
+    Ok(HistoryAnalysis {
+        condensed,
+        zone,
+        history: solution,
+        stage_results,
+        timings: Timings {
+            condense: Some(condense),
+            solve: Some(solve),
+            recover: Some(recover),
+            ..Timings::default()
+        },
+    })
+}
+
+impl HistoryAnalysis {
+    /// The pair results and full structural results at stage parameter `s` of stage `stage`
+    /// (1-based): any point of the history, interpolated linearly between the breakpoints that
+    /// enclose it (the evolution is linear between them), then recovered and checked.
+    pub fn results_at(
+        &self,
+        stage: usize,
+        s: f64,
+    ) -> Result<(Vec<PairResult>, Results), AnalysisError> {
+        let not_on = || AnalysisError::NotOnPath {
+            p: s,
+            end: format!(
+                "stage {} at s = {}",
+                self.history.stages.len(),
+                self.history.stages.last().map_or(0.0, |st| st.s_end)
+            ),
+        };
+        let st = stage
+            .checked_sub(1)
+            .and_then(|k| self.history.stages.get(k))
+            .ok_or_else(not_on)?;
+        if !(0.0..=st.s_end).contains(&s) {
+            return Err(not_on());
+        }
+        // Breakpoints of the stage: its start (the end of the previous stage, or unloaded),
+        // every step, its end.
+        let start: Vec<PairResult> = match stage.checked_sub(2) {
+            Some(k) => self.history.stages[k].pairs.clone(),
+            None => self
+                .zone
+                .pair_names
+                .iter()
+                .zip(&self.zone.gap)
+                .map(|(name, &g)| PairResult {
+                    name: name.clone(),
+                    x_n: 0.0,
+                    x_t: 0.0,
+                    z_n: g,
+                    z_t: 0.0,
+                    state: if g > 0.0 {
+                        unilateral_contact::PairState::Open
+                    } else {
+                        unilateral_contact::PairState::Stick
+                    },
+                })
+                .collect(),
+        };
+        let mut points: Vec<(f64, &[PairResult])> = vec![(0.0, &start)];
+        points.extend(st.steps.iter().map(|p| (p.s, p.pairs.as_slice())));
+        points.push((st.s_end, &st.pairs));
+        let j = points
+            .windows(2)
+            .position(|w| w[0].0 <= s && s <= w[1].0)
+            .ok_or_else(not_on)?;
+        let ((s0, a), (s1, b)) = (points[j], points[j + 1]);
+        let w = if s1 > s0 { (s - s0) / (s1 - s0) } else { 1.0 };
+        let lerp = |u: f64, v: f64| u + w * (v - u);
+        let pairs: Vec<PairResult> = a
+            .iter()
+            .zip(b)
+            .map(|(p, q)| PairResult {
+                name: p.name.clone(),
+                x_n: lerp(p.x_n, q.x_n),
+                x_t: lerp(p.x_t, q.x_t),
+                z_n: lerp(p.z_n, q.z_n),
+                z_t: lerp(p.z_t, q.z_t),
+                // The state of the segment (the one that starts at its first breakpoint).
+                state: p.state,
+            })
+            .collect();
+        let factors: Vec<f64> = st
+            .factors_start
+            .iter()
+            .zip(&st.factors_end)
+            .map(|(a, b)| a + s * (b - a))
+            .collect();
+        let r = recover_at(&self.condensed, &factors, (stage - 1) as f64 + s, &pairs)?;
+        Ok((pairs, r))
+    }
 }

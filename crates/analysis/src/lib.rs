@@ -21,7 +21,7 @@
 
 mod history;
 
-pub use history::HistoryAnalysis;
+pub use history::{analyze_history, HistoryAnalysis};
 
 use std::time::{Duration, Instant};
 

@@ -738,3 +738,156 @@ fn a_bad_command_line_writes_nothing() {
         }
     }
 }
+
+/// A load history through the binary (`tests/data/history/zone-cycle.toml`: one pair, k_t = 100,
+/// f = 0.5, N = 10, T* = 8 > f·N, pushed, released, pulled, released). By hand (x_t = T + k_t·z_t,
+/// sliding at |x_t| = 5, a sticking pair keeps its slip): after the push z_t = −(8 − 5)/100 =
+/// −0.03, x_t = +5; released, x_t = 100·(−0.03) = −3 (stick); pulled, it slides back from
+/// T = −2 (s = 0.25) to z_t = +0.03, x_t = −5; released, x_t = +3 (stick).
+#[test]
+fn history_through_the_binary_by_hand() {
+    let file = root().join("tests/data/history/zone-cycle.toml");
+    let cmd = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--json", "out.json", "--csv", "csv", "--report", "rep"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(
+        out.stdout.contains("every stage was completed"),
+        "{}",
+        out.stdout
+    );
+    let j = cmd.json("out.json");
+    assert_eq!(j["status"], "completed");
+    let stages = j["history"].as_array().unwrap();
+    assert_eq!(stages.len(), 5);
+    let want = [
+        (0.0, 0.0, "stick"),
+        (-0.03, 5.0, "slip-"),
+        (-0.03, -3.0, "stick"),
+        (0.03, -5.0, "slip+"),
+        (0.03, 3.0, "stick"),
+    ];
+    for (st, (z_t, x_t, state)) in stages.iter().zip(want) {
+        assert_eq!(st["status"], "completed");
+        assert!(close(&st["s_end"], 1.0, 0.0));
+        let p = &st["pairs"][0];
+        assert_eq!(p["state"], state, "{st}");
+        assert!(
+            close(&p["z_t"], z_t, 1e-12) && close(&p["x_t"], x_t, 1e-12),
+            "{st}"
+        );
+        assert!(close(&p["x_n"], 10.0, 1e-12));
+        for key in ["equation", "complementarity", "feasibility", "dissipation"] {
+            assert!(
+                st["residual"][key].as_f64().unwrap() <= 1e-12,
+                "{key}: {st}"
+            );
+        }
+    }
+    assert_eq!(stages[2]["name"], "stage 3");
+    assert!(close(&stages[1]["factors_end"]["push"], 1.0, 0.0));
+    assert!(close(&stages[3]["factors_start"]["push"], 0.0, 0.0));
+    // The pull: the slip starts at s = 0.25 (T = −2), in the + direction.
+    let pull = stages[3]["steps"].as_array().unwrap();
+    assert!(
+        pull.iter().any(|s| close(&s["s"], 0.25, 1e-12)
+            && s["events"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|e| e.as_str().unwrap().contains("slip"))),
+        "{pull:?}"
+    );
+    // The files.
+    for f in [
+        "csv/history_events.csv",
+        "csv/history_breakpoints.csv",
+        "rep/report.html",
+    ] {
+        assert!(cmd.path(f).is_file(), "{f} not written");
+    }
+    let html = std::fs::read_to_string(cmd.path("rep/report.html")).unwrap();
+    assert!(html.contains("<svg") && html.contains("stage 3"));
+}
+
+/// Bad histories through the binary: exit 2 with the file, line, column and key.
+#[test]
+fn bad_histories_exit_2_with_their_place() {
+    let data = root().join("tests/data/history");
+    for (file, place) in [
+        (
+            "bad-unknown-case.toml",
+            "bad-unknown-case.toml:16:13: history[2].factors.puhs",
+        ),
+        (
+            "bad-tightening.toml",
+            "bad-tightening.toml:10:1: solve.tightening",
+        ),
+        ("bad-empty.json", "bad-empty.json:4:14: history"),
+    ] {
+        let out = TestCommand::new(&["solve"]).arg(data.join(file)).run();
+        assert_eq!(out.code, 2, "{file}: {}", out.stderr);
+        assert!(out.stderr.contains(place), "{file}: {}", out.stderr);
+        assert!(out.stdout.is_empty());
+    }
+    // The paper's path options on the command line do not apply either.
+    let out = TestCommand::new(&["solve"])
+        .arg(data.join("zone-cycle.toml"))
+        .args(&["--tightening", "5"])
+        .run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(out
+        .stderr
+        .contains("--tightening does not apply to a file with a [[history]]"));
+}
+
+/// The bundled deck on sliding bearings under a daily ±20 K cycle. References: Coulomb's law at
+/// every bearing that slides (|x_t| = f·x_n, f = 0.05, the file's friction), and shakedown: a symmetric cycle repeats — the state at the end of every cold (and every warm)
+/// stage after the first day is the same.
+#[test]
+fn deck_on_sliding_bearings_shakes_down() {
+    let file = root().join("examples/deck-bearings-temperature.toml");
+    let cmd = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--json", "out.json", "--vtk", "vtk"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("out.json");
+    assert_eq!(j["status"], "completed");
+    let stages = j["history"].as_array().unwrap();
+    assert_eq!(stages.len(), 8);
+    let pairs = |k: usize| stages[k]["pairs"].as_array().unwrap().clone();
+    for k in 1..8 {
+        for p in pairs(k) {
+            let (xn, xt) = (p["x_n"].as_f64().unwrap(), p["x_t"].as_f64().unwrap());
+            assert!(xn > 0.0, "{p}");
+            if p["state"] != "stick" {
+                assert!(
+                    (xt.abs() - 0.05 * xn).abs() <= 1e-9 * xn,
+                    "stage {}: {p}",
+                    k + 1
+                );
+            }
+        }
+    }
+    for (a, b) in [(2, 4), (4, 6), (3, 5)] {
+        for (p, q) in pairs(a).iter().zip(pairs(b).iter()) {
+            for key in ["x_n", "x_t", "z_t"] {
+                let (u, v) = (p[key].as_f64().unwrap(), q[key].as_f64().unwrap());
+                assert!(
+                    (u - v).abs() <= 1e-9 * u.abs().max(1e-3),
+                    "stages {a}, {b}: {p} {q}"
+                );
+            }
+        }
+    }
+    // Every bearing slides in the first warming (the end piers could only follow 12 mm with
+    // about 1.2 MN, far more than f·N): it is slipping at the end of the stage.
+    assert!(
+        pairs(1).iter().all(|p| p["state"] != "stick"),
+        "{:?}",
+        pairs(1)
+    );
+    assert!(cmd.path("vtk/history.pvd").is_file());
+}

@@ -481,7 +481,8 @@ pub fn follow_history(
             ),
         };
         // A state that fails its own check is not an answer: the program's fault.
-        let (status, reason) = if residual.max() > VERIFIED && status != StageStatus::NumericalFailure
+        let (status, reason) = if residual.max() > VERIFIED
+            && status != StageStatus::NumericalFailure
         {
             (
                 StageStatus::NumericalFailure,

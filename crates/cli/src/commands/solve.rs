@@ -30,11 +30,43 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
     let problem = unilateral_io::read_problem(&args.file).map_err(input_failure)?;
     let read = started.elapsed();
     match problem {
-        unilateral_io::Problem::ContactZone(problem) => {
-            contact_zone(&args, &overrides, problem, read)
-        }
-        unilateral_io::Problem::Structural(problem) => structural(&args, &overrides, problem, read),
+        unilateral_io::Problem::ContactZone(mut problem) => match problem.history.take() {
+            Some(stages) => {
+                no_path_options(&overrides)?;
+                crate::commands::history::zone(&args, problem, stages, read)
+            }
+            None => contact_zone(&args, &overrides, problem, read),
+        },
+        unilateral_io::Problem::Structural(mut problem) => match problem.history.take() {
+            Some(stages) => {
+                no_path_options(&overrides)?;
+                crate::commands::history::structural(&args, problem, stages, read)
+            }
+            None => structural(&args, &overrides, problem, read),
+        },
     }
+}
+
+/// `--target`, `--trace` and `--tightening` belong to the paper's single load path; a file with
+/// a `[[history]]` is followed stage by stage without them.
+fn no_path_options(o: &Overrides) -> Result<(), Failure> {
+    let given: Vec<&str> = [
+        ("--target", o.target.is_some()),
+        ("--trace", o.trace.is_some()),
+        ("--tightening", o.tightening.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(name, set)| set.then_some(name))
+    .collect();
+    if given.is_empty() {
+        return Ok(());
+    }
+    Err(Failure::Input(format!(
+        "{} {} not apply to a file with a [[history]]: a load history is followed stage by \
+         stage from the unloaded state, without a target load or a tightening",
+        given.join(", "),
+        if given.len() == 1 { "does" } else { "do" }
+    )))
 }
 
 /// The step every kind of problem shares: the summary on stdout (unless the JSON goes there)
@@ -42,7 +74,7 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
 /// document with `timings.write` = the time spent on all of these (present only when something
 /// was written before the JSON). The JSON is written even when writing the other files failed;
 /// the first failure is the one returned.
-fn write_outputs(
+pub(crate) fn write_outputs(
     args: &SolveArgs,
     mut timings: Timings,
     summary: impl FnOnce() -> Result<String, unilateral_output::NonFiniteOutput>,

@@ -1,0 +1,185 @@
+//! `unilateral solve FILE` on a file with `[[history]]` stages: the load history followed with
+//! incremental friction on the contact zone (given, or condensed from the model), its summary,
+//! and the files asked for (`docs/history.md`).
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use unilateral_analysis::Timings;
+use unilateral_contact::{History, HistorySolution, Stage, StageStatus};
+use unilateral_output::HistoryChartOptions;
+
+use crate::args::SolveArgs;
+use crate::commands::solve::write_outputs;
+use crate::failure::{analysis_failure, contact_failure, Failure, ZoneOrigin};
+use crate::output::{report_files, Progress};
+
+/// Writes named text files into `dir` (created if needed); returns their paths.
+fn write_named(dir: &Path, files: Vec<(String, String)>) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut out = Vec::with_capacity(files.len());
+    for (name, text) in files {
+        let path = dir.join(name);
+        std::fs::write(&path, text)?;
+        out.push(path);
+    }
+    Ok(out)
+}
+
+fn chart_options(args: &SolveArgs) -> HistoryChartOptions {
+    HistoryChartOptions {
+        pairs: args.report_args.report_pairs.clone(),
+    }
+}
+
+/// Exit status of a history: every status is an answer except a numerical failure (exit 1).
+fn history_failure(file: &Path, h: &HistorySolution) -> Option<Failure> {
+    let last = h.stages.last()?;
+    (last.status == StageStatus::NumericalFailure).then(|| {
+        Failure::Internal(format!(
+            "{}: {}",
+            file.display(),
+            last.reason
+                .as_deref()
+                .unwrap_or("the history stopped at a numerical failure")
+        ))
+    })
+}
+
+/// A contact-zone problem with a history.
+pub(crate) fn zone(
+    args: &SolveArgs,
+    problem: unilateral_io::ContactZoneProblem,
+    stages: Vec<Stage>,
+    read: Duration,
+) -> Result<(), Failure> {
+    let file = &args.file;
+    if args.vtk.is_some() {
+        return Err(Failure::Input(
+            "--vtk needs a structural model: a contact-zone problem has no mesh".into(),
+        ));
+    }
+    if args.report.is_some() {
+        args.report_args.check(&problem.zone.pair_names)?;
+    }
+    let started = Instant::now();
+    let history = History {
+        cases: problem.zone.cases.clone(),
+        stages,
+    };
+    let h = unilateral_contact::follow_history(&problem.zone, &history, &problem.settings.engine)
+        .map_err(|e| contact_failure(file, &e, ZoneOrigin::File))?;
+    let timings = Timings {
+        read: Some(read),
+        solve: Some(started.elapsed()),
+        ..Timings::default()
+    };
+    let title = format!(
+        "unilateral {} — {} (contact zone, {} pairs, load history of {} stages)",
+        env!("CARGO_PKG_VERSION"),
+        file.display(),
+        problem.zone.pairs(),
+        history.stages.len()
+    );
+    write_outputs(
+        args,
+        timings,
+        || unilateral_output::history_summary(&h, &title),
+        || unilateral_output::history_document(&h),
+        || {
+            if let Some(dir) = &args.csv {
+                let files = unilateral_output::history_csv(&h).map_err(Failure::from)?;
+                report_files(write_named(dir, files), dir)?;
+            }
+            if let Some(dir) = &args.report {
+                let written =
+                    unilateral_output::write_history_report(&h, dir, &title, &chart_options(args));
+                report_files(written, dir)?;
+            }
+            Ok(())
+        },
+    )?;
+    history_failure(file, &h).map_or(Ok(()), Err)
+}
+
+/// A structural model with a history.
+pub(crate) fn structural(
+    args: &SolveArgs,
+    problem: unilateral_io::StructuralProblem,
+    stages: Vec<Stage>,
+    read: Duration,
+) -> Result<(), Failure> {
+    let file = &args.file;
+    if args.report.is_some() {
+        let pairs: Vec<String> = (0..problem.model.pairs().len())
+            .map(|i| problem.model.pair_name(i))
+            .collect();
+        args.report_args.check(&pairs)?;
+    }
+    let progress = Progress::new();
+    progress.say(&format!(
+        "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
+         the load history of {} stages, recovering the results…",
+        problem.model.names().nodes.len(),
+        problem.model.names().elements.len(),
+        problem.model.names().pairs.len(),
+        stages.len()
+    ));
+    let a = unilateral_analysis::analyze_history(&problem.model, &stages, &problem.settings.engine)
+        .map_err(|e| analysis_failure(file, &e))?;
+    progress.say(&format!(
+        "done: {} changes of the working scheme, {:.2} s",
+        a.history
+            .stages
+            .iter()
+            .map(|s| s.steps.len())
+            .sum::<usize>(),
+        progress.elapsed()
+    ));
+    let timings = Timings {
+        read: Some(read),
+        ..a.timings
+    };
+    let title = format!(
+        "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs, load history of {} \
+         stages)",
+        env!("CARGO_PKG_VERSION"),
+        file.display(),
+        problem
+            .title
+            .as_deref()
+            .map(|t| format!(": {t}"))
+            .unwrap_or_default(),
+        problem.model.names().nodes.len(),
+        problem.model.names().elements.len(),
+        a.zone.pairs(),
+        stages.len()
+    );
+    write_outputs(
+        args,
+        timings,
+        || unilateral_output::history_summary(&a.history, &title),
+        || unilateral_output::history_structural_document(&a),
+        || {
+            if let Some(dir) = &args.csv {
+                let files = unilateral_output::history_csv(&a.history).map_err(Failure::from)?;
+                report_files(write_named(dir, files), dir)?;
+            }
+            if let Some(dir) = &args.vtk {
+                let files = unilateral_output::history_vtk(&a);
+                report_files(files.and_then(|f| write_named(dir, f)), dir)?;
+            }
+            if let Some(dir) = &args.report {
+                let written = unilateral_output::write_history_report(
+                    &a.history,
+                    dir,
+                    &title,
+                    &chart_options(args),
+                );
+                report_files(written, dir)?;
+            }
+            Ok(())
+        },
+    )?;
+    history_failure(file, &a.history).map_or(Ok(()), Err)
+}
