@@ -26,8 +26,8 @@ use crate::{LcpError, MechanismMode, Settings, Var};
 
 /// Differences of the stage parameter (a pure number in `[0, 1]`) at or below this are
 /// round-off: the breakpoint is reported at the previous one's `s` (at the stage's start for
-/// the pivots that settle the scheme there).
-const S_ROUNDOFF: f64 = 1e-12;
+/// the pivots that settle the scheme there). The size of a tie in the ratio test.
+const S_ROUNDOFF: f64 = 1e-9;
 
 /// The data of an evolution: `x = q0 + ℓ + M z` at load `ℓ` (zero at the start).
 #[derive(Debug, Clone)]
