@@ -140,9 +140,7 @@ impl ElementUnit for Tri<'_> {
         let w = self.volume(&g);
         match *load {
             // ∫ N_i b dV = b·t·|A|/3 at each node (linear shape functions)
-            Load::BodyForce { force, .. } => {
-                Some((0..6).map(|c| w / 3.0 * force[c % 2]).collect())
-            }
+            Load::BodyForce { force, .. } => Some((0..6).map(|c| w / 3.0 * force[c % 2]).collect()),
             // ∫ Bᵀ D ε_th dV, ε_th = factor·α·ΔT·[1, 1, 0] (the quadrilaterals' convention)
             Load::Temperature { uniform, .. } => {
                 let (d, fac) = elasticity(self.material, self.analysis);

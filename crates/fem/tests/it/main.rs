@@ -7,3 +7,4 @@ mod example1;
 mod fine_mesh;
 mod frames;
 mod plane;
+mod triangle;
