@@ -9,3 +9,4 @@ mod fixes;
 mod keys;
 mod scale;
 mod timings;
+mod triangle_block;
