@@ -164,6 +164,16 @@ pub enum Element {
         /// Q4 or QM6.
         formulation: PlaneFormulation,
     },
+    /// 3-node constant-strain triangle (either node order; [`Model::add_triangle`] stores
+    /// them counter-clockwise).
+    Triangle {
+        /// Corner nodes.
+        nodes: [NodeId; 3],
+        /// Material.
+        material: PlaneMaterial,
+        /// Plane stress or strain.
+        analysis: PlaneAnalysis,
+    },
 }
 
 /// A linear spring.
@@ -457,6 +467,27 @@ impl Model {
             material,
             analysis,
             formulation,
+        })
+    }
+
+    /// Adds a 3-node constant-strain triangle; nodes given clockwise are stored
+    /// counter-clockwise (like a quadrilateral's), which does not change the element.
+    pub fn add_triangle(
+        &mut self,
+        mut nodes: [NodeId; 3],
+        material: PlaneMaterial,
+        analysis: PlaneAnalysis,
+    ) -> ElementId {
+        let xy = nodes.map(|n| self.nodes.get(n.0).copied());
+        if let [Some(a), Some(b), Some(c)] = xy {
+            if crate::elements::tri::signed_area(&[a, b, c]) < 0.0 {
+                nodes.swap(1, 2);
+            }
+        }
+        self.push(Element::Triangle {
+            nodes,
+            material,
+            analysis,
         })
     }
 

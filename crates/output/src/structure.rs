@@ -2,7 +2,7 @@
 //! elements, contact pairs by state and their forces.
 
 use unilateral_analysis::{Analysis, PairState};
-use unilateral_fem::{Element, Endpoint, Model, Releases};
+use unilateral_fem::{Element, Endpoint, Model, NodeId, Releases};
 
 use crate::font::{self, Anchor};
 use crate::svg::{self, num, Svg};
@@ -33,6 +33,16 @@ pub fn nice_floor(v: f64) -> f64 {
         1.0
     };
     k * 10f64.powf(e)
+}
+
+/// The corner nodes of a plane element (quadrilateral or triangle), in their order; none for
+/// a line element.
+fn plane_nodes(e: &Element) -> &[NodeId] {
+    match e {
+        Element::Plane { nodes, .. } => nodes,
+        Element::Triangle { nodes, .. } => nodes,
+        Element::Frame { .. } | Element::Bar { .. } => &[],
+    }
 }
 
 fn stress_value(s: &[f64; 4], c: StressComponent) -> f64 {
@@ -169,7 +179,7 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
     let planes_exist = model
         .elements()
         .iter()
-        .any(|e| matches!(e, Element::Plane { .. }));
+        .any(|e| matches!(e, Element::Plane { .. } | Element::Triangle { .. }));
     let draw_w = 760.0;
     let draw_h_max = 620.0;
     let k = (draw_w / (bx1 - bx0)).min(draw_h_max / (by1 - by0));
@@ -272,8 +282,8 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
                     r#" stroke-linecap="round""#,
                 );
             }
-            Element::Plane { nodes: n, .. } => {
-                let pts: Vec<_> = n
+            Element::Plane { .. } | Element::Triangle { .. } => {
+                let pts: Vec<_> = plane_nodes(e)
                     .iter()
                     .map(|i| view.p(nodes[i.0][0], nodes[i.0][1]))
                     .collect();
@@ -284,8 +294,8 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
     // deformed plane elements coloured by stress
     let cell_of = |ei: usize| cell.iter().find(|c| c.0 == ei).map(|c| c.1);
     for (ei, e) in model.elements().iter().enumerate() {
-        if let Element::Plane { nodes: n, .. } = e {
-            let pts: Vec<_> = n
+        if matches!(e, Element::Plane { .. } | Element::Triangle { .. }) {
+            let pts: Vec<_> = plane_nodes(e)
                 .iter()
                 .map(|i| {
                     let d = def(i.0);
@@ -371,7 +381,7 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
                     "",
                 );
             }
-            Element::Plane { .. } => {}
+            Element::Plane { .. } | Element::Triangle { .. } => {}
         }
     }
     // contact forces and pair symbols

@@ -4,13 +4,15 @@
 //! Files written into the output directory (`NNN` = 0-based snapshot number, zero-padded):
 //!
 //! * `mesh_NNN.vtu` — points = nodes (`z = 0`, undeformed), cells = elements in element order
-//!   (frames and bars as `VTK_LINE`, plane elements as `VTK_QUAD`).
+//!   (frames and bars as `VTK_LINE`, quadrilaterals as `VTK_QUAD`, triangles as
+//!   `VTK_TRIANGLE`).
 //!   Point data: `displacement` (`ux, uy, 0`, for *Warp By Vector*), `rotation` (`rz`),
 //!   `nodal_stress` (`sxx, syy, txy` extrapolated from the Gauss points and averaged over the
 //!   plane elements at the node; 0 at nodes without one) and `nodal_von_mises`.
-//!   Cell data: `kind` (1 frame, 2 bar, 3 plane), `material` (0-based number of the distinct
+//!   Cell data: `kind` (1 frame, 2 bar, 3 quadrilateral, 4 triangle), `material` (0-based number of the distinct
 //!   section or plane material, in order of first use), `element` (0-based element index),
-//!   `stress` (`sxx, syy, txy` averaged over the 4 Gauss points; 0 for lines), `szz`,
+//!   `stress` (`sxx, syy, txy` averaged over the 4 Gauss points, a triangle's constant
+//!   stress; 0 for lines), `szz`,
 //!   `von_mises` (of the averaged stress), `axial_force` (the signed `N` of largest magnitude
 //!   along a frame or bar, tension positive), `max_abs_moment` and `max_abs_shear` (0 for
 //!   plane elements).
@@ -50,6 +52,7 @@ const VTK_VERTEX: u8 = 1;
 const VTK_LINE: u8 = 3;
 /// VTK cell type of a 4-node quadrilateral.
 const VTK_QUAD: u8 = 9;
+const VTK_TRIANGLE: u8 = 5;
 
 /// Writes the mesh, the contact pairs and their results along the load path as VTK XML files
 /// into `dir` (created if missing), with a `.pvd` collection ([`PVD_FILE`]) for ParaView;
@@ -197,7 +200,7 @@ fn check_match(model: &Model, a: &Analysis) -> io::Result<()> {
     let planes_ok = r.planes.iter().all(|pl| {
         matches!(
             model.elements().get(pl.element.0),
-            Some(Element::Plane { .. })
+            Some(Element::Plane { .. } | Element::Triangle { .. })
         )
     });
     if !lines_ok || !planes_ok || r.lines.len() + r.planes.len() != elements {
@@ -304,6 +307,15 @@ impl MeshGeometry {
                         f as u8 as f64,
                     ];
                     (3, nodes, VTK_QUAD, key)
+                }
+                Element::Triangle {
+                    nodes,
+                    material: m,
+                    analysis,
+                } => {
+                    let a = matches!(analysis, unilateral_fem::PlaneAnalysis::PlaneStrain);
+                    let key = vec![m.e, m.nu, m.thickness, m.alpha, a as u8 as f64];
+                    (4, nodes, VTK_TRIANGLE, key)
                 }
             };
             connectivity.extend(nodes.iter().map(|n| n.0 as i64));

@@ -10,3 +10,4 @@ mod keys;
 mod mindlin;
 mod scale;
 mod timings;
+mod triangle_block;

@@ -16,6 +16,7 @@ pub(crate) mod dense;
 pub(crate) mod frame;
 pub(crate) mod quad;
 pub(crate) mod spring;
+pub(crate) mod tri;
 
 use crate::error::FemError;
 use crate::model::{Element, ElementId, Load, Model, NodeId};
@@ -105,6 +106,15 @@ pub(crate) fn unit(el: &Element) -> Box<dyn ElementUnit + '_> {
             material,
             analysis: *analysis,
             formulation: *formulation,
+        }),
+        Element::Triangle {
+            nodes,
+            material,
+            analysis,
+        } => Box::new(tri::Tri {
+            nodes,
+            material,
+            analysis: *analysis,
         }),
     }
 }

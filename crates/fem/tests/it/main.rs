@@ -8,3 +8,4 @@ mod fine_mesh;
 mod frames;
 mod load_cases;
 mod plane;
+mod triangle;

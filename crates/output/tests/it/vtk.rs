@@ -360,6 +360,7 @@ fn read_grid(path: &Path) -> Grid {
         let size = match ty {
             1 => 1,
             3 => 2,
+            5 => 3,
             9 => 4,
             _ => panic!("cell type {ty}"),
         };
@@ -398,6 +399,7 @@ fn check_mesh(g: &Grid, model: &Model) {
             Element::Frame { nodes, .. } => (nodes.iter().map(|n| n.0).collect(), 3, 1.0),
             Element::Bar { nodes, .. } => (nodes.iter().map(|n| n.0).collect(), 3, 2.0),
             Element::Plane { nodes, .. } => (nodes.iter().map(|n| n.0).collect(), 9, 3.0),
+            Element::Triangle { nodes, .. } => (nodes.iter().map(|n| n.0).collect(), 5, 4.0),
         };
         assert_eq!(g.cell(c), nodes, "cell {c}");
         assert_eq!(g.types[c], ty);
@@ -413,6 +415,18 @@ fn check_mesh(g: &Grid, model: &Model) {
                     x == y
                         && matches!((a, b), (Element::Plane { analysis: p, formulation: f, .. }, Element::Plane { analysis: q, formulation: h, .. }) if p == q && f == h)
                 }
+                (
+                    Element::Triangle {
+                        material: x,
+                        analysis: p,
+                        ..
+                    },
+                    Element::Triangle {
+                        material: y,
+                        analysis: q,
+                        ..
+                    },
+                ) => x == y && p == q,
                 (
                     Element::Frame { section: x, .. } | Element::Bar { section: x, .. },
                     Element::Frame { section: y, .. } | Element::Bar { section: y, .. },
@@ -559,9 +573,13 @@ fn check_final(mesh: &Grid, pairs: &Grid, a: &Analysis) {
 
 fn round_trip(name: &str) -> usize {
     let (model, a) = analyse(name);
+    round_trip_of(&model, &a)
+}
+
+fn round_trip_of(model: &Model, a: &Analysis) -> usize {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("vtk");
-    let files = write_vtk_for(&model, &a, &out).unwrap();
+    let files = write_vtk_for(model, a, &out).unwrap();
     let pvd = files.last().unwrap();
     assert_eq!(pvd, &out.join(PVD_FILE));
     for f in &files {
@@ -602,16 +620,100 @@ fn round_trip(name: &str) -> usize {
         let pairs = read_grid(&out.join(pf));
         assert_eq!(mesh.time, t);
         assert_eq!(pairs.time, t);
-        check_mesh(&mesh, &model);
-        check_pairs(&pairs, &model, &a);
+        check_mesh(&mesh, model);
+        check_pairs(&pairs, model, a);
         if Some(t) == a.p() {
             reported = Some((mesh, pairs));
         }
     }
     assert!(steps.iter().all(|&p| p >= 0.0));
     let (mesh, pairs) = reported.expect("the reported load is one of the steps");
-    check_final(&mesh, &pairs, &a);
+    check_final(&mesh, &pairs, a);
     steps.len()
+}
+
+/// A block of triangles and quadrilaterals (plane strain) on frictional rigid ground under its
+/// self-weight and a push below sliding.
+fn triangle_block() -> (Model, Analysis) {
+    use unilateral_fem::{
+        ContactPairSpec, Load, LoadGroup, PlaneAnalysis, PlaneFormulation, PlaneMaterial,
+    };
+    let mut m = Model::new();
+    let (nx, ny) = (3, 2);
+    let id: Vec<Vec<_>> = (0..=nx)
+        .map(|i| {
+            (0..=ny)
+                .map(|j| m.add_node(i as f64, 0.5 * j as f64))
+                .collect()
+        })
+        .collect();
+    let mat = PlaneMaterial::new(1.0e4, 0.3);
+    let an = PlaneAnalysis::PlaneStrain;
+    for i in 0..nx {
+        for j in 0..ny {
+            let (a, b, c, d) = (id[i][j], id[i + 1][j], id[i + 1][j + 1], id[i][j + 1]);
+            let els = if i == 1 {
+                vec![m.add_plane([a, b, c, d], mat, an, PlaneFormulation::QM6)]
+            } else {
+                vec![
+                    m.add_triangle([a, b, c], mat, an),
+                    m.add_triangle([a, c, d], mat, an),
+                ]
+            };
+            for element in els {
+                m.add_load(
+                    LoadGroup::Constant,
+                    Load::BodyForce {
+                        element,
+                        force: [0.0, -20.0],
+                    },
+                );
+            }
+        }
+    }
+    for col in &id {
+        m.add_contact_pair(ContactPairSpec::to_ground(col[0], [0.0, 1.0]).friction(0.5));
+    }
+    m.add_load(
+        LoadGroup::Variable,
+        Load::Nodal {
+            node: id[0][ny],
+            fx: 1.0,
+            fy: 0.0,
+            m: 0.0,
+        },
+    );
+    let settings = unilateral_contact::SolveSettings {
+        tightening: 0.0,
+        target: 5.0,
+        ..Default::default()
+    };
+    let a = analyze(&m, &settings).unwrap();
+    (m, a)
+}
+
+#[test]
+fn triangles_are_vtk_triangles_and_pictured_as_triangles() {
+    // Cells: the triangles' nodes in their order, VTK_TRIANGLE (5), kind 4, their constant
+    // stress as the cell stress (check_mesh, check_final); the structure picture draws every
+    // plane element twice (undeformed outline, deformed fill), a triangle with 3 corners.
+    let (model, a) = triangle_block();
+    assert!(a.results.is_some());
+    round_trip_of(&model, &a);
+    let svg = unilateral_output::structure_svg(&model, &a, &Default::default());
+    // the element outlines: undeformed in light grey, deformed with a dark edge
+    let corners = |stroke: &str| -> Vec<usize> {
+        svg.lines()
+            .filter(|l| l.starts_with("<polygon") && l.contains(&format!("stroke=\"{stroke}\"")))
+            .filter_map(|l| l.split("points=\"").nth(1)?.split('"').next())
+            .map(|p| p.split_whitespace().count())
+            .collect()
+    };
+    for stroke in ["#d0d0d0", "#555555"] {
+        let mut c = corners(stroke);
+        c.sort();
+        assert_eq!(c, [vec![3; 8], vec![4; 2]].concat(), "{stroke}");
+    }
 }
 
 #[test]

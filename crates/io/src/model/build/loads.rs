@@ -156,7 +156,7 @@ impl Builder<'_> {
         let nodes = self.model.nodes().to_vec();
         let ends = |e: ElementId| match &self.model.elements()[e.0] {
             Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => Some(*nodes),
-            Element::Plane { .. } => None,
+            Element::Plane { .. } | Element::Triangle { .. } => None,
         };
         let mut chain = Vec::with_capacity(elems.len());
         for &e in &elems {
