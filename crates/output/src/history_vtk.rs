@@ -229,6 +229,7 @@ fn mesh_vtu(model: &Model, s: &State) -> String {
         let (ns, ty): (&[unilateral_fem::NodeId], u8) = match e {
             Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => (nodes, 3),
             Element::Plane { nodes, .. } => (nodes, 9),
+            Element::Triangle { nodes, .. } => (nodes, 5),
         };
         conn.extend(ns.iter().map(|n| n.0));
         offs.push(conn.len());
