@@ -445,3 +445,76 @@ fn exact_path_agrees_with_the_small_step_oracle() {
         "error {coarse_worst:.2e} (12 steps) → {fine_worst:.2e} (768)"
     );
 }
+
+/// The paper's two-group program — the constant load, then the variable load growing to p* —
+/// as the history `[{constant = 1}, {variable = p*}]`: the same answer as the paper's method at
+/// p* wherever its path has no slip that decreases (its note says so when one does).
+#[test]
+fn the_papers_two_group_program_as_a_history() {
+    let settings = SolveSettings {
+        tightening: 0.0,
+        follow: Follow::ToTarget,
+        ..Default::default()
+    };
+    let (mut agreed, mut flagged) = (0, 0);
+    for seed in 1..=30u64 {
+        let zone = beam_on_supports(8, seed);
+        let Ok(paper) = solve(&zone, &settings) else {
+            continue;
+        };
+        if paper.pairs.is_empty() {
+            continue;
+        }
+        if paper.notes.iter().any(|n| n.contains("[[history]]")) {
+            flagged += 1;
+            continue;
+        }
+        let history = History {
+            cases: vec![
+                case(
+                    "constant",
+                    zone.constant.normal.clone(),
+                    zone.constant.tangential.clone(),
+                ),
+                case(
+                    "variable",
+                    zone.variable.normal.clone(),
+                    zone.variable.tangential.clone(),
+                ),
+            ],
+            stages: vec![
+                stage("constant", vec![Some(1.0), None]),
+                stage("variable", vec![None, Some(1.0)]),
+            ],
+        };
+        let h = follow_history(&zone, &history, &Default::default()).unwrap();
+        let st = h.stages.last().unwrap();
+        assert_eq!(st.status, StageStatus::Completed, "seed {seed}");
+        let xs = paper.pairs.iter().fold(0.0f64, |a, p| a.max(p.x_n.abs()));
+        let zs = paper
+            .pairs
+            .iter()
+            .fold(0.0f64, |a, p| a.max(p.z_n.abs()).max(p.z_t.abs()));
+        for (a, b) in st.pairs.iter().zip(&paper.pairs) {
+            assert_eq!(a.state, b.state, "seed {seed}: {a:?} vs {b:?}");
+            assert!(
+                (a.x_n - b.x_n).abs() <= 1e-9 * xs,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+            assert!(
+                (a.x_t - b.x_t).abs() <= 1e-9 * xs,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+            assert!(
+                (a.z_n - b.z_n).abs() <= 1e-9 * zs,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+            assert!(
+                (a.z_t - b.z_t).abs() <= 1e-9 * zs,
+                "seed {seed}: {a:?} vs {b:?}"
+            );
+        }
+        agreed += 1;
+    }
+    assert!(agreed >= 5, "{agreed} agreed, {flagged} flagged");
+}
