@@ -39,6 +39,10 @@ pub(crate) struct ReportArgs {
     /// Chart only these pairs (names, comma-separated; default: all).
     #[arg(long, value_name = "NAMES", value_delimiter = ',')]
     pub(crate) report_pairs: Option<Vec<String>>,
+    /// Structural load histories: chart the load–displacement curves of these nodes (names,
+    /// comma-separated; default: the node that moves most at the end).
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub(crate) report_nodes: Option<Vec<String>>,
     /// Draw the bending moment diagrams of frame members in the structure picture.
     #[arg(long)]
     pub(crate) moments: bool,

@@ -889,5 +889,71 @@ fn deck_on_sliding_bearings_shakes_down() {
         "{:?}",
         pairs(1)
     );
-    assert!(cmd.path("vtk/history.pvd").is_file());
+    // The ParaView collection: the unloaded start, every change strictly inside a stage (at
+    // distinct s), every stage end — each a mesh and a pairs file, in increasing pseudo-time.
+    let inner: usize = stages
+        .iter()
+        .map(|st| {
+            let mut s: Vec<f64> = st["steps"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| p["s"].as_f64().unwrap())
+                .filter(|&s| s > 0.0 && s < 1.0)
+                .collect();
+            s.dedup();
+            s.len()
+        })
+        .sum();
+    let pvd = std::fs::read_to_string(cmd.path("vtk/history.pvd")).unwrap();
+    let times: Vec<f64> = pvd
+        .lines()
+        .filter_map(|l| l.split("timestep=\"").nth(1))
+        .map(|t| t.split('"').next().unwrap().parse().unwrap())
+        .collect();
+    assert!(inner > 0);
+    assert_eq!(times.len(), 2 * (1 + inner + 8), "{pvd}");
+    assert!(times.windows(2).all(|w| w[0] <= w[1]), "{times:?}");
+    assert_eq!(*times.last().unwrap(), 8.0);
+}
+
+/// `--report-nodes` on a structural history draws the chosen nodes' load–displacement curves;
+/// a node the model does not have is bad input, refused before any work.
+#[test]
+fn history_report_with_node_curves() {
+    let file = root().join("examples/deck-bearings-temperature.toml");
+    let cmd = TestCommand::new(&["solve"]).arg(&file).args(&[
+        "--report",
+        "rep",
+        "--report-nodes",
+        "deck.24,pier2.4",
+    ]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let svg = std::fs::read_to_string(cmd.path("rep/history-nodes.svg")).unwrap();
+    assert!(svg.contains("node deck.24") && svg.contains("node pier2.4"));
+    let html = std::fs::read_to_string(cmd.path("rep/report.html")).unwrap();
+    assert!(html.contains("node(s) deck.24, pier2.4"));
+    let out = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--report", "rep", "--report-nodes", "deck.99"])
+        .run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(
+        out.stderr.contains("no node named 'deck.99'"),
+        "{}",
+        out.stderr
+    );
+    // Without a structural history there are no node curves to draw.
+    let out = TestCommand::new(&["solve"])
+        .arg(example1())
+        .args(&["--report", "rep", "--report-nodes", "1"])
+        .run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(
+        out.stderr
+            .contains("--report-nodes charts the load history"),
+        "{}",
+        out.stderr
+    );
 }

@@ -52,13 +52,21 @@ pub fn history_pictures(
 
 /// Writes the history report into `dir`: `report.html` (the summary and every picture inline)
 /// and each picture as an SVG file. Returns the files written.
+///
+/// `extra` are further pictures `(file name, caption, svg)` placed after the pairs' curves (the
+/// node curves of a structural model, [`crate::node_curves_svg`]).
 pub fn write_history_report(
     h: &HistorySolution,
     dir: &Path,
     title: &str,
     options: &HistoryChartOptions,
+    extra: Vec<(String, String, String)>,
 ) -> std::io::Result<Vec<PathBuf>> {
-    let pictures = history_pictures(h, options).map_err(std::io::Error::from)?;
+    let mut pictures = history_pictures(h, options).map_err(std::io::Error::from)?;
+    let at = pictures.len().saturating_sub(1);
+    for (k, p) in extra.into_iter().enumerate() {
+        pictures.insert(at + k, p);
+    }
     let summary = history_summary(h, title).map_err(std::io::Error::from)?;
     std::fs::create_dir_all(dir)?;
     let mut files = Vec::new();

@@ -1,6 +1,7 @@
 //! ParaView files over a load history of a structural model: a `.pvd` collection whose
-//! timestep is the pseudo-time `stage − 1 + s`, with the unloaded start (`t = 0`) and the end
-//! of every stage run (`t = K − 1 + s_end`, the full results of that stage).
+//! timestep is the pseudo-time `stage − 1 + s`, with the unloaded start (`t = 0`), every change
+//! of the working scheme inside a stage (up to [`HISTORY_VTK_STEPS`] of them), and the end of
+//! every stage run (`t = K − 1 + s_end`, the full results of that stage).
 //!
 //! Files (`NNN` = 0-based snapshot number, zero-padded): `history_mesh_NNN.vtu` (points =
 //! nodes, cells = elements as `VTK_LINE` or `VTK_QUAD`; point data `displacement`
@@ -27,6 +28,10 @@ use crate::history::{check, pseudo_time};
 /// The collection file of a history.
 pub const HISTORY_PVD: &str = "history.pvd";
 
+/// The most changes of the working scheme inside stages that get a snapshot of their own;
+/// a longer history has snapshots at the stage ends only.
+pub const HISTORY_VTK_STEPS: usize = 2000;
+
 /// One state of the history: its pseudo-time, stage (0 for the start), pairs and results.
 struct State<'a> {
     t: f64,
@@ -44,13 +49,55 @@ struct State<'a> {
 pub fn history_vtk(a: &HistoryAnalysis) -> std::io::Result<Vec<(String, String)>> {
     check(&a.history)?;
     let model = a.condensed.model();
+    // Every change of the working scheme strictly inside a stage, recovered (the evolution is
+    // linear between them, so these and the stage ends are every corner of the history);
+    // beyond `HISTORY_VTK_STEPS` of them, the stage ends only.
+    let inner: Vec<(usize, f64)> = a
+        .history
+        .stages
+        .iter()
+        .flat_map(|st| {
+            let mut last = 0.0;
+            st.steps
+                .iter()
+                .filter_map(move |p| {
+                    let keep = p.s > last && p.s < st.s_end;
+                    last = p.s;
+                    keep.then_some((st.stage, p.s))
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let mut steps: Vec<(usize, f64, Vec<PairResult>, Results)> = Vec::new();
+    if inner.len() <= HISTORY_VTK_STEPS {
+        for &(stage, s) in &inner {
+            let (pairs, r) = a
+                .results_at(stage, s)
+                .map_err(|e| std::io::Error::other(e.to_string()))?;
+            check_results(model, &pairs, &r, stage)?;
+            steps.push((stage, s, pairs, r));
+        }
+    }
     let mut states = vec![State {
         t: 0.0,
         stage: 0,
         pairs: None,
         results: None,
     }];
+    let mut next = steps.iter().peekable();
     for (k, st) in a.history.stages.iter().enumerate() {
+        while let Some((stage, s, pairs, r)) = next.peek() {
+            if *stage != st.stage {
+                break;
+            }
+            states.push(State {
+                t: pseudo_time(*stage, *s),
+                stage: *stage,
+                pairs: Some(pairs),
+                results: Some(r),
+            });
+            next.next();
+        }
         let results = a.stage_results.get(k);
         if let Some(r) = results {
             check_results(model, &st.pairs, r, st.stage)?;

@@ -62,6 +62,7 @@ pub use structure::state_style;
 // The outputs of a load history (`history.md`): JSON, CSV, summary, pictures, ParaView.
 mod history;
 mod history_chart;
+mod history_nodes;
 mod history_report;
 mod history_structure;
 mod history_vtk;
@@ -74,9 +75,10 @@ pub use history_chart::{
     busiest_case, curve_pairs, history_curves_svg, history_states_svg, state_runs, CurveKind,
     HistoryChartOptions, StateRun, CURVE_PAIRS,
 };
+pub use history_nodes::{node_curves, node_curves_svg, NodePoint};
 pub use history_report::{history_pictures, write_history_report, HISTORY_REPORT_HTML};
 pub use history_structure::history_structural_document;
-pub use history_vtk::{history_vtk, HISTORY_PVD};
+pub use history_vtk::{history_vtk, HISTORY_PVD, HISTORY_VTK_STEPS};
 
 /// The stress that colours plane elements.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

@@ -46,6 +46,46 @@ fn history_failure(file: &Path, h: &HistorySolution) -> Option<Failure> {
     })
 }
 
+/// The load–displacement curves of `nodes` (default: the node that moves most at the end of
+/// the history) against the factor of the case that changes most, as a report picture.
+fn node_pictures(
+    a: &unilateral_analysis::HistoryAnalysis,
+    nodes: &[usize],
+) -> Result<Vec<(String, String, String)>, Failure> {
+    let Some(case) = unilateral_output::busiest_case(&a.history) else {
+        return Ok(Vec::new());
+    };
+    let nodes: Vec<usize> = if nodes.is_empty() {
+        let Some(r) = a.stage_results.last() else {
+            return Ok(Vec::new());
+        };
+        let top = r
+            .displacements
+            .iter()
+            .enumerate()
+            .max_by(|x, y| x.1[0].hypot(x.1[1]).total_cmp(&y.1[0].hypot(y.1[1])))
+            .map(|(k, _)| k);
+        top.into_iter().collect()
+    } else {
+        nodes.to_vec()
+    };
+    let names: Vec<String> = nodes
+        .iter()
+        .map(|&n| a.condensed.model().names().node(unilateral_fem::NodeId(n)))
+        .collect();
+    let curves = unilateral_output::node_curves(a, &nodes, case).map_err(Failure::Internal)?;
+    let case_name = &a.history.cases[case];
+    let svg = unilateral_output::node_curves_svg(&names, case_name, &curves)?;
+    Ok(vec![(
+        "history-nodes.svg".into(),
+        format!(
+            "The factor of load case `{case_name}` against the displacements of node(s) {}",
+            names.join(", ")
+        ),
+        svg,
+    )])
+}
+
 /// A contact-zone problem with a history.
 pub(crate) fn zone(
     args: &SolveArgs,
@@ -59,6 +99,7 @@ pub(crate) fn zone(
             "--vtk needs a structural model: a contact-zone problem has no mesh".into(),
         ));
     }
+    crate::commands::solve::nodes_need_a_structural_history(args)?;
     if args.report.is_some() {
         args.report_args.check(&problem.zone.pair_names)?;
     }
@@ -92,8 +133,13 @@ pub(crate) fn zone(
                 report_files(write_named(dir, files), dir)?;
             }
             if let Some(dir) = &args.report {
-                let written =
-                    unilateral_output::write_history_report(&h, dir, &title, &chart_options(args));
+                let written = unilateral_output::write_history_report(
+                    &h,
+                    dir,
+                    &title,
+                    &chart_options(args),
+                    Vec::new(),
+                );
                 report_files(written, dir)?;
             }
             Ok(())
@@ -116,6 +162,22 @@ pub(crate) fn structural(
             .collect();
         args.report_args.check(&pairs)?;
     }
+    let nodes: Vec<usize> = match &args.report_args.report_nodes {
+        Some(names) => names
+            .iter()
+            .map(|n| {
+                problem
+                    .model
+                    .names()
+                    .node_id(n)
+                    .map(|id| id.0)
+                    .ok_or_else(|| {
+                        Failure::Input(format!("--report-nodes: no node named '{n}' in the model"))
+                    })
+            })
+            .collect::<Result<_, _>>()?,
+        None => Vec::new(),
+    };
     let progress = Progress::new();
     progress.say(&format!(
         "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
@@ -170,11 +232,13 @@ pub(crate) fn structural(
                 report_files(files.and_then(|f| write_named(dir, f)), dir)?;
             }
             if let Some(dir) = &args.report {
+                let extra = node_pictures(&a, &nodes)?;
                 let written = unilateral_output::write_history_report(
                     &a.history,
                     dir,
                     &title,
                     &chart_options(args),
+                    extra,
                 );
                 report_files(written, dir)?;
             }

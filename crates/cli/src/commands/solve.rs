@@ -35,16 +35,35 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
                 no_path_options(&overrides)?;
                 crate::commands::history::zone(&args, problem, stages, read)
             }
-            None => contact_zone(&args, &overrides, problem, read),
+            None => {
+                nodes_need_a_structural_history(&args)?;
+                contact_zone(&args, &overrides, problem, read)
+            }
         },
         unilateral_io::Problem::Structural(mut problem) => match problem.history.take() {
             Some(stages) => {
                 no_path_options(&overrides)?;
                 crate::commands::history::structural(&args, problem, stages, read)
             }
-            None => structural(&args, &overrides, problem, read),
+            None => {
+                nodes_need_a_structural_history(&args)?;
+                structural(&args, &overrides, problem, read)
+            }
         },
     }
+}
+
+/// `--report-nodes` charts a structural model's load history; anywhere else it would be
+/// ignored, so it is refused.
+pub(crate) fn nodes_need_a_structural_history(args: &SolveArgs) -> Result<(), Failure> {
+    if args.report_args.report_nodes.is_some() {
+        return Err(Failure::Input(
+            "--report-nodes charts the load history of a structural model ([[history]] stages); \
+             this file has none (its pairs are charted with --report-pairs)"
+                .into(),
+        ));
+    }
+    Ok(())
 }
 
 /// `--target`, `--trace` and `--tightening` belong to the paper's single load path; a file with

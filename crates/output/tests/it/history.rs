@@ -1142,3 +1142,35 @@ fn structural_history_document_matches_the_structural_document() {
         "history[1].structure.nodes[3].ux"
     );
 }
+
+/// The node curves of a structural history against the propped cantilever of
+/// `tests/data/history/model-stages.toml` by hand (`crates/analysis/tests/it/history.rs` derives
+/// it): in the push (stage 2, pseudo-time 1 … 2) mid-span moves F/1000 while the tip sticks, up
+/// to 0.003 where the tip starts to slip (s = 0.75), and 0.005 at F = 4.
+#[test]
+fn node_curves_by_hand() {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/history/model-stages.toml");
+    let Ok(unilateral_io::Problem::Structural(p)) = unilateral_io::read_problem(&file) else {
+        panic!("a structural model");
+    };
+    let stages = p.history.clone().unwrap();
+    let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine).unwrap();
+    let mid = a.condensed.model().names().node_id("beam.1").unwrap().0;
+    let push = a.history.cases.iter().position(|c| c == "push").unwrap();
+    let curves = unilateral_output::node_curves(&a, &[mid], push).unwrap();
+    let c = &curves[0];
+    // The start, then stage 1's end, then the push's breakpoints.
+    assert_eq!(c[0].t, 0.0);
+    let at = |t: f64| {
+        c.iter()
+            .find(|q| (q.t - t).abs() < 1e-12)
+            .unwrap_or_else(|| panic!("t = {t}: {c:?}"))
+    };
+    assert!((at(1.75).u[0] - 0.003).abs() < 1e-12 && (at(1.75).factor - 0.75).abs() < 1e-12);
+    assert!((at(2.0).u[0] - 0.005).abs() < 1e-12 && (at(2.0).factor - 1.0).abs() < 1e-12);
+    assert!(c.windows(2).all(|w| w[0].t <= w[1].t));
+    let svg = unilateral_output::node_curves_svg(&["beam.1".into()], "push", &curves).unwrap();
+    assert!(svg.starts_with("<svg") || svg.contains("<svg"));
+    assert!(svg.contains("node beam.1"));
+}
