@@ -51,9 +51,25 @@ pub(crate) fn write_json(out: &Path, value: &serde_json::Value) -> Result<(), Fa
     let text =
         serde_json::to_string_pretty(value).map_err(|e| Failure::Internal(format!("JSON: {e}")))?;
     if out == Path::new("-") {
-        println!("{text}");
+        self::out(&format!("{text}\n"));
         return Ok(());
     }
     std::fs::write(out, text + "\n")
         .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))
 }
+
+/// Writes `text` to stdout. A reader that closed the pipe early (`unilateral solve … | head`)
+/// is no failure: the rest is dropped quietly (the `print!` macros would panic there).
+pub(crate) fn out(text: &str) {
+    use std::io::Write;
+    let mut o = std::io::stdout().lock();
+    let _ = o.write_all(text.as_bytes()).and_then(|()| o.flush());
+}
+
+/// `println!` through [`out`]: no panic on a closed pipe.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::output::out(&format!("{}\n", format_args!($($arg)*)))
+    };
+}
+pub(crate) use outln;

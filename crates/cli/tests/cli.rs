@@ -957,3 +957,22 @@ fn history_report_with_node_curves() {
         out.stderr
     );
 }
+
+/// A reader that closes the pipe early (`unilateral solve … | head -1`) is no failure: no
+/// panic, exit 0.
+#[test]
+fn a_closed_stdout_is_no_panic() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_unilateral"))
+        .arg("solve")
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run unilateral");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("wait");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+}

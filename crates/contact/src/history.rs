@@ -178,6 +178,9 @@ pub struct HistorySolution {
     pub names: Vec<String>,
     /// The stages run (the history stops at the first stage that is not completed).
     pub stages: Vec<StageSolution>,
+    /// What the reader of the answer should know about it (for instance pairs whose friction
+    /// and normal–tangential coupling can make the evolution non-unique).
+    pub notes: Vec<String>,
 }
 
 impl HistorySolution {
@@ -349,6 +352,7 @@ pub fn follow_history(
         cases: history.cases.iter().map(|c| c.name.clone()).collect(),
         names: names.clone(),
         stages: Vec::new(),
+        notes: coupling_notes(zone),
     };
     let Some(mut state) = solver.start() else {
         return Err(ContactError::OutOfRange(
@@ -517,6 +521,40 @@ pub fn follow_history(
         }
     }
     Ok(out)
+}
+
+/// Pairs whose own friction times normal–tangential coupling reaches their tangential
+/// stiffness, `f·max(|R_nt|, |R_tn|) ≥ R_tt` on the diagonal. For one pair that is where a
+/// slipping branch softens (`x_t ∓ f·x_n` falls as the slip grows), and sticking, slipping and
+/// opening can all follow the same load increment (Klarbring's non-uniqueness of 2D friction).
+/// The path then follows one of them without being able to tell: the note says so. The check
+/// is per pair; it does not prove uniqueness for the others.
+fn coupling_notes(zone: &ContactZone) -> Vec<String> {
+    let m = zone.pairs();
+    let risky: Vec<&str> = (0..m)
+        .filter(|&i| {
+            let c = zone.rnt[(i, i)].abs().max(zone.rtn[(i, i)].abs());
+            zone.friction[i] * c >= zone.rtt[(i, i)] && c > 0.0
+        })
+        .map(|i| zone.pair_names[i].as_str())
+        .collect();
+    if risky.is_empty() {
+        return Vec::new();
+    }
+    let shown: Vec<&str> = risky.iter().take(8).copied().collect();
+    vec![format!(
+        "the evolution may not be unique at pair{} {}{}: friction times the normal–tangential \
+         coupling reaches the tangential stiffness (f·|R_nt| ≥ R_tt), where sticking, slipping \
+         and opening can all follow one load increment; the path followed one of them — check \
+         with a smaller friction",
+        if risky.len() == 1 { "" } else { "s" },
+        shown.join(", "),
+        if risky.len() > shown.len() {
+            ", …"
+        } else {
+            ""
+        }
+    )]
 }
 
 /// Reads normalised states as pair results in the user's units and checks them.

@@ -292,6 +292,7 @@ pub fn history_document(h: &HistorySolution) -> Result<Value, NonFiniteOutput> {
         "pairs": pairs_json(h.final_pairs()),
         "mechanism": mechanism_json(last.and_then(|s| s.mechanism.as_ref())),
         "residual": residual,
+        "notes": h.notes,
         "history": history,
     }))
 }
@@ -305,6 +306,7 @@ pub fn with_history(mut doc: Value, h: &HistorySolution) -> Result<Value, NonFin
         obj.insert("status".into(), json!(h.status().as_str()));
         obj.insert("reading".into(), json!(history_reading(h)));
         obj.insert("factors".into(), factors_json(&h.cases, &h.final_factors()));
+        obj.insert("notes".into(), json!(h.notes));
         obj.insert("history".into(), history);
     }
     Ok(doc)
@@ -518,6 +520,9 @@ pub fn history_summary(h: &HistorySolution, title: &str) -> Result<String, NonFi
             changes,
             st.residual.max()
         );
+    }
+    for note in &h.notes {
+        let _ = writeln!(s, "note: {note}");
     }
     for st in &h.stages {
         if let Some(mode) = &st.mechanism {

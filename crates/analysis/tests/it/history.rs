@@ -86,3 +86,52 @@ fn results_along_the_history_by_hand() {
     assert!(a.results_at(5, 0.5).is_err());
     assert!(a.results_at(2, 1.5).is_err());
 }
+
+/// A stage the structure cannot carry to its end: the friction slider of
+/// `tests/data/models/friction-slider.toml` (a bar on two ground pairs, f = 0.2 and 0.5, each
+/// pressed by 10) as a history — the dead load, then the pull at node 2 taken to 10. By hand
+/// (statics of the bar): node 2 slips at a pull of 0.5·10 = 5 (s = 0.5), node 1 as well at
+/// (0.2 + 0.5)·10 = 7 (s = 0.7): a mechanism there, with both pairs sliding together.
+#[test]
+fn a_stage_ends_in_a_mechanism_with_its_limit_factor() {
+    let src = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/models/friction-slider.toml"),
+    )
+    .unwrap();
+    let src = src
+        .replace("[[loads.constant.nodal]]", "[[loads.dead.nodal]]")
+        .replace("[[loads.variable.nodal]]", "[[loads.pull.nodal]]");
+    let src = src[..src.find("[solve]").unwrap()].to_string()
+        + "[[history]]\nfactors = { dead = 1.0 }\n\n[[history]]\nname = \"pull\"\nfactors = { pull = 10.0 }\n";
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("slider-history.toml");
+    std::fs::write(&file, src).unwrap();
+    let Ok(Problem::Structural(p)) = read_problem(&file) else {
+        panic!("a structural model")
+    };
+    let a = analyze_history(&p.model, p.history.as_ref().unwrap(), &p.settings.engine).unwrap();
+    assert_eq!(a.history.stages.len(), 2);
+    let st = &a.history.stages[1];
+    assert_eq!(st.status, StageStatus::Mechanism, "{:?}", st.reason);
+    assert!((st.s_end - 0.7).abs() < 1e-12, "{}", st.s_end);
+    let pull = a.history.cases.iter().position(|c| c == "pull").unwrap();
+    let reached =
+        st.factors_start[pull] + st.s_end * (st.factors_end[pull] - st.factors_start[pull]);
+    assert!((reached - 7.0).abs() < 1e-11);
+    let first = st
+        .steps
+        .iter()
+        .find(|s| s.events.iter().any(|e| e.name == "b"))
+        .expect("pair b starts to slip");
+    assert!((first.s - 0.5).abs() < 1e-12, "{}", first.s);
+    // The mode: both pairs slide together (equal tangential rates), no opening.
+    let mode = st.mechanism.as_ref().expect("a mechanism mode");
+    assert!(mode.iter().all(|&(dn, _)| dn.abs() < 1e-9), "{mode:?}");
+    assert!(
+        (mode[0].1 - mode[1].1).abs() < 1e-9 && mode[0].1.abs() > 0.5,
+        "{mode:?}"
+    );
+    assert_eq!(a.history.status(), &StageStatus::Mechanism);
+    // The results at the limit are in equilibrium (checked by the recovery) and reported.
+    assert_eq!(a.stage_results.len(), 2);
+}

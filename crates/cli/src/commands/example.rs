@@ -34,9 +34,9 @@ const EXAMPLES: &[(&str, &str, &str, &str)] = &[
 
 pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Failure> {
     let Some(name) = name else {
-        println!("bundled examples (write one out with `unilateral example NAME`):");
+        crate::output::outln!("bundled examples (write one out with `unilateral example NAME`):");
         for (n, _, d, _) in EXAMPLES {
-            println!("  {n:<28} {d}");
+            crate::output::outln!("  {n:<28} {d}");
         }
         return Ok(());
     };
@@ -60,6 +60,6 @@ pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Fail
     std::fs::create_dir_all(to)
         .and_then(|_| std::fs::write(&path, content))
         .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
-    println!("wrote {}", path.display());
+    crate::output::outln!("wrote {}", path.display());
     Ok(())
 }

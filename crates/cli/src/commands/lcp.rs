@@ -27,7 +27,7 @@ pub(crate) fn run(args: LcpArgs) -> Result<(), Failure> {
         let started = Instant::now();
         let title = format!("{} (n = {})", file.display(), lcp.q.len());
         let summary = unilateral_output::lcp_summary(&sol, &title)?;
-        print!("{summary}{}", timings_summary(&timings));
+        crate::output::out(&format!("{summary}{}", timings_summary(&timings)));
         timings.write = Some(started.elapsed());
     }
     if let Some(out) = json {

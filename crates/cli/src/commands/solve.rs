@@ -103,7 +103,7 @@ pub(crate) fn write_outputs(
     let started = Instant::now();
     let to_stdout = args.json.as_deref() == Some(Path::new("-"));
     if !to_stdout {
-        print!("{}{}", summary()?, timings_summary(&timings));
+        crate::output::out(&format!("{}{}", summary()?, timings_summary(&timings)));
     }
     let written = files();
     if !to_stdout || args.csv.is_some() || args.vtk.is_some() || args.report.is_some() {

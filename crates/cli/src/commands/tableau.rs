@@ -19,15 +19,15 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
         write_json(out, &unilateral_output::tableaux_json(&tables, &label)?)?;
     }
     if json.as_deref() != Some(Path::new("-")) {
-        println!(
+        crate::output::outln!(
             "{} — parametric Lemke tableaux (tightening c = {}); * marks the leading column and row\n",
             file.display(),
             problem.settings.tightening
         );
         for t in &tables {
-            println!("{}", unilateral_output::tableau_text(t, &label)?);
+            crate::output::outln!("{}", unilateral_output::tableau_text(t, &label)?);
         }
-        println!("{}", sol.outcome.reading(problem.settings.target));
+        crate::output::outln!("{}", sol.outcome.reading(problem.settings.target));
     }
     outcome_failure(&file, &sol).map_or(Ok(()), Err)
 }

@@ -518,3 +518,32 @@ fn the_papers_two_group_program_as_a_history() {
     }
     assert!(agreed >= 5, "{agreed} agreed, {flagged} flagged");
 }
+
+/// Klarbring's non-uniqueness of 2D friction with coupling, by hand: one pair, Rnn = Rtt = 1,
+/// Rnt = Rtn = 1/2, f = 3, load (N, T) = (1, 5/2) from zero has three solutions (stick
+/// x = (1, 5/2); slip x = (1/2, 3/2); open z_n = 1/3). The path follows one (it sticks) and the
+/// answer says that the evolution may not be unique there (f·|R_nt| = 3/2 ≥ R_tt = 1). With
+/// f = 1 (f·|R_nt| = 1/2 < 1) the answer is unique and no note is given.
+#[test]
+fn a_possibly_non_unique_evolution_is_noted() {
+    for (f, noted) in [(3.0, true), (1.0, false)] {
+        let mut zone = ContactZone::new(mat![[1.0]], mat![[1.0]]);
+        zone.rnt = mat![[0.5]];
+        zone.rtn = mat![[0.5]];
+        zone.friction = vec![f];
+        let history = History {
+            cases: vec![case("a", vec![1.0], vec![2.5 * f / 3.0])],
+            stages: vec![stage("load", vec![Some(1.0)])],
+        };
+        let h = follow_history(&zone, &history, &Default::default()).unwrap();
+        assert_eq!(
+            h.notes
+                .iter()
+                .any(|n| n.contains("may not be unique at pair 1")),
+            noted,
+            "f = {f}: {:?}",
+            h.notes
+        );
+        assert_eq!(h.stages[0].status, StageStatus::Completed);
+    }
+}

@@ -182,6 +182,7 @@ fn history() -> HistorySolution {
         cases: vec!["dead".into(), "push".into()],
         names: vec!["left".into(), "right".into()],
         stages: vec![s1, s2, s3],
+        notes: vec![],
     }
 }
 
@@ -892,6 +893,7 @@ fn cyclic(m: usize, n: usize) -> HistorySolution {
         cases: vec!["dead".into(), "heat".into()],
         names,
         stages,
+        notes: vec![],
     }
 }
 
@@ -1005,6 +1007,7 @@ fn paraview_files_over_the_history() {
             cases: vec!["variable".into()],
             names: names.clone(),
             stages: vec![stage(1, 1.0, false), stage(2, 0.5, true)],
+            notes: vec![],
         },
         stage_results: vec![r1.clone(), r2.clone()],
         timings: a.timings,
@@ -1117,6 +1120,7 @@ fn structural_history_document_matches_the_structural_document() {
                 mechanism: None,
                 reason: None,
             }],
+            notes: vec![],
         },
         stage_results: vec![r],
         timings: a.timings,
