@@ -5,11 +5,11 @@
 use std::time::Instant;
 
 use unilateral_contact::{
-    follow_history, ContactError, ContactZone, History, HistorySolution, PairResult, Stage,
+    follow_history, ContactZone, History, HistorySolution, PairResult, Stage,
 };
 use unilateral_fem::{Condensed, Model, Results};
 
-use crate::{analysis_bytes, fem_error, recover_at, zone_of, AnalysisError, Timings};
+use crate::{condensed_zone, contact_error, recover_at, AnalysisError, Timings};
 
 /// A finished history analysis of a structural model.
 #[derive(Debug)]
@@ -35,30 +35,13 @@ pub fn analyze_history(
     stages: &[Stage],
     settings: &unilateral_lcp::Settings,
 ) -> Result<HistoryAnalysis, AnalysisError> {
-    let started = Instant::now();
-    let names = model.names();
-    let m = model.pairs().len();
-    unilateral_fem::check_memory(&format!("{m} contact pairs"), analysis_bytes(m))
-        .map_err(|e| fem_error(e, names))?;
-    let condensed = model.condense().map_err(|e| fem_error(e, names))?;
-    let zone = zone_of(&condensed);
-    zone.validate().map_err(|e| AnalysisError::Internal {
-        what: "the contact zone condensed from the model was refused".into(),
-        message: e.to_string(),
-    })?;
-    let condense = started.elapsed();
+    let (condensed, zone, condense) = condensed_zone(model)?;
     let started = Instant::now();
     let history = History {
         cases: zone.cases.clone(),
         stages: stages.to_vec(),
     };
-    let solution = follow_history(&zone, &history, settings).map_err(|e| match e {
-        ContactError::Settings(_) => AnalysisError::Contact(e),
-        other => AnalysisError::Internal {
-            what: "the contact solver refused the condensed contact zone".into(),
-            message: other.to_string(),
-        },
-    })?;
+    let solution = follow_history(&zone, &history, settings).map_err(contact_error)?;
     let solve = started.elapsed();
     let started = Instant::now();
     let mut stage_results = Vec::with_capacity(solution.stages.len());

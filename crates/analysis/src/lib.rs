@@ -312,29 +312,10 @@ pub struct Analysis {
 /// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
 /// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
-    let started = Instant::now();
-    let names = model.names();
     settings.validate()?;
-    let m = model.pairs().len();
-    unilateral_fem::check_memory(&format!("{m} contact pairs"), analysis_bytes(m))
-        .map_err(|e| fem_error(e, names))?;
-    let condensed = model.condense().map_err(|e| fem_error(e, names))?;
-    let zone = zone_of(&condensed);
-    // The zone is computed by the program from a valid model: if the contact solver refuses
-    // it, the program is at fault, and the user never wrote the matrix it would name.
-    zone.validate().map_err(|e| AnalysisError::Internal {
-        what: "the contact zone condensed from the model was refused".into(),
-        message: e.to_string(),
-    })?;
-    let condense = started.elapsed();
+    let (condensed, zone, condense) = condensed_zone(model)?;
     let started = Instant::now();
-    let solution = unilateral_contact::solve(&zone, settings).map_err(|e| match e {
-        ContactError::Settings(_) => AnalysisError::Contact(e),
-        other => AnalysisError::Internal {
-            what: "the contact solver refused the condensed contact zone".into(),
-            message: other.to_string(),
-        },
-    })?;
+    let solution = unilateral_contact::solve(&zone, settings).map_err(contact_error)?;
     let solve = started.elapsed();
     if solution.outcome == Outcome::NoSolutionAtStart {
         if let Some(e) = pulled_apart(&condensed) {
@@ -359,6 +340,39 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
         a.timings.recover = Some(started.elapsed());
     }
     Ok(a)
+}
+
+/// The model checked against the memory it needs, condensed, and its contact zone checked; with
+/// the time that took. Shared by the paper's path and the load histories.
+pub(crate) fn condensed_zone(
+    model: &Model,
+) -> Result<(Condensed, ContactZone, Duration), AnalysisError> {
+    let started = Instant::now();
+    let names = model.names();
+    let m = model.pairs().len();
+    unilateral_fem::check_memory(&format!("{m} contact pairs"), analysis_bytes(m))
+        .map_err(|e| fem_error(e, names))?;
+    let condensed = model.condense().map_err(|e| fem_error(e, names))?;
+    let zone = zone_of(&condensed);
+    // The zone is computed by the program from a valid model: if the contact solver refuses
+    // it, the program is at fault, and the user never wrote the matrix it would name.
+    zone.validate().map_err(|e| AnalysisError::Internal {
+        what: "the contact zone condensed from the model was refused".into(),
+        message: e.to_string(),
+    })?;
+    Ok((condensed, zone, started.elapsed()))
+}
+
+/// A contact error on a zone the program condensed: a setting is the user's, anything else
+/// the program's fault.
+pub(crate) fn contact_error(e: ContactError) -> AnalysisError {
+    match e {
+        ContactError::Settings(_) => AnalysisError::Contact(e),
+        other => AnalysisError::Internal {
+            what: "the contact solver refused the condensed contact zone".into(),
+            message: other.to_string(),
+        },
+    }
 }
 
 /// Bytes of the dense matrices an analysis of `m` contact pairs holds at once (an estimate

@@ -84,8 +84,9 @@ fn check_results(r: &Results, at: &str) -> Result<(), NonFiniteOutput> {
 }
 
 /// The structural results of one state: `nodes`, `reactions`, `frames`, `plane_elements`,
-/// `equilibrium` (the keys of the structural document).
-fn results_json(names: &Names, r: &Results) -> serde_json::Map<String, Value> {
+/// `equilibrium` (the keys of the structural document) — the one writer of them, for the
+/// paper's single path and for every state of a history.
+pub(crate) fn results_json(names: &Names, r: &Results) -> serde_json::Map<String, Value> {
     let nodes: Vec<Value> = r
         .displacements
         .iter()

@@ -159,53 +159,8 @@ pub fn structural_json(a: &unilateral_analysis::Analysis) -> Result<Value, NonFi
     let Some(r) = &a.results else {
         return Ok(doc);
     };
-    let names = a.names();
-    let nodes: Vec<Value> = r
-        .displacements
-        .iter()
-        .enumerate()
-        .map(|(i, d)| {
-            json!({ "node": names.node(unilateral_fem::NodeId(i)), "ux": d[0], "uy": d[1], "rz": d[2] })
-        })
-        .collect();
-    let reactions: Vec<Value> = r
-        .reactions
-        .iter()
-        .map(|x| json!({ "node": names.node(x.node), "dof": dof_name(&x.dof), "value": x.value }))
-        .collect();
-    let frames: Vec<Value> = r
-        .lines
-        .iter()
-        .map(|l| {
-            let f = l.end_forces;
-            json!({
-                "element": names.element(l.element),
-                "end_forces": { "N1": f[0], "V1": f[1], "M1": f[2], "N2": f[3], "V2": f[4], "M2": f[5] },
-                "diagram": l.diagram.iter().map(|p| json!({ "s": p.s, "N": p.n, "Q": p.q, "M": p.m })).collect::<Vec<_>>(),
-            })
-        })
-        .collect();
-    let planes: Vec<Value> = r
-        .planes
-        .iter()
-        .map(|pl| {
-            json!({
-                "element": names.element(pl.element),
-                "gauss_points": pl.gauss_points,
-                "stress": pl.stress.iter().map(|s| json!({ "sxx": s[0], "syy": s[1], "txy": s[2], "szz": s[3] })).collect::<Vec<_>>(),
-            })
-        })
-        .collect();
-    let e = &r.equilibrium;
     let obj = doc.as_object_mut().expect("an object");
-    obj.insert("nodes".into(), Value::Array(nodes));
-    obj.insert("reactions".into(), Value::Array(reactions));
-    obj.insert("frames".into(), Value::Array(frames));
-    obj.insert("plane_elements".into(), Value::Array(planes));
-    obj.insert(
-        "equilibrium".into(),
-        json!({ "applied": e.applied, "reactions": e.reactions, "contact": e.contact, "springs": e.springs, "resultant": e.resultant, "relative": e.relative() }),
-    );
+    obj.extend(crate::history_structure::results_json(a.names(), r));
     Ok(doc)
 }
 

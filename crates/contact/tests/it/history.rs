@@ -9,6 +9,28 @@ use unilateral_contact::{
 
 use crate::beam_zone::beam_on_supports;
 
+/// A random coupled zone of `m` pairs (definite stiffness, `crate::common::definite_zone`),
+/// friction uniform in `f`, and a gap up to `gap` at about 30 % of the pairs; no loads.
+fn random_zone(
+    rng: &mut unilateral_oracle::fixtures::random::Lcg,
+    m: usize,
+    f: (f64, f64),
+    gap: f64,
+) -> ContactZone {
+    let b: Vec<f64> = (0..4 * m * m).map(|_| rng.unit() - 0.5).collect();
+    let friction: Vec<f64> = (0..m).map(|_| f.0 + (f.1 - f.0) * rng.unit()).collect();
+    let gaps: Vec<f64> = (0..m)
+        .map(|_| {
+            if rng.unit() < 0.3 {
+                gap * rng.unit()
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    crate::common::definite_zone(m, |i, j| b[i * 2 * m + j], friction, gaps, |_, _| 0.0)
+}
+
 fn case(name: &str, normal: Vec<f64>, tangential: Vec<f64>) -> LoadCase {
     LoadCase {
         name: name.into(),
@@ -263,19 +285,7 @@ fn random_cyclic_histories_end_verified() {
     for seed in 1..=40u64 {
         let mut rng = Lcg::new(seed);
         let m = 2 + (seed as usize % 5);
-        let b: Vec<f64> = (0..4 * m * m).map(|_| rng.unit() - 0.5).collect();
-        let friction: Vec<f64> = (0..m).map(|_| 0.8 * rng.unit()).collect();
-        let gap: Vec<f64> = (0..m)
-            .map(|_| {
-                if rng.unit() < 0.3 {
-                    0.05 * rng.unit()
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let zone =
-            crate::common::definite_zone(m, |i, j| b[i * 2 * m + j], friction, gap, |_, _| 0.0);
+        let zone = random_zone(&mut rng, m, (0.0, 0.8), 0.05);
         let press: Vec<f64> = (0..m).map(|_| 1.0 + rng.unit()).collect();
         let c1: (Vec<f64>, Vec<f64>) = (
             (0..m).map(|_| rng.unit() - 0.5).collect(),
@@ -352,19 +362,7 @@ fn exact_path_agrees_with_the_small_step_oracle() {
     for seed in 1..=10u64 {
         let mut rng = Lcg::new(100 + seed);
         let m = 2 + (seed as usize % 2);
-        let b: Vec<f64> = (0..4 * m * m).map(|_| rng.unit() - 0.5).collect();
-        let friction: Vec<f64> = (0..m).map(|_| 0.1 + 0.4 * rng.unit()).collect();
-        let gap: Vec<f64> = (0..m)
-            .map(|_| {
-                if rng.unit() < 0.3 {
-                    0.02 * rng.unit()
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let zone =
-            crate::common::definite_zone(m, |i, j| b[i * 2 * m + j], friction, gap, |_, _| 0.0);
+        let zone = random_zone(&mut rng, m, (0.1, 0.5), 0.02);
         let press: Vec<f64> = (0..m).map(|_| 0.5 + rng.unit()).collect();
         let push: (Vec<f64>, Vec<f64>) = (
             (0..m).map(|_| 0.4 * (rng.unit() - 0.5)).collect(),
