@@ -363,6 +363,13 @@ pub(crate) fn condensed_zone(
     Ok((condensed, zone, started.elapsed()))
 }
 
+/// A model's contact zone: the model checked and condensed, the zone (`R`, every load case,
+/// friction, gaps, pair names) checked — for exporting it (`unilateral zone`) or printing the
+/// tableaux of its path, without following the path.
+pub fn contact_zone_of(model: &Model) -> Result<(Condensed, ContactZone), AnalysisError> {
+    condensed_zone(model).map(|(c, z, _)| (c, z))
+}
+
 /// A contact error on a zone the program condensed: a setting is the user's, anything else
 /// the program's fault.
 pub(crate) fn contact_error(e: ContactError) -> AnalysisError {

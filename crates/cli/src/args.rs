@@ -92,6 +92,18 @@ pub(crate) enum Command {
     Lcp(LcpArgs),
     /// List the bundled examples, or write one out to start from.
     Example(ExampleArgs),
+    /// Write a structural model's contact zone (R, loads, friction, gaps) as a contact-zone file.
+    Zone(ZoneArgs),
+}
+
+/// The arguments of `unilateral zone`.
+#[derive(clap::Args, Debug)]
+pub(crate) struct ZoneArgs {
+    /// A structural model (.toml or .json).
+    pub(crate) model: PathBuf,
+    /// The contact-zone file to write (`-` for stdout).
+    #[arg(long, value_name = "ZONE.toml")]
+    pub(crate) out: PathBuf,
 }
 
 /// The arguments of `unilateral solve`.
@@ -128,7 +140,7 @@ pub(crate) struct SolveArgs {
 /// The arguments of `unilateral tableau`.
 #[derive(clap::Args, Debug)]
 pub(crate) struct TableauArgs {
-    /// A contact-zone problem (.toml or .json).
+    /// A contact-zone problem or a structural model (.toml or .json).
     pub(crate) file: PathBuf,
     /// Print at most this many steps.
     #[arg(long)]

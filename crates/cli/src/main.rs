@@ -43,5 +43,6 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Example(args) => {
             commands::example::run(args.name.as_deref(), &args.to, args.force)
         }
+        Command::Zone(args) => commands::zone::run(args),
     }
 }

@@ -976,3 +976,162 @@ fn a_closed_stdout_is_no_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.code(), Some(0), "{stderr}");
 }
+
+/// `unilateral zone` writes a model's contact zone as a contact-zone file. References: the
+/// paper's Example 1 zone (formulation §5: Rnn, Rtt, Rv_n written out by hand there) from the
+/// structural beam; and round trips — the zone file of the sheet pile wall follows the same path
+/// as the model (the same 39 events at the same loads, the same pairs), the zone file of the
+/// deck the same history.
+#[test]
+fn zone_command_writes_a_solvable_contact_zone() {
+    let cmd = TestCommand::new(&["zone"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .args(&["--out", "z1.toml"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let text = std::fs::read_to_string(cmd.path("z1.toml")).unwrap();
+    let doc: toml::Table = text.parse().expect("TOML");
+    let rows = |key: &str| -> Vec<Vec<f64>> {
+        doc["contact_zone"][key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| {
+                r.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_float().unwrap())
+                    .collect()
+            })
+            .collect()
+    };
+    let rnn = [
+        [0.1875, -0.375, 0.1875],
+        [-0.375, 0.75, -0.375],
+        [0.1875, -0.375, 0.1875],
+    ];
+    let rtt = [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]];
+    for (got, want) in [(rows("Rnn"), rnn), (rows("Rtt"), rtt)] {
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((got[i][j] - want[i][j]).abs() < 1e-9, "{got:?}");
+            }
+        }
+    }
+    let rv: Vec<f64> = doc["load"]["variable"]["normal"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_float().unwrap())
+        .collect();
+    for (a, b) in rv.iter().zip([-0.09375, 0.6875, 0.40625]) {
+        assert!((a - b).abs() < 1e-9, "{rv:?}");
+    }
+    // Round trip of the sheet pile wall: the same path.
+    let model = root().join("examples/example3-sheet-pile.toml");
+    let cmd = TestCommand::new(&["zone"])
+        .arg(&model)
+        .args(&["--out", "z3.toml"]);
+    assert_eq!(cmd.run().code, 0);
+    let a = TestCommand::new(&["solve"])
+        .arg(cmd.path("z3.toml"))
+        .args(&["--json", "-"])
+        .run();
+    let b = TestCommand::new(&["solve"])
+        .arg(&model)
+        .args(&["--json", "-"])
+        .run();
+    let (a, b): (Value, Value) = (
+        serde_json::from_str(&a.stdout).unwrap(),
+        serde_json::from_str(&b.stdout).unwrap(),
+    );
+    assert_eq!(a["status"], b["status"]);
+    assert_eq!(a["steps"].as_array().unwrap().len(), 39);
+    for (x, y) in a["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(b["steps"].as_array().unwrap())
+    {
+        assert_eq!(x["events"], y["events"]);
+        assert!(close(
+            &x["p"],
+            y["p"].as_f64().unwrap(),
+            1e-9 * y["p"].as_f64().unwrap().abs()
+        ));
+    }
+    for (x, y) in a["pairs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(b["pairs"].as_array().unwrap())
+    {
+        assert_eq!(x["name"], y["name"]);
+        assert_eq!(x["state"], y["state"]);
+        for k in ["x_n", "x_t", "z_n", "z_t"] {
+            let v = y[k].as_f64().unwrap();
+            assert!(close(&x[k], v, 1e-9 * v.abs().max(1e-6)), "{k}: {x} {y}");
+        }
+    }
+    // A history model: the zone file keeps its cases and stages.
+    let deck = root().join("examples/deck-bearings-temperature.toml");
+    let cmd = TestCommand::new(&["zone"])
+        .arg(&deck)
+        .args(&["--out", "zd.toml"]);
+    assert_eq!(cmd.run().code, 0);
+    let a = TestCommand::new(&["solve"])
+        .arg(cmd.path("zd.toml"))
+        .args(&["--json", "-"])
+        .run();
+    assert_eq!(a.code, 0, "{}", a.stderr);
+    let b = TestCommand::new(&["solve"])
+        .arg(&deck)
+        .args(&["--json", "-"])
+        .run();
+    let (a, b): (Value, Value) = (
+        serde_json::from_str(&a.stdout).unwrap(),
+        serde_json::from_str(&b.stdout).unwrap(),
+    );
+    assert_eq!(a["history"].as_array().unwrap().len(), 8);
+    for (x, y) in a["pairs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(b["pairs"].as_array().unwrap())
+    {
+        let v = y["x_t"].as_f64().unwrap();
+        assert!(close(&x["x_t"], v, 1e-9 * v.abs()), "{x} {y}");
+    }
+    // A contact-zone file is not a model.
+    let out = TestCommand::new(&["zone"])
+        .arg(example1())
+        .args(&["--out", "x.toml"])
+        .run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+}
+
+/// `tableau` on a structural model prints the tableaux of its condensed zone: for the paper's
+/// Example 1 beam the very tableaux of the contact-zone Example 1 (the paper's Tables 1–3).
+#[test]
+fn tableau_of_a_structural_model() {
+    let beam = TestCommand::new(&["tableau"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .run();
+    let zone = TestCommand::new(&["tableau"]).arg(example1()).run();
+    assert_eq!(beam.code, 0, "{}", beam.stderr);
+    let body = |s: &str| s.lines().skip(1).collect::<Vec<_>>().join("\n");
+    let (b, z) = (body(&beam.stdout), body(&zone.stdout));
+    // The same tableaux up to round-off of the condensation, printed to 4 decimals (0.09375
+    // may print as 0.0937 or 0.0938): compare the printed numbers to their last digit.
+    let nums = |s: &str| -> Vec<f64> {
+        s.split_whitespace()
+            .filter_map(|w| w.parse::<f64>().ok())
+            .collect()
+    };
+    let (nb, nz) = (nums(&b), nums(&z));
+    assert_eq!(nb.len(), nz.len());
+    for (x, y) in nb.iter().zip(&nz) {
+        assert!((x - y).abs() <= 1.01e-4 * y.abs().max(1.0), "{x} vs {y}");
+    }
+    assert!(b.contains("10.6667"));
+}

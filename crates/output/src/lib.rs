@@ -40,6 +40,7 @@ mod structure;
 mod summary;
 pub mod svg;
 mod vtk;
+mod zone_file;
 
 pub use csv::{write_contact_csv, write_structural_csv};
 pub use finite::NonFiniteOutput;
@@ -55,6 +56,7 @@ pub use summary::{
     contact_summary, lcp_summary, structural_summary, tableau_text, timings_summary,
 };
 pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
+pub use zone_file::zone_toml;
 
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};
 pub use structure::state_style;

@@ -5,3 +5,4 @@ pub(crate) mod history;
 pub(crate) mod lcp;
 pub(crate) mod solve;
 pub(crate) mod tableau;
+pub(crate) mod zone;

@@ -3,17 +3,50 @@
 use std::path::Path;
 
 use crate::args::TableauArgs;
-use crate::failure::{contact_failure, input_failure, outcome_failure, Failure, ZoneOrigin};
+use crate::failure::{
+    analysis_failure, contact_failure, input_failure, outcome_failure, Failure, ZoneOrigin,
+};
+
+struct Problem {
+    settings: unilateral_contact::SolveSettings,
+}
+
+/// The tableaux are those of the paper's single path: a load history has none.
+fn no_history(file: &Path, history: bool) -> Result<(), Failure> {
+    if history {
+        return Err(Failure::Input(format!(
+            "{}: the file has [[history]] stages; `tableau` prints the tableaux of the paper's \
+             single load path (a file without a history)",
+            file.display()
+        )));
+    }
+    Ok(())
+}
 use crate::output::write_json;
 
 pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
     let TableauArgs { file, steps, json } = args;
-    let problem = unilateral_io::read_contact_zone(&file).map_err(input_failure)?;
-    let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
-        .map_err(|e| contact_failure(&file, &e, ZoneOrigin::File))?;
+    // A structural model is condensed to its contact zone first: the tableaux are those of
+    // that zone's path, the pairs named as in the model.
+    let (zone, settings, origin) =
+        match unilateral_io::read_problem(&file).map_err(input_failure)? {
+            unilateral_io::Problem::ContactZone(p) => {
+                no_history(&file, p.history.is_some())?;
+                (p.zone, p.settings, ZoneOrigin::File)
+            }
+            unilateral_io::Problem::Structural(p) => {
+                no_history(&file, p.history.is_some())?;
+                let (_, zone) = unilateral_analysis::contact_zone_of(&p.model)
+                    .map_err(|e| analysis_failure(&file, &e))?;
+                (zone, p.settings, ZoneOrigin::Condensed)
+            }
+        };
+    let problem = Problem { settings };
+    let sol = unilateral_contact::solve(&zone, &problem.settings)
+        .map_err(|e| contact_failure(&file, &e, origin))?;
     let tables = sol
         .tableaux(steps)
-        .map_err(|e| contact_failure(&file, &e, ZoneOrigin::File))?;
+        .map_err(|e| contact_failure(&file, &e, origin))?;
     let label = |v| sol.lcp.label(v);
     if let Some(out) = &json {
         write_json(out, &unilateral_output::tableaux_json(&tables, &label)?)?;
