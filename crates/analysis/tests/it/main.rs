@@ -9,5 +9,6 @@ mod fixes;
 mod keys;
 mod mindlin;
 mod scale;
+mod surface;
 mod timings;
 mod triangle_block;
