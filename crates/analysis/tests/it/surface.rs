@@ -470,12 +470,14 @@ fn contact_surface_errors_are_located() {
     for (entry, place, words) in cases {
         let text = two_blocks(4, 4, -100.0, 10.0, &entry);
         let e = read("bad.toml", &text).expect_err(words);
+        println!("{e}");
         assert!(e.contains("bad.toml"), "{e}");
         assert!(e.contains(place), "{e}\n lacks {place}");
         assert!(e.contains(words), "{e}\n lacks {words}");
     }
     // the member's first node 0.5 below the base's top: the bodies overlap
     let e = read("bad.toml", &beam_above_base(0.5)).unwrap_err();
+    println!("{e}");
     assert!(
         e.contains(
             "bad.toml:50:7: contact[1].gap: contact pair `g.1`: node `beam.0` is 0.5 inside"

@@ -481,9 +481,9 @@ impl Builder<'_> {
     ) -> Result<Vec<Segment>, InputError> {
         let on: HashSet<NodeId> = chain.iter().copied().collect();
         let coords = self.model.nodes();
-        // edge (sorted) → the centroids of the plane elements that have it, and whether a
-        // frame or bar joins its nodes
-        let mut edges: HashMap<(NodeId, NodeId), (Vec<[f64; 2]>, bool)> = HashMap::new();
+        // edge (sorted) → the centroids of the plane elements that have it (none for an edge
+        // that only a frame or bar makes)
+        let mut edges: HashMap<(NodeId, NodeId), Vec<[f64; 2]>> = HashMap::new();
         let key = |a: NodeId, b: NodeId| if a < b { (a, b) } else { (b, a) };
         for e in self.model.elements() {
             let (nodes, plane): (&[NodeId], bool) = match e {
@@ -507,9 +507,7 @@ impl Builder<'_> {
                 if on.contains(&a) && on.contains(&b) {
                     let entry = edges.entry(key(a, b)).or_default();
                     if plane {
-                        entry.0.push(centroid);
-                    } else {
-                        entry.1 = true;
+                        entry.push(centroid);
                     }
                 }
             }
@@ -517,7 +515,7 @@ impl Builder<'_> {
         let mut out = Vec::new();
         for w in chain.windows(2) {
             let (a1, a2) = (w[0], w[1]);
-            let Some((inside, _)) = edges.get(&key(a1, a2)) else {
+            let Some(inside) = edges.get(&key(a1, a2)) else {
                 continue;
             };
             let d = sub(coords[a2.0], coords[a1.0]);
