@@ -485,3 +485,81 @@ fn contact_surface_errors_are_located() {
         "{e}"
     );
 }
+
+/// `normal = "surface"` at a corner of a surface: the surface `base.left` then `base.top`
+/// (bottom to top, then left to right; the corner once) has at the corner (0, 1) the average
+/// of the outward normals (−1, 0) and (0, 1), i.e. (−1, 1)/√2; a node at (−0.1, 1.1) projects
+/// on the corner, and its gap from the geometry is n·(x_B − x_A) = 0.2/√2 (by hand). A node
+/// at (0.5, 1.3) projects inside the top's first segment (ξ = 0.5 of [0, 1]), normal (0, 1),
+/// gap 0.3. A node beyond `search` makes no pair.
+#[test]
+fn surface_normal_at_a_corner_by_hand() {
+    let text = r#"units = "N, m"
+[[materials]]
+name = "soft"
+E = 2.0e7
+nu = 0.3
+
+[[blocks]]
+name = "base"
+origin = [0.0, 0.0]
+width = 2.0
+height = 1.0
+nx = 2
+ny = 1
+material = "soft"
+analysis = "plane_strain"
+
+[[nodes]]
+id = "p"
+x = -0.1
+y = 1.1
+
+[[nodes]]
+id = "q"
+x = 0.5
+y = 1.3
+
+[[nodes]]
+id = "far"
+x = 5.0
+y = 5.0
+
+[[loads.variable.nodal]]
+nodes = "q"
+fy = -1.0
+
+[[contact]]
+name = "c"
+match = "surface"
+search = 0.5
+from = ["base.left", "base.top"]
+to = ["p", "q", "far"]
+normal = "surface"
+friction = 0.3
+gap = "geometry"
+"#;
+    let p = read("corner.toml", text).unwrap();
+    let pairs = p.model.pairs();
+    assert_eq!(pairs.len(), 2);
+    let names = p.model.names();
+    let Endpoint::Node(a) = pairs[0].a else {
+        panic!()
+    };
+    assert_eq!(names.nodes[a.0], "base.0.1");
+    assert!(pairs[0].segment.is_none());
+    let r = std::f64::consts::FRAC_1_SQRT_2;
+    let n = pairs[0].normal;
+    assert!(
+        (n[0] + r).abs() < 1e-15 && (n[1] - r).abs() < 1e-15,
+        "{n:?}"
+    );
+    assert!((pairs[0].gap - 0.2 * r).abs() < 1e-15, "{}", pairs[0].gap);
+    let n = pairs[1].normal;
+    assert!(n[0].abs() < 1e-15 && (n[1] - 1.0).abs() < 1e-15, "{n:?}");
+    let Some((_, xi)) = pairs[1].segment else {
+        panic!()
+    };
+    assert!((xi - 0.5).abs() < 1e-15);
+    assert!((pairs[1].gap - 0.3).abs() < 1e-15);
+}
