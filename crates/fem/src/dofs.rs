@@ -112,41 +112,53 @@ pub(crate) fn build_dof_map(model: &Model) -> Result<DofMap, FemError> {
             has_rot[i] = true;
         }
     }
-    // link placement
+    // link placement: the node that carries pair k's link DOFs is B if it is free, else the
+    // free node of the A side with the largest weight (at least 1/4, so that dividing by it
+    // stays well conditioned; the larger of a segment's two weights is at least 1/2)
     let mut pivot_pair: Vec<Option<usize>> = vec![None; nn];
     let mut nt = Vec::with_capacity(m);
-    let mut pivot_is_b = vec![true; m];
+    let mut pivot: Vec<Pivot> = Vec::with_capacity(m);
+    let weights: Vec<Vec<(NodeId, f64)>> = model.pairs.iter().map(|p| p.a_weights()).collect();
     for (k, p) in model.pairs.iter().enumerate() {
         let n = unit(p.normal);
         nt.push((n, [n[1], -n[0]]));
         let free = |node: NodeId| trans[node.0].is_empty() && pivot_pair[node.0].is_none();
         if free(p.b) {
             pivot_pair[p.b.0] = Some(k);
-        } else if let Endpoint::Node(a) = p.a {
-            if free(a) {
-                pivot_pair[a.0] = Some(k);
-                pivot_is_b[k] = false;
-            } else {
-                return Err(FemError::LinkPlacement {
-                    pair: k,
-                    name: model.pair_name(k),
-                    reason: format!(
-                        "both {} and {} are supported or already carry the links of another pair",
-                        a, p.b
-                    ),
-                });
-            }
-        } else {
-            return Err(FemError::LinkPlacement {
-                pair: k,
-                name: model.pair_name(k),
-                reason: format!(
-                    "{} is supported in translation or already carries the links of another pair \
-                     (a node-to-ground pair on a supported DOF is redundant)",
-                    p.b
-                ),
-            });
+            pivot.push(Pivot::B);
+            continue;
         }
+        let mut order: Vec<usize> = (0..weights[k].len()).collect();
+        order.sort_by(|&i, &j| weights[k][j].1.total_cmp(&weights[k][i].1));
+        if let Some(&j) = order
+            .iter()
+            .find(|&&j| weights[k][j].1 >= 0.25 && free(weights[k][j].0))
+        {
+            pivot_pair[weights[k][j].0 .0] = Some(k);
+            pivot.push(Pivot::A(j));
+            continue;
+        }
+        let reason = match (p.a, p.segment) {
+            (Endpoint::Ground, _) => format!(
+                "{} is supported in translation or already carries the links of another pair \
+                 (a node-to-ground pair on a supported DOF is redundant)",
+                p.b
+            ),
+            (Endpoint::Node(a), None) => format!(
+                "both {} and {} are supported or already carry the links of another pair",
+                a, p.b
+            ),
+            (Endpoint::Node(a), Some((a2, _))) => format!(
+                "{} and the segment's nodes {} and {} are supported or already carry the links \
+                 of other pairs",
+                p.b, a, a2
+            ),
+        };
+        return Err(FemError::LinkPlacement {
+            pair: k,
+            name: model.pair_name(k),
+            reason,
+        });
     }
     // numbering of free and prescribed DOFs
     let mut n_i = 0usize;
@@ -239,68 +251,16 @@ pub(crate) fn build_dof_map(model: &Model) -> Result<DofMap, FemError> {
         }
     }
     let mut state = vec![0u8; nn];
-    fn resolve(
-        i: usize,
-        model: &Model,
-        pivot_pair: &[Option<usize>],
-        pivot_is_b: &[bool],
-        nt: &[([f64; 2], [f64; 2])],
-        z0: usize,
-        tr_rows: &mut Vec<Option<[Row; 2]>>,
-        state: &mut Vec<u8>,
-    ) -> Result<(), FemError> {
-        if tr_rows[i].is_some() {
-            return Ok(());
-        }
-        let k = pivot_pair[i].expect("pivot");
-        if state[i] == 1 {
-            return Err(FemError::LinkPlacement {
-                pair: k,
-                name: model.pair_name(k),
-                reason: "the contact pairs form a closed loop of links".into(),
-            });
-        }
-        state[i] = 1;
-        let p = &model.pairs[k];
-        let other = if pivot_is_b[k] {
-            match p.a {
-                Endpoint::Ground => None,
-                Endpoint::Node(a) => Some(a.0),
-            }
-        } else {
-            Some(p.b.0)
-        };
-        let mut rows: [Row; 2] = [Row::new(), Row::new()];
-        if let Some(o) = other {
-            resolve(o, model, pivot_pair, pivot_is_b, nt, z0, tr_rows, state)?;
-            rows = tr_rows[o].clone().unwrap();
-        }
-        let sign = if pivot_is_b[k] { 1.0 } else { -1.0 };
-        let (n, t) = nt[k];
-        let m = nt.len();
-        for c in 0..2 {
-            if n[c] != 0.0 {
-                rows[c].push((z0 + k, sign * n[c]));
-            }
-            if t[c] != 0.0 {
-                rows[c].push((z0 + m + k, sign * t[c]));
-            }
-        }
-        tr_rows[i] = Some(rows);
-        state[i] = 2;
-        Ok(())
-    }
+    let links = Links {
+        model,
+        pivot_pair: &pivot_pair,
+        pivot: &pivot,
+        weights: &weights,
+        nt: &nt,
+        z0,
+    };
     for i in 0..nn {
-        resolve(
-            i,
-            model,
-            &pivot_pair,
-            &pivot_is_b,
-            &nt,
-            z0,
-            &mut tr_rows,
-            &mut state,
-        )?;
+        links.resolve(i, &mut tr_rows, &mut state)?;
     }
     let mut rows = vec![Row::new(); 3 * nn];
     for i in 0..nn {
@@ -320,6 +280,92 @@ pub(crate) fn build_dof_map(model: &Model) -> Result<DofMap, FemError> {
         free_label,
         nt,
     })
+}
+
+/// Which node of a pair carries its link DOFs: B, or the A side's node `j` (in the order of
+/// [`crate::ContactPairSpec::a_weights`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Pivot {
+    B,
+    A(usize),
+}
+
+/// What the translation rows of the nodes that carry links are resolved from.
+struct Links<'a> {
+    model: &'a Model,
+    pivot_pair: &'a [Option<usize>],
+    pivot: &'a [Pivot],
+    weights: &'a [Vec<(NodeId, f64)>],
+    nt: &'a [([f64; 2], [f64; 2])],
+    z0: usize,
+}
+
+impl Links<'_> {
+    /// The translation rows of node `i`: for the node carrying pair k's links, from
+    /// `u_B − Σ w_j·u_Aj = n·z_n + t·z_t` (B: `u_B = Σ w_j·u_Aj + n·z_n + t·z_t`; A's node j:
+    /// `u_Aj = (u_B − Σ_{l≠j} w_l·u_Al − n·z_n − t·z_t) / w_j`), the other nodes' rows first
+    /// (recursively: chains of pairs).
+    fn resolve(
+        &self,
+        i: usize,
+        tr_rows: &mut Vec<Option<[Row; 2]>>,
+        state: &mut Vec<u8>,
+    ) -> Result<(), FemError> {
+        if tr_rows[i].is_some() {
+            return Ok(());
+        }
+        let k = self.pivot_pair[i].expect("pivot");
+        if state[i] == 1 {
+            return Err(FemError::LinkPlacement {
+                pair: k,
+                name: self.model.pair_name(k),
+                reason: "the contact pairs form a closed loop of links".into(),
+            });
+        }
+        state[i] = 1;
+        let p = &self.model.pairs[k];
+        let w = &self.weights[k];
+        // (other node, coefficient) and the coefficient of the links
+        let (others, sign): (Vec<(usize, f64)>, f64) = match self.pivot[k] {
+            Pivot::B => (w.iter().map(|&(a, c)| (a.0, c)).collect(), 1.0),
+            Pivot::A(j) => {
+                let wj = w[j].1;
+                let mut o = vec![(p.b.0, 1.0 / wj)];
+                o.extend(
+                    w.iter()
+                        .enumerate()
+                        .filter(|&(l, _)| l != j)
+                        .map(|(_, &(a, c))| (a.0, -c / wj)),
+                );
+                (o, -1.0 / wj)
+            }
+        };
+        let mut rows: [Row; 2] = [Row::new(), Row::new()];
+        for &(o, c) in &others {
+            self.resolve(o, tr_rows, state)?;
+            let ro = tr_rows[o].as_ref().unwrap();
+            for d in 0..2 {
+                if c == 1.0 {
+                    rows[d].extend_from_slice(&ro[d]);
+                } else {
+                    rows[d].extend(ro[d].iter().map(|&(g, v)| (g, c * v)));
+                }
+            }
+        }
+        let (n, t) = self.nt[k];
+        let m = self.nt.len();
+        for c in 0..2 {
+            if n[c] != 0.0 {
+                rows[c].push((self.z0 + k, sign * n[c]));
+            }
+            if t[c] != 0.0 {
+                rows[c].push((self.z0 + m + k, sign * t[c]));
+            }
+        }
+        tr_rows[i] = Some(rows);
+        state[i] = 2;
+        Ok(())
+    }
 }
 
 pub(crate) fn merge(mut r: Row) -> Row {

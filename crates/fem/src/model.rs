@@ -326,10 +326,17 @@ pub enum Load {
 ///
 /// `n` is the unit normal pointing **from `a` into `b`** (for a pair with the ground, from the
 /// ground into the body node `b`); the tangent is `t = (n_y, −n_x)` (see `docs/fem.md`).
+///
+/// A node-to-segment pair ([`ContactPairSpec::on_segment`]) has for its A side the point
+/// `(1 − ξ)·a1 + ξ·a2` of the segment from `a = a1` to `segment = (a2, ξ)`: its displacement
+/// is `(1 − ξ)·u_a1 + ξ·u_a2`, and the link forces act on `a1` and `a2` with the same weights.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactPairSpec {
-    /// Ground or node A.
+    /// Ground or node A (for a node-to-segment pair, the segment's first node `a1`).
     pub a: Endpoint,
+    /// For a node-to-segment pair, the segment's second node `a2` and the weight `ξ ∈ [0, 1]`
+    /// of `a2` in the A point; `None` for a node-to-node or node-to-ground pair.
+    pub segment: Option<(NodeId, f64)>,
     /// Node B.
     pub b: NodeId,
     /// Normal direction from A into B (any non-zero vector; normalised).
@@ -347,6 +354,7 @@ impl ContactPairSpec {
     pub fn to_ground(b: NodeId, normal: [f64; 2]) -> Self {
         Self {
             a: Endpoint::Ground,
+            segment: None,
             b,
             normal,
             gap: 0.0,
@@ -358,11 +366,33 @@ impl ContactPairSpec {
     pub fn between(a: NodeId, b: NodeId, normal: [f64; 2]) -> Self {
         Self {
             a: Endpoint::Node(a),
+            segment: None,
             b,
             normal,
             gap: 0.0,
             friction: 0.0,
             name: None,
+        }
+    }
+    /// A node-to-segment pair: node `b` against the point `(1 − xi)·a1 + xi·a2` of the segment
+    /// `(a1, a2)`, `normal` pointing from the segment into `b`.
+    pub fn on_segment(a1: NodeId, a2: NodeId, xi: f64, b: NodeId, normal: [f64; 2]) -> Self {
+        Self {
+            segment: Some((a2, xi)),
+            ..Self::between(a1, b, normal)
+        }
+    }
+    /// The nodes of the A side with their weights in the A point (empty for the ground; one
+    /// node of weight 1 for a node-to-node pair; the two nodes of the segment, without a zero
+    /// weight, for a node-to-segment pair).
+    pub fn a_weights(&self) -> Vec<(NodeId, f64)> {
+        match (self.a, self.segment) {
+            (Endpoint::Ground, _) => Vec::new(),
+            (Endpoint::Node(a), None) => vec![(a, 1.0)],
+            (Endpoint::Node(a1), Some((a2, xi))) => [(a1, 1.0 - xi), (a2, xi)]
+                .into_iter()
+                .filter(|&(_, w)| w != 0.0)
+                .collect(),
         }
     }
     /// Sets the friction coefficient.
@@ -685,6 +715,8 @@ impl Model {
                 }
             }
         }
+        let mut same_points: std::collections::HashMap<(usize, usize), usize> =
+            std::collections::HashMap::new();
         for (pi, p) in self.pairs.iter().enumerate() {
             let name = self.pair_name(pi);
             self.check_node(|| format!("contact pair {pi} ({name})"), p.b)?;
@@ -703,6 +735,46 @@ impl Model {
                 name: name.clone(),
                 reason,
             };
+            if let Some((a2, xi)) = p.segment {
+                self.check_node(|| format!("contact pair {pi} ({name})"), a2)?;
+                let Endpoint::Node(a1) = p.a else {
+                    return Err(bad(
+                        "a segment needs a node as its first end, not the ground".into(),
+                    ));
+                };
+                if a2 == a1 || a2 == p.b {
+                    return Err(bad(format!(
+                        "the segment ({a1}, {a2}) repeats a node of the pair"
+                    )));
+                }
+                if !(0.0..=1.0).contains(&xi) {
+                    return Err(bad(format!(
+                        "the weight of the segment's second node must be in [0, 1], got {xi}"
+                    )));
+                }
+            }
+            // Two pairs whose A side and B are the same (node to node in either order, or
+            // the same node twice to the ground) would be two rigid links between the same
+            // points in the bonded structure: redundant whatever their normals.
+            let key = match (p.a, p.segment) {
+                (Endpoint::Ground, _) => Some((usize::MAX, p.b.0)),
+                (Endpoint::Node(a), None) => Some((a.0.min(p.b.0), a.0.max(p.b.0))),
+                (Endpoint::Node(_), Some(_)) => None,
+            };
+            if let Some(key) = key {
+                if let Some(first) = same_points.insert(key, pi) {
+                    let what = match p.a {
+                        Endpoint::Ground => format!("{} and the ground", p.b),
+                        Endpoint::Node(a) => format!("{a} and {}", p.b),
+                    };
+                    return Err(bad(format!(
+                        "it joins {what}, as pair {first} ({}) does: two pairs between the same \
+                         points are redundant (one pair carries both the normal and the \
+                         tangential link)",
+                        self.pair_name(first)
+                    )));
+                }
+            }
             let len = p.normal[0].hypot(p.normal[1]);
             if !(len > 0.0 && len.is_finite()) {
                 return Err(bad("the normal is zero or not finite".into()));

@@ -286,8 +286,19 @@ impl Condensed {
             contact[2] += moment(pb, fx, fy);
             if let Endpoint::Node(a) = pair.a {
                 // the reaction on A; with A and B at different places and n not along AB the
-                // pair carries a couple, which is part of the balance
-                let pa = model.nodes[a.0];
+                // pair carries a couple, which is part of the balance. On a segment the
+                // reaction is shared by its nodes with the weights of the A point, so its
+                // moment is that of the force at the A point.
+                let pa = match pair.segment {
+                    None => model.nodes[a.0],
+                    Some((a2, xi)) => {
+                        let (p1, p2) = (model.nodes[a.0], model.nodes[a2.0]);
+                        [
+                            (1.0 - xi) * p1[0] + xi * p2[0],
+                            (1.0 - xi) * p1[1] + xi * p2[1],
+                        ]
+                    }
+                };
                 contact[0] -= fx;
                 contact[1] -= fy;
                 contact[2] -= moment(pa, fx, fy);

@@ -10,5 +10,6 @@ mod history;
 mod keys;
 mod mindlin;
 mod scale;
+mod surface;
 mod timings;
 mod triangle_block;

@@ -8,4 +8,5 @@ mod fine_mesh;
 mod frames;
 mod load_cases;
 mod plane;
+mod segment;
 mod triangle;

@@ -1,0 +1,565 @@
+//! Contact on surfaces through the model file: `match = "nearest"` and `"surface"`
+//! (node-to-segment), gaps and friction per pair, gaps from the geometry, normals from the
+//! surface, and their errors. Each test names its reference.
+
+use std::path::PathBuf;
+
+use unilateral_analysis::analyze;
+use unilateral_contact::{Follow, PairState, SolveSettings};
+use unilateral_fem::{Endpoint, Model};
+use unilateral_io::read_model;
+
+/// Writes `text` as `name` in a fresh directory and reads it as a model file.
+fn read(name: &str, text: &str) -> Result<unilateral_io::StructuralProblem, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path: PathBuf = dir.path().join(name);
+    std::fs::write(&path, text).unwrap();
+    read_model(&path).map_err(|e| e.to_string())
+}
+
+fn settings() -> SolveSettings {
+    SolveSettings {
+        tightening: 0.0,
+        target: 1.0,
+        follow: Follow::ToTarget,
+        ..Default::default()
+    }
+}
+
+/// A soft base block (`nb` elements along its top) and a block of the same width on it (`nt`
+/// along its bottom), the base pinned at its bottom; the upper block carries `fy` at every
+/// node of its top (constant) and `h` at its top-left corner (variable). `contact` is the
+/// `[[contact]]` entry.
+fn two_blocks(nb: usize, nt: usize, fy: f64, h: f64, contact: &str) -> String {
+    format!(
+        r#"units = "N, m"
+[[materials]]
+name = "soft"
+E = 2.0e7
+nu = 0.3
+
+[[blocks]]
+name = "base"
+origin = [0.0, 0.0]
+width = 2.0
+height = 1.0
+nx = {nb}
+ny = 2
+material = "soft"
+analysis = "plane_strain"
+
+[[blocks]]
+name = "top"
+origin = [0.0, 1.0]
+width = 2.0
+height = 0.5
+nx = {nt}
+ny = 1
+material = "soft"
+analysis = "plane_strain"
+
+[[supports]]
+nodes = "base.bottom"
+pinned = true
+
+[[loads.constant.nodal]]
+nodes = "top.top"
+fy = {fy}
+
+[[loads.constant.nodal]]
+nodes = ["top.top_left", "top.top_right"]
+fy = {half}
+
+[[loads.variable.nodal]]
+nodes = "top.top_left"
+fx = {h}
+
+{contact}
+"#,
+        half = -0.5 * fy
+    )
+}
+
+/// The pair results and the full results at the target p = 1.
+fn at_target(
+    a: &unilateral_analysis::Analysis,
+) -> (Vec<unilateral_contact::PairResult>, unilateral_fem::Results) {
+    assert_eq!(a.solution.p, Some(1.0), "{:?}", a.solution.outcome);
+    (a.solution.pairs.clone(), a.results.clone().unwrap())
+}
+
+/// The pair forces at p = 1 (names, x_n, x_t) and the sum of the base's vertical reactions.
+fn forces(model: &Model) -> (Vec<(String, f64, f64)>, f64, f64) {
+    let a = analyze(model, &settings()).unwrap();
+    let (pairs, res) = at_target(&a);
+    let ry: f64 = res
+        .reactions
+        .iter()
+        .filter(|r| r.dof == unilateral_fem::SupportDof::Uy)
+        .map(|r| r.value)
+        .sum();
+    // the work of the constant load: a uniform pressure on the top, its nodal loads
+    // consistent (half at the corners)
+    let names = model.names();
+    let top = &names.node_sets["top.top"];
+    let ends = [top[0], top[top.len() - 1]];
+    let per_node = -3.0e3 / (top.len() - 1) as f64;
+    let uy: f64 = top
+        .iter()
+        .map(|n| {
+            let f = if ends.contains(n) {
+                0.5 * per_node
+            } else {
+                per_node
+            };
+            f * res.displacements[n.0][1]
+        })
+        .sum();
+    (
+        pairs
+            .iter()
+            .map(|p| (p.name.clone(), p.x_n, p.x_t))
+            .collect(),
+        ry,
+        uy,
+    )
+}
+
+/// Matching meshes: `match = "coincident"` and `match = "surface"` pair the same nodes and
+/// give the same contact forces (reference: the coincident pairing, today's, whose results
+/// the bundled examples check against hand calculations).
+#[test]
+fn coincident_and_surface_agree_on_matching_meshes() {
+    let coincident = two_blocks(
+        4,
+        4,
+        -1.0e3,
+        500.0,
+        "[[contact]]\nname = \"c\"\nfrom = \"base.top\"\nto = \"top.bottom\"\nnormal = [0.0, 1.0]\nfriction = 0.5\n",
+    );
+    let surface = two_blocks(
+        4,
+        4,
+        -1.0e3,
+        500.0,
+        "[[contact]]\nname = \"c\"\nmatch = \"surface\"\nsearch = 0.01\nfrom = \"base.top\"\nto = \"top.bottom\"\nnormal = \"surface\"\nfriction = 0.5\n",
+    );
+    let c = read("c.toml", &coincident).unwrap();
+    let s = read("s.toml", &surface).unwrap();
+    assert_eq!(c.model.pairs().len(), 5);
+    assert_eq!(s.model.pairs().len(), 5);
+    let (fc, _, _) = forces(&c.model);
+    let (fs, _, _) = forces(&s.model);
+    let scale = fc.iter().fold(0.0f64, |m, f| m.max(f.1.abs()));
+    for (a, b) in fc.iter().zip(&fs) {
+        assert_eq!(a.0, b.0);
+        assert!((a.1 - b.1).abs() <= 1e-9 * scale, "{a:?} vs {b:?}");
+        assert!((a.2 - b.2).abs() <= 1e-9 * scale, "{a:?} vs {b:?}");
+    }
+}
+
+/// Non-matching meshes (3·k elements above, 5·k below): the contact normal forces carry the
+/// applied weight and the tangential ones the push, to round-off (statics of the upper
+/// block), and the base's supports carry the weight too (the link forces reach the segment
+/// nodes with their weights). The work of the weight (a uniform pressure on the upper block)
+/// converges under refinement to that of a fine matching mesh (reference: 80 × 80 elements
+/// along the interface, node-to-node, whose own error is about 5e-5 of the value, as its
+/// difference from 40 × 40 shows): the error must shrink at each halving of the elements and
+/// end below 1 %. (Measured: 5.0 %, 2.1 %, 0.55 %, 0.34 %.)
+#[test]
+fn non_matching_meshes_balance_and_converge() {
+    let (w, h) = (3.0e3, 600.0); // h below f·W = 1500: no slip
+    let matching = "[[contact]]\nname = \"c\"\nfrom = \"top.bottom\"\nto = \"base.top\"\nnormal = [0.0, -1.0]\nfriction = 0.5\n";
+    let r = read("m.toml", &two_blocks(80, 80, -w / 80.0, h, matching)).unwrap();
+    let (_, _, work_ref) = forces(&r.model);
+    let mut errors = Vec::new();
+    for k in [1usize, 2, 4, 8] {
+        let (nt, nb) = (3 * k, 5 * k);
+        let entry = "[[contact]]\nname = \"c\"\nmatch = \"surface\"\nsearch = 0.05\nfrom = \"base.top\"\nto = \"top.bottom\"\nnormal = \"surface\"\nfriction = 0.5\n";
+        let p = read("n.toml", &two_blocks(nb, nt, -w / nt as f64, h, entry)).unwrap();
+        // every inner node of top.bottom but every third falls inside a segment of base.top
+        let on_segment = p
+            .model
+            .pairs()
+            .iter()
+            .filter(|s| s.segment.is_some())
+            .count();
+        assert_eq!(on_segment, 2 * k, "k {k}");
+        let (f, ry, work) = forces(&p.model);
+        assert_eq!(f.len(), nt + 1);
+        let sum_n: f64 = f.iter().map(|x| x.1).sum();
+        let sum_t: f64 = f.iter().map(|x| x.2).sum();
+        assert!((sum_n - w).abs() <= 1e-10 * w, "k {k}: Σ x_n = {sum_n}");
+        assert!(
+            (sum_t.abs() - h).abs() <= 1e-10 * w,
+            "k {k}: Σ x_t = {sum_t}"
+        );
+        assert!((ry - w).abs() <= 1e-10 * w, "k {k}: Σ R_y = {ry}");
+        errors.push(((work - work_ref) / work_ref).abs());
+    }
+    println!("relative errors of the work of the weight: {errors:?}");
+    assert!(errors.windows(2).all(|e| e[1] < e[0]), "{errors:?}");
+    assert!(errors[3] < 0.01, "{errors:?}");
+}
+
+/// A base block (3 elements along its top, y = 1) and a member from (0, `start_y`) to (2, 1.1)
+/// in 4 elements, paired node-to-segment with gaps from the geometry.
+fn beam_above_base(start_y: f64) -> String {
+    format!(
+        r#"units = "N, m"
+[[materials]]
+name = "soft"
+E = 2.0e7
+nu = 0.3
+
+[[sections]]
+name = "beam"
+E = 2.0e11
+A = 1.0e-2
+I = 1.0e-5
+
+[[blocks]]
+name = "base"
+origin = [0.0, 0.0]
+width = 2.0
+height = 1.0
+nx = 3
+ny = 1
+material = "soft"
+analysis = "plane_strain"
+
+[[members]]
+name = "beam"
+start = [0.0, {start_y}]
+end = [2.0, 1.1]
+divisions = 4
+section = "beam"
+
+[[supports]]
+nodes = "base.bottom"
+pinned = true
+
+[[supports]]
+nodes = "beam.start"
+fixed = true
+
+[[loads.variable.nodal]]
+nodes = "beam.end"
+fy = -1.0
+
+[[contact]]
+name = "g"
+match = "surface"
+search = 1.0
+from = "base.top"
+to = "beam.nodes"
+normal = "surface"
+friction = 0.3
+gap = "geometry"
+"#
+    )
+}
+
+/// `gap = "geometry"`: a member above the base block, its nodes at heights 1.5 − 0.2·x above
+/// the base's top (y = 1): gaps 0.5, 0.4, 0.3, 0.2, 0.1 by hand, the projections at x = 0,
+/// 0.5, 1, 1.5, 2 on the base's segments of length 2/3 (weights 0, 0.75, 0.5, 0.25, 1), and
+/// the surface normal (0, 1) (the outward normal of the base's top edge).
+#[test]
+fn gaps_from_the_geometry_by_hand() {
+    let p = read("g.toml", &beam_above_base(1.5)).unwrap();
+    let pairs = p.model.pairs();
+    assert_eq!(pairs.len(), 5);
+    let gaps = [0.5, 0.4, 0.3, 0.2, 0.1];
+    let xis = [None, Some(0.75), Some(0.5), Some(0.25), None];
+    for (k, s) in pairs.iter().enumerate() {
+        assert!((s.gap - gaps[k]).abs() < 1e-12, "pair {k}: gap {}", s.gap);
+        assert!((s.normal[0]).abs() < 1e-15 && (s.normal[1] - 1.0).abs() < 1e-15);
+        match (xis[k], s.segment) {
+            (None, None) => {}
+            (Some(x), Some((_, xi))) => assert!((xi - x).abs() < 1e-12, "pair {k}: ξ {xi}"),
+            other => panic!("pair {k}: {other:?}"),
+        }
+        assert!(matches!(s.a, Endpoint::Node(_)));
+    }
+}
+
+/// A beam of span 2L = 4 m on three ground pairs (ends with gap 0, the middle with gap g),
+/// loaded at mid-span by P: with the middle pair open the mid-span deflection is
+/// δ = P(2L)³/(48EI) (simply supported); with g < δ the middle pair closes and carries
+/// R = P − 48EI·g/(2L)³ (compatibility: (P − R)(2L)³/(48EI) = g); with g > δ it stays open.
+/// Frictions per pair are read in the order of `to`.
+#[test]
+fn gap_and_friction_lists_per_pair_by_hand() {
+    let (e, i, l, p): (f64, f64, f64, f64) = (2.0e11, 1.0e-5, 2.0, 1.0e4);
+    let delta = p * (2.0 * l).powi(3) / (48.0 * e * i);
+    for (g, touches) in [(0.4 * delta, true), (1.5 * delta, false)] {
+        let text = format!(
+            r#"units = "N, m"
+[[sections]]
+name = "beam"
+E = {e}
+A = 1.0e-2
+I = {i}
+
+[[members]]
+name = "beam"
+start = [0.0, 0.0]
+end = [{span}, 0.0]
+divisions = 2
+section = "beam"
+
+[[loads.variable.nodal]]
+nodes = "beam.1"
+fy = -{p}
+
+[[contact]]
+name = "s"
+from = "ground"
+to = ["beam.0", "beam.1", "beam.2"]
+normal = [0.0, 1.0]
+friction = [0.1, 0.2, 0.3]
+gap = [0.0, {g}, 0.0]
+"#,
+            span = 2.0 * l
+        );
+        let prob = read("b.toml", &text).unwrap();
+        let fr: Vec<f64> = prob.model.pairs().iter().map(|s| s.friction).collect();
+        assert_eq!(fr, [0.1, 0.2, 0.3]);
+        let a = analyze(&prob.model, &settings()).unwrap();
+        let (pairs, _) = at_target(&a);
+        let r_mid = if touches {
+            p - 48.0 * e * i * g / (2.0 * l).powi(3)
+        } else {
+            0.0
+        };
+        assert!(
+            (pairs[1].x_n - r_mid).abs() < 1e-9 * p,
+            "g {g}: {:?}",
+            pairs[1]
+        );
+        assert_eq!(
+            pairs[1].state == PairState::Open,
+            !touches,
+            "{:?}",
+            pairs[1]
+        );
+        for k in [0, 2] {
+            assert!(
+                (pairs[k].x_n - (p - r_mid) / 2.0).abs() < 1e-9 * p,
+                "{:?}",
+                pairs[k]
+            );
+        }
+    }
+}
+
+/// `match = "nearest"`: each node of `to` with the nearest node of `from` within `search`
+/// (reference: the positions, by hand: the top block's bottom nodes at x = 0, 1, 2 and the
+/// base's top nodes at x = 0, 0.5, …, 2; the nearest of x = 1 is x = 1, and so on). A node of
+/// `from` may take part in several pairs; the pairs carry the weight (statics).
+#[test]
+fn nearest_pairs_by_hand() {
+    let entry = "[[contact]]\nname = \"n\"\nmatch = \"nearest\"\nsearch = 0.3\nfrom = \"top.bottom\"\nto = \"base.top\"\nnormal = [0.0, -1.0]\nfriction = 0.5\n";
+    let p = read("n.toml", &two_blocks(4, 2, -100.0, 10.0, entry)).unwrap();
+    let names = p.model.names();
+    let pairs = p.model.pairs();
+    // base.top x = 0, 0.5, 1, 1.5, 2 → top.bottom x = 0, (0 or 1: 0.5 is 0.5 away from both,
+    // beyond search 0.3), 1, (beyond), 2
+    let got: Vec<(String, String)> = pairs
+        .iter()
+        .map(|s| {
+            let Endpoint::Node(a) = s.a else { panic!() };
+            (names.nodes[a.0].clone(), names.nodes[s.b.0].clone())
+        })
+        .collect();
+    assert_eq!(
+        got,
+        [
+            ("top.0.0".to_string(), "base.0.2".to_string()),
+            ("top.1.0".to_string(), "base.2.2".to_string()),
+            ("top.2.0".to_string(), "base.4.2".to_string()),
+        ]
+    );
+    // with a wider search, x = 0.5 and 1.5 find a partner too, 0.5 away from two nodes: the
+    // tie goes to the node of `from` created first (top.0.0, top.1.0), which is then in two
+    // pairs
+    let entry = entry.replace("search = 0.3", "search = 0.6");
+    let p = read("n.toml", &two_blocks(4, 2, -100.0, 10.0, &entry)).unwrap();
+    let a_names: Vec<String> = p
+        .model
+        .pairs()
+        .iter()
+        .map(|s| {
+            let Endpoint::Node(a) = s.a else { panic!() };
+            names.nodes[a.0].clone()
+        })
+        .collect();
+    assert_eq!(
+        a_names,
+        ["top.0.0", "top.0.0", "top.1.0", "top.1.0", "top.2.0"]
+    );
+    let a = analyze(&p.model, &settings()).unwrap();
+    let (f, _) = at_target(&a);
+    let sum: f64 = f.iter().map(|x| x.x_n).sum();
+    // the weight: 100 at each of the 3 top nodes less the half at the 2 corners
+    assert!((sum - 200.0).abs() < 1e-9 * 200.0, "Σ x_n = {sum}");
+}
+
+/// Every new error of `[[contact]]`, read through `read_model`: the file, line and key, and
+/// the words that say what is wrong.
+#[test]
+fn contact_surface_errors_are_located() {
+    let ok = "[[contact]]\nname = \"c\"\nmatch = \"surface\"\nsearch = 0.05\nfrom = \"base.top\"\nto = \"top.bottom\"\nnormal = \"surface\"\nfriction = 0.5\n";
+    let cases: Vec<(String, &str, &str)> = vec![
+        (
+            ok.replace("match = \"surface\"", "match = \"surfce\""),
+            ":45:9: contact[1].match",
+            "unknown pair matching \"surfce\" (did you mean \"surface\"?)",
+        ),
+        (
+            ok.replace("search = 0.05\n", ""),
+            "contact[1].search",
+            "missing key `search`",
+        ),
+        (
+            ok.replace("match = \"surface\"\n", "").replace("normal = \"surface\"", "normal = [0.0, 1.0]"),
+            ":45:10: contact[1].search",
+            "`search` is for `match = \"nearest\"`",
+        ),
+        (
+            ok.replace("match = \"surface\"", "match = \"nearest\""),
+            "contact[1].normal",
+            "`normal = \"surface\"` needs `match = \"surface\"`",
+        ),
+        (
+            ok.replace("friction = 0.5", "friction = [0.5, 0.5]"),
+            "contact[1].friction",
+            "`friction` lists 2 values, but [contact[1]] makes 5 pairs",
+        ),
+        (
+            ok.replace("friction = 0.5", "friction = [0.5, 0.5, -0.1, 0.5, 0.5]"),
+            "contact[1].friction[3]",
+            "the friction coefficient must be ≥ 0, got -0.1",
+        ),
+        (
+            ok.replace("search = 0.05", "search = 0.05\ngap = \"geometric\""),
+            "contact[1].gap",
+            "(did you mean \"geometry\"?)",
+        ),
+        (
+            ok.replace("to = \"top.bottom\"", "to = \"top.top\""),
+            "contact[1]",
+            "makes no pairs (no node of `to` has a partner in `from` within `search` = 0.05)",
+        ),
+        (
+            ok.replace("from = \"base.top\"", "from = [\"base.0.0\", \"base.4.2\"]"),
+            "contact[1].from",
+            "`from` is not a surface",
+        ),
+        (
+            ok.replace("from = \"base.top\"", "from = \"ground\""),
+            "contact[1].match",
+            "the rigid ground has no position to match",
+        ),
+        (
+            "[[contact]]\nfrom = \"ground\"\nto = \"top.bottom\"\nnormal = [0.0, 1.0]\nfriction = 0.5\ngap = \"geometry\"\n".to_string(),
+            "contact[1].gap",
+            "with `from = \"ground\"` give the gap as a number or a list",
+        ),
+    ];
+    for (entry, place, words) in cases {
+        let text = two_blocks(4, 4, -100.0, 10.0, &entry);
+        let e = read("bad.toml", &text).expect_err(words);
+        println!("{e}");
+        assert!(e.contains("bad.toml"), "{e}");
+        assert!(e.contains(place), "{e}\n lacks {place}");
+        assert!(e.contains(words), "{e}\n lacks {words}");
+    }
+    // the member's first node 0.5 below the base's top: the bodies overlap
+    let e = read("bad.toml", &beam_above_base(0.5)).unwrap_err();
+    println!("{e}");
+    assert!(
+        e.contains(
+            "bad.toml:50:7: contact[1].gap: contact pair `g.1`: node `beam.0` is 0.5 inside"
+        ),
+        "{e}"
+    );
+}
+
+/// `normal = "surface"` at a corner of a surface: the surface `base.left` then `base.top`
+/// (bottom to top, then left to right; the corner once) has at the corner (0, 1) the average
+/// of the outward normals (−1, 0) and (0, 1), i.e. (−1, 1)/√2; a node at (−0.1, 1.1) projects
+/// on the corner, and its gap from the geometry is n·(x_B − x_A) = 0.2/√2 (by hand). A node
+/// at (0.5, 1.3) projects inside the top's first segment (ξ = 0.5 of [0, 1]), normal (0, 1),
+/// gap 0.3. A node beyond `search` makes no pair.
+#[test]
+fn surface_normal_at_a_corner_by_hand() {
+    let text = r#"units = "N, m"
+[[materials]]
+name = "soft"
+E = 2.0e7
+nu = 0.3
+
+[[blocks]]
+name = "base"
+origin = [0.0, 0.0]
+width = 2.0
+height = 1.0
+nx = 2
+ny = 1
+material = "soft"
+analysis = "plane_strain"
+
+[[nodes]]
+id = "p"
+x = -0.1
+y = 1.1
+
+[[nodes]]
+id = "q"
+x = 0.5
+y = 1.3
+
+[[nodes]]
+id = "far"
+x = 5.0
+y = 5.0
+
+[[loads.variable.nodal]]
+nodes = "q"
+fy = -1.0
+
+[[contact]]
+name = "c"
+match = "surface"
+search = 0.5
+from = ["base.left", "base.top"]
+to = ["p", "q", "far"]
+normal = "surface"
+friction = 0.3
+gap = "geometry"
+"#;
+    let p = read("corner.toml", text).unwrap();
+    let pairs = p.model.pairs();
+    assert_eq!(pairs.len(), 2);
+    let names = p.model.names();
+    let Endpoint::Node(a) = pairs[0].a else {
+        panic!()
+    };
+    assert_eq!(names.nodes[a.0], "base.0.1");
+    assert!(pairs[0].segment.is_none());
+    let r = std::f64::consts::FRAC_1_SQRT_2;
+    let n = pairs[0].normal;
+    assert!(
+        (n[0] + r).abs() < 1e-15 && (n[1] - r).abs() < 1e-15,
+        "{n:?}"
+    );
+    assert!((pairs[0].gap - 0.2 * r).abs() < 1e-15, "{}", pairs[0].gap);
+    let n = pairs[1].normal;
+    assert!(n[0].abs() < 1e-15 && (n[1] - 1.0).abs() < 1e-15, "{n:?}");
+    let Some((_, xi)) = pairs[1].segment else {
+        panic!()
+    };
+    assert!((xi - 0.5).abs() < 1e-15);
+    assert!((pairs[1].gap - 0.3).abs() < 1e-15);
+}
