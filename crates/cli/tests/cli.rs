@@ -1135,3 +1135,38 @@ fn tableau_of_a_structural_model() {
     }
     assert!(b.contains("10.6667"));
 }
+
+/// Node-to-segment pairs are drawn at their A point on the segment, not at the segment's first
+/// node: `tests/data/models/footing-surface.toml` (the footing's base nodes at x = −0.5, −1/6,
+/// 1/6, 0.5 on the soil's top, whose nodes are 0.4 apart) — by hand, each A point is the
+/// footing node's own position (the base lies on the soil's top line, y = 0).
+#[test]
+fn segment_pairs_are_drawn_at_their_point_on_the_segment() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("tests/data/models/footing-surface.toml"))
+        .args(&["--vtk", "vtk"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let vtu = std::fs::read_to_string(cmd.path("vtk/pairs_001.vtu")).unwrap();
+    let block = vtu
+        .split("Name=\"Points\"")
+        .nth(1)
+        .and_then(|s| s.split('>').nth(1))
+        .and_then(|s| s.split('<').next())
+        .unwrap();
+    let v: Vec<f64> = block
+        .split_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect();
+    assert_eq!(v.len(), 8 * 3, "{block}");
+    let xs = [-0.5, -1.0 / 6.0, 1.0 / 6.0, 0.5];
+    for (k, x) in xs.iter().enumerate() {
+        // B (the footing node) and A (its projection on the soil's top) at the same place.
+        for p in [k, 4 + k] {
+            assert!(
+                (v[3 * p] - x).abs() < 1e-12 && v[3 * p + 1].abs() < 1e-12,
+                "point {p}: {v:?}"
+            );
+        }
+    }
+}

@@ -303,14 +303,19 @@ fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
     let specs = model.pairs();
     let m = specs.len();
     // Points 0..m are the B nodes; the A nodes of node-to-node pairs follow.
-    let mut point_node: Vec<usize> = specs.iter().map(|p| p.b.0).collect();
+    // A point `(n1, n2, ξ)` is `(1 − ξ)·n1 + ξ·n2` (the A point of a node-to-segment pair).
+    let mut point_node: Vec<(usize, usize, f64)> =
+        specs.iter().map(|p| (p.b.0, p.b.0, 0.0)).collect();
     let (mut conn, mut offs, mut types) = (Vec::new(), Vec::new(), Vec::new());
     for (i, p) in specs.iter().enumerate() {
         match p.a {
             Endpoint::Ground => types.push(1u8),
             Endpoint::Node(n) => {
                 conn.push(point_node.len());
-                point_node.push(n.0);
+                point_node.push(match p.segment {
+                    Some((a2, xi)) => (n.0, a2.0, xi),
+                    None => (n.0, n.0, 0.0),
+                });
                 types.push(3u8);
             }
         }
@@ -325,9 +330,9 @@ fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
         "Float64",
         "Points",
         3,
-        point_node.iter().flat_map(|&n| {
-            let [x, y] = nodes[n];
-            [x, y, 0.0].map(Num)
+        point_node.iter().flat_map(|&(n1, n2, xi)| {
+            let ([x1, y1], [x2, y2]) = (nodes[n1], nodes[n2]);
+            [(1.0 - xi) * x1 + xi * x2, (1.0 - xi) * y1 + xi * y2, 0.0].map(Num)
         }),
     );
     out.push_str("      </Points>\n");

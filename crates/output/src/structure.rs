@@ -132,7 +132,17 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         let b = def(pairs[i].b.0);
         match pairs[i].a {
             Endpoint::Node(an) => {
-                let q = def(an.0);
+                // The A point: the node, or its place on the segment of a node-to-segment pair.
+                let q = match pairs[i].segment {
+                    Some((a2, xi)) => {
+                        let (q1, q2) = (def(an.0), def(a2.0));
+                        [
+                            (1.0 - xi) * q1[0] + xi * q2[0],
+                            (1.0 - xi) * q1[1] + xi * q2[1],
+                        ]
+                    }
+                    None => def(an.0),
+                };
                 [(b[0] + q[0]) / 2.0, (b[1] + q[1]) / 2.0]
             }
             Endpoint::Ground => b,

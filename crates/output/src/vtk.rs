@@ -435,7 +435,9 @@ struct PairGeometry {
     m: usize,
     n_points: usize,
     /// Node of each point (B nodes of the pairs, then A nodes of node-to-node pairs).
-    point_node: Vec<usize>,
+    /// Each point as `(n1, n2, ξ)`: the point `(1 − ξ)·n1 + ξ·n2` (a node is `(n, n, 0)`; the A
+    /// point of a node-to-segment pair lies on its segment).
+    point_node: Vec<(usize, usize, f64)>,
     /// Pair of each point.
     point_pair: Vec<usize>,
     /// `+1` at B, `−1` at A.
@@ -451,7 +453,8 @@ impl PairGeometry {
     fn new(model: &Model, a: &Analysis) -> Self {
         let specs = model.pairs();
         let m = specs.len();
-        let mut point_node: Vec<usize> = specs.iter().map(|p| p.b.0).collect();
+        let mut point_node: Vec<(usize, usize, f64)> =
+            specs.iter().map(|p| (p.b.0, p.b.0, 0.0)).collect();
         let mut point_pair: Vec<usize> = (0..m).collect();
         let mut point_sign = vec![1.0; m];
         let mut connectivity = Vec::new();
@@ -462,7 +465,10 @@ impl PairGeometry {
                 Endpoint::Ground => types.push(i64::from(VTK_VERTEX)),
                 Endpoint::Node(n) => {
                     connectivity.push(point_node.len() as i64);
-                    point_node.push(n.0);
+                    point_node.push(match p.segment {
+                        Some((a2, xi)) => (n.0, a2.0, xi),
+                        None => (n.0, n.0, 0.0),
+                    });
                     point_pair.push(i);
                     point_sign.push(-1.0);
                     types.push(i64::from(VTK_LINE));
@@ -477,9 +483,10 @@ impl PairGeometry {
             &mut grid,
             "Points",
             &[],
-            point_node.iter().map(|&n| {
-                let [x, y] = nodes.get(n).copied().unwrap_or([0.0; 2]);
-                [x, y, 0.0]
+            point_node.iter().map(|&(n1, n2, xi)| {
+                let [x1, y1] = nodes.get(n1).copied().unwrap_or([0.0; 2]);
+                let [x2, y2] = nodes.get(n2).copied().unwrap_or([0.0; 2]);
+                [(1.0 - xi) * x1 + xi * x2, (1.0 - xi) * y1 + xi * y2, 0.0]
             }),
         );
         grid.push_str("      </Points>\n      <Cells>\n");
@@ -529,9 +536,13 @@ impl PairGeometry {
                 &mut s,
                 "displacement",
                 &["ux", "uy", "uz"],
-                self.point_node.iter().map(|&n| {
-                    let d = disp(n);
-                    [d[0], d[1], 0.0]
+                self.point_node.iter().map(|&(n1, n2, xi)| {
+                    let (d1, d2) = (disp(n1), disp(n2));
+                    [
+                        (1.0 - xi) * d1[0] + xi * d2[0],
+                        (1.0 - xi) * d1[1] + xi * d2[1],
+                        0.0,
+                    ]
                 }),
             );
             f64_array(

@@ -190,6 +190,7 @@ fn rescale_units(doc: &mut toml::Table, f: f64, l: f64) {
     }
     for c in tables(doc, "contact") {
         scale_key(c, "gap", l);
+        scale_key(c, "search", l);
     }
     // Every load case (`constant`, `variable`, or any name a history uses), in file order.
     let case_names: Vec<String> = doc
