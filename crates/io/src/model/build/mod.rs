@@ -17,6 +17,7 @@ mod elements;
 mod geometry;
 mod loads;
 mod members;
+mod meshes;
 mod sections;
 mod supports;
 
@@ -51,6 +52,7 @@ const TOP_KEYS: &[&str] = &[
     "elements",
     "blocks",
     "members",
+    "meshes",
     "node_sets",
     "supports",
     "springs",
@@ -70,6 +72,7 @@ enum Kind {
     Frame(FrameSection, Releases),
     Bar(FrameSection),
     Plane(PlaneMaterial, PlaneAnalysis, PlaneFormulation),
+    Triangle(PlaneMaterial, PlaneAnalysis),
 }
 
 struct Pending {
@@ -108,6 +111,8 @@ struct Builder<'d> {
     /// The merging of the proto nodes that `connect_to` (or a member ending on a node) joins.
     merge: NodeMerge,
     blocks: Vec<(String, [f64; 4], Option<Pos>)>,
+    /// Contact surfaces by name (the 1D groups of meshes), segments in order.
+    surfaces: HashMap<String, meshes::Surface>,
     /// Nodes created so far by blocks and members (bounded by [`MAX_GENERATED`] in all).
     generated: usize,
     // after numbering
@@ -149,6 +154,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         connects: Vec::new(),
         merge: NodeMerge::default(),
         blocks: Vec::new(),
+        surfaces: HashMap::new(),
         generated: 0,
         final_of: Vec::new(),
         model: Model::new(),
@@ -167,6 +173,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
     b.count_all_generated(top)?;
     b.blocks(top)?;
     b.members(top)?;
+    b.meshes(top)?;
     b.explicit_elements(top)?;
     b.node_sets(top)?;
     if b.protos.is_empty() {
@@ -378,6 +385,9 @@ impl<'d> Builder<'d> {
                 }
                 Kind::Plane(m, a, f) => {
                     self.model.add_plane([n[0], n[1], n[2], n[3]], *m, *a, *f);
+                }
+                Kind::Triangle(m, a) => {
+                    self.model.add_triangle([n[0], n[1], n[2]], *m, *a);
                 }
             }
             self.elem_origin.push(Origin {
