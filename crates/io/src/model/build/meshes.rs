@@ -86,9 +86,11 @@ fn counter_clockwise(xy: &[[f64; 2]], order: &mut [usize]) -> Result<(), &'stati
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
         .map(|(i, j)| dist2(xy[i], xy[j]))
         .fold(0.0f64, f64::max);
-    let turns: Vec<f64> = (0..n)
-        .map(|i| cross(xy[i], xy[(i + 1) % n], xy[(i + n - 1) % n]))
-        .collect();
+    let mut turns = [0.0; 4];
+    for (i, t) in turns.iter_mut().enumerate().take(n) {
+        *t = cross(xy[i], xy[(i + 1) % n], xy[(i + n - 1) % n]);
+    }
+    let turns = &turns[..n];
     let flat = FLAT * scale;
     if !(scale > 0.0) || turns.iter().any(|t| !(t.abs() > flat)) {
         return Err(if n == 3 {
@@ -259,23 +261,29 @@ impl Builder<'_> {
             };
             kinds.push((i, kind));
         }
-        let node_at: HashMap<usize, usize> = mesh
-            .nodes
-            .iter()
-            .enumerate()
-            .map(|(i, nd)| (nd.tag, i))
-            .collect();
+        let max_tag = mesh.nodes.iter().map(|nd| nd.tag).max().unwrap_or(0);
+        let mut node_at = TagMap::new(max_tag, mesh.nodes.len());
+        for (i, nd) in mesh.nodes.iter().enumerate() {
+            node_at.insert(nd.tag, i);
+        }
+        // (the reader has checked that every element's nodes are defined)
+        let node_at = |tag: usize| node_at.get(tag).unwrap_or(0);
         let mut used = vec![false; mesh.nodes.len()];
         for (i, _) in &kinds {
-            for tag in &mesh.elements[*i].nodes {
-                used[node_at[tag]] = true;
+            for &tag in &mesh.elements[*i].nodes {
+                used[node_at(tag)] = true;
             }
         }
         // Proto nodes by ascending tag.
         let mut order: Vec<usize> = (0..mesh.nodes.len()).filter(|&i| used[i]).collect();
         order.sort_unstable_by_key(|&i| mesh.nodes[i].tag);
-        let mut proto_of: HashMap<usize, usize> = HashMap::with_capacity(order.len());
+        let mut proto_of = TagMap::new(max_tag, order.len());
         let mut all = Vec::with_capacity(order.len());
+        self.node_names.reserve(order.len());
+        self.protos.reserve(order.len());
+        self.proto_names.reserve(order.len());
+        self.element_index.reserve(kinds.len());
+        self.pending.reserve(kinds.len());
         for &i in &order {
             let nd = &mesh.nodes[i];
             let nm = format!("{n}.{}", nd.tag);
@@ -284,17 +292,21 @@ impl Builder<'_> {
             proto_of.insert(nd.tag, p);
             all.push(p);
         }
-        let coord = |tag: usize| mesh.nodes[node_at[&tag]].xy;
+        let coord = |tag: usize| mesh.nodes[node_at(tag)].xy;
 
         // Elements, corners counter-clockwise.
         let mut element_of = vec![usize::MAX; mesh.elements.len()];
         let mut everything = Vec::with_capacity(kinds.len());
         for (i, kind) in kinds {
             let e = &mesh.elements[i];
-            let mut order: Vec<usize> = (0..e.nodes.len()).collect();
+            let k = e.nodes.len();
+            let mut order = [0, 1, 2, 3];
             if e.kind.dimension() == 2 {
-                let xy: Vec<[f64; 2]> = e.nodes.iter().map(|&tag| coord(tag)).collect();
-                counter_clockwise(&xy, &mut order).map_err(|why| {
+                let mut xy = [[0.0; 2]; 4];
+                for (x, &tag) in xy.iter_mut().zip(&e.nodes) {
+                    *x = coord(tag);
+                }
+                counter_clockwise(&xy[..k], &mut order[..k]).map_err(|why| {
                     mf.err(
                         Some(e.line),
                         InputErrorKind::Invalid,
@@ -322,7 +334,10 @@ impl Builder<'_> {
             }
             let id = self.add_element(Pending {
                 kind,
-                nodes: order.iter().map(|&k| proto_of[&e.nodes[k]]).collect(),
+                nodes: order[..k]
+                    .iter()
+                    .map(|&j| proto_of.get(e.nodes[j]).unwrap_or(0))
+                    .collect(),
                 name: format!("{n}.{}", e.tag),
                 pos: name.pos,
                 key: t.key.clone(),
@@ -471,14 +486,14 @@ impl Builder<'_> {
     /// would be a free node.
     fn mesh_proto(
         &self,
-        proto_of: &HashMap<usize, usize>,
+        proto_of: &TagMap,
         tag: usize,
         mesh: &str,
         label: &str,
         members: &[&MshElement],
         mf: &MeshFile,
     ) -> Result<usize, InputError> {
-        proto_of.get(&tag).copied().ok_or_else(|| {
+        proto_of.get(tag).ok_or_else(|| {
             let e = members.iter().find(|e| e.nodes.contains(&tag));
             mf.err(
                 e.map(|e| e.line),
@@ -646,6 +661,39 @@ impl Builder<'_> {
                     ..e
                 })
             }
+        }
+    }
+}
+
+/// Node tags → indices: a table when the tags are dense enough (Gmsh's usually are), else a
+/// hash map.
+enum TagMap {
+    Dense(Vec<usize>),
+    Sparse(HashMap<usize, usize>),
+}
+
+impl TagMap {
+    fn new(max_tag: usize, len: usize) -> Self {
+        if max_tag <= len.saturating_mul(4).saturating_add(1024) {
+            TagMap::Dense(vec![usize::MAX; max_tag + 1])
+        } else {
+            TagMap::Sparse(HashMap::with_capacity(len))
+        }
+    }
+
+    fn insert(&mut self, tag: usize, i: usize) {
+        match self {
+            TagMap::Dense(v) => v[tag] = i,
+            TagMap::Sparse(m) => {
+                m.insert(tag, i);
+            }
+        }
+    }
+
+    fn get(&self, tag: usize) -> Option<usize> {
+        match self {
+            TagMap::Dense(v) => v.get(tag).copied().filter(|&i| i != usize::MAX),
+            TagMap::Sparse(m) => m.get(&tag).copied(),
         }
     }
 }
