@@ -606,3 +606,109 @@ fn bad_references_to_meshes_are_located_in_the_model_file() {
         "{shown}"
     );
 }
+
+#[test]
+fn line_groups_become_frames_with_sections_and_meshes_connect() {
+    // Reference: the hand-written mesh (line 1–2 in `bottom`, triangles 1-2-3 and 1-3-4).
+    let msh = small_msh("", &[]);
+    let sections = "material = \"steel\"\nsections = { bottom = \"beam\" }";
+    let model = small_model(sections).replace(
+        "[[meshes]]",
+        "[[sections]]\nname = \"beam\"\nE = 2.0e5\nA = 0.01\nI = 1e-5\n\n[[meshes]]",
+    );
+    let (_d, r) = read(&model, &[("small.msh", &msh)]);
+    let p = r.unwrap();
+    let names = p.model.names();
+    assert_eq!(p.model.elements().len(), 3);
+    let frames: Vec<_> = p
+        .model
+        .elements()
+        .iter()
+        .filter_map(|e| match e {
+            Element::Frame { nodes, .. } => Some(*nodes),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(frames, vec![[names.node_ids["s.1"], names.node_ids["s.2"]]]);
+    assert_eq!(names.element_sets["s.bottom"].len(), 1);
+    assert_eq!(names.element_sets["s"].len(), 3);
+    // a second copy of the mesh connected to the first shares its four nodes
+    let second = "[[meshes]]\nname = \"t\"\nfile = \"small.msh\"\nanalysis = \"plane_strain\"\nmaterial = \"steel\"\nconnect_to = \"s\"\n\n[[contact]]";
+    let model = small_model("material = \"steel\"").replacen("[[contact]]", second, 1);
+    let (_d, r) = read(&model, &[("small.msh", &msh)]);
+    let p = r.unwrap();
+    assert_eq!(p.model.nodes().len(), 4);
+    assert_eq!(p.model.elements().len(), 4);
+    let names = p.model.names();
+    assert_eq!(names.node_ids["t.3"], names.node_ids["s.3"]);
+}
+
+#[test]
+fn two_bodies_of_one_mesh_take_materials_by_group() {
+    // Reference: Gmsh's API on disc_on_plate (tests/data/gmsh/expected.txt): the half disc has
+    // 35 triangles, the plate 25 quadrangles, the arc 9 lines around the centre (0, 1).
+    for file in ["disc_on_plate_41.msh", "disc_on_plate_22.msh"] {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::copy(gmsh_dir().join(file), dir.path().join(file)).unwrap();
+        let path = dir.path().join("model.toml");
+        std::fs::write(
+            &path,
+            format!(
+                r#"{MATERIAL}
+[[materials]]
+name = "soft"
+E = 10.0
+nu = 0.2
+
+[[meshes]]
+name = "d"
+file = "{file}"
+analysis = "plane_strain"
+materials = {{ disc = "steel", plate = "soft" }}
+
+[[contact]]
+from = "ground"
+to = "d.plate top"
+normal = [0.0, 1.0]
+friction = 0.5
+
+[[loads.variable.nodal]]
+nodes = "d.plate top"
+fy = -1.0
+"#
+            ),
+        )
+        .unwrap();
+        let p = read_model(&path).unwrap();
+        let names = p.model.names();
+        let els = p.model.elements();
+        let e_of = |set: &str| -> Vec<f64> {
+            names.element_sets[set]
+                .iter()
+                .map(|e| match &els[e.0] {
+                    Element::Triangle { material, .. } | Element::Plane { material, .. } => {
+                        material.e
+                    }
+                    other => panic!("{other:?}"),
+                })
+                .collect()
+        };
+        assert_eq!(e_of("d.disc"), vec![2.0e5; 35]);
+        assert_eq!(e_of("d.plate"), vec![10.0; 25]);
+        assert!(names.element_sets["d.disc"]
+            .iter()
+            .all(|e| matches!(els[e.0], Element::Triangle { .. })));
+        // the arc's nodes in order along it: their angle about (0, 1) keeps turning one way
+        let arc: Vec<f64> = names.node_sets["d.arc"]
+            .iter()
+            .map(|n| {
+                let [x, y] = p.model.nodes()[n.0];
+                (1.0 - y).atan2(x).abs() // in [0, π]: the half disc is below its centre (up to round-off)
+            })
+            .collect();
+        assert_eq!(arc.len(), 10);
+        let up = arc.windows(2).all(|w| w[1] > w[0]);
+        let down = arc.windows(2).all(|w| w[1] < w[0]);
+        assert!(up || down, "{arc:?}");
+    }
+}

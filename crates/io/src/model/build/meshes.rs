@@ -92,7 +92,8 @@ fn counter_clockwise(xy: &[[f64; 2]], order: &mut [usize]) -> Result<(), &'stati
     }
     let turns = &turns[..n];
     let flat = FLAT * scale;
-    if !(scale > 0.0) || turns.iter().any(|t| !(t.abs() > flat)) {
+    let has_area = scale > 0.0 && scale.is_finite() && turns.iter().all(|t| t.abs() > flat);
+    if !has_area {
         return Err(if n == 3 {
             "degenerate: its corners are on one line or coincide (no area)"
         } else {
@@ -107,6 +108,20 @@ fn counter_clockwise(xy: &[[f64; 2]], order: &mut [usize]) -> Result<(), &'stati
         Ok(())
     } else {
         Err("concave or self-intersecting: it does not turn the same way at every corner")
+    }
+}
+
+/// The unit normal of the segment `a → b` pointing away from the point `body` (the centre of
+/// the element that has the segment as an edge).
+fn outward(a: [f64; 2], b: [f64; 2], body: [f64; 2]) -> [f64; 2] {
+    let (tx, ty) = (b[0] - a[0], b[1] - a[1]);
+    let len = tx.hypot(ty);
+    // (t_y, −t_x) is on the segment's right: away from a body on its left
+    let right = [ty / len, -tx / len];
+    if cross(a, b, body) > 0.0 {
+        right
+    } else {
+        [-right[0], -right[1]]
     }
 }
 
@@ -155,7 +170,12 @@ fn chains(segments: &[[usize; 2]]) -> Vec<[usize; 2]> {
         let (mut s, mut n) = (first, segments[first][0]);
         loop {
             match next(s, n) {
-                Some(p) if p != first && !used[p] => {
+                Some(p) if p == first => {
+                    // a closed loop: it starts where the file starts it
+                    (s, n) = (first, segments[first][0]);
+                    break;
+                }
+                Some(p) if !used[p] => {
                     n = other(p, n);
                     s = p;
                 }
@@ -416,20 +436,9 @@ impl Builder<'_> {
                             tags.push(tag);
                         }
                     }
-                    let (xa, xb) = (coord(a), coord(b));
-                    let outward = body_at.get(&(a.min(b), a.max(b))).map(|c| {
-                        let tx = xb[0] - xa[0];
-                        let ty = xb[1] - xa[1];
-                        let len = tx.hypot(ty);
-                        let nrm = [ty / len, -tx / len];
-                        // the normal (t_y, −t_x) is on the segment's right: away from a body
-                        // on its left
-                        if cross(xa, xb, *c) > 0.0 {
-                            nrm
-                        } else {
-                            [-nrm[0], -nrm[1]]
-                        }
-                    });
+                    let outward = body_at
+                        .get(&(a.min(b), a.max(b)))
+                        .map(|c| outward(coord(a), coord(b), *c));
                     segments.push((a, b, outward));
                 }
                 let mut out = Vec::with_capacity(segments.len());
@@ -775,5 +784,63 @@ impl GroupMap<FrameSection> {
         mf: &MeshFile,
     ) -> Result<Option<FrameSection>, InputError> {
         self.get(e, mf)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    // References: the segments and corners written by hand below.
+
+    #[test]
+    fn chains_follow_the_lines_from_an_end() {
+        // out of order, one segment reversed, two chains
+        let got = chains(&[[3, 4], [1, 2], [3, 2], [7, 8]]);
+        assert_eq!(got, vec![[1, 2], [2, 3], [3, 4], [7, 8]]);
+        // a closed loop starts with its first segment in the file
+        assert_eq!(
+            chains(&[[1, 2], [2, 3], [3, 1]]),
+            vec![[1, 2], [2, 3], [3, 1]]
+        );
+        assert_eq!(
+            chains(&[[2, 3], [1, 2], [3, 1]]),
+            vec![[2, 3], [3, 1], [1, 2]]
+        );
+        // a branch point ends the chains that meet there
+        let got = chains(&[[1, 2], [2, 3], [2, 4]]);
+        assert_eq!(got.len(), 3);
+    }
+
+    #[test]
+    fn outward_normals_point_away_from_the_body() {
+        assert_eq!(outward([0.0, 0.0], [2.0, 0.0], [1.0, 0.5]), [0.0, -1.0]);
+        assert_eq!(outward([0.0, 0.0], [2.0, 0.0], [1.0, -0.5]), [-0.0, 1.0]);
+        assert_eq!(outward([2.0, 0.0], [0.0, 0.0], [1.0, 0.5]), [-0.0, -1.0]);
+    }
+
+    #[test]
+    fn corners_are_turned_counter_clockwise_or_refused() {
+        let mut o = [0, 1, 2];
+        counter_clockwise(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], &mut o).unwrap();
+        assert_eq!(o, [0, 1, 2]);
+        counter_clockwise(&[[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]], &mut o).unwrap();
+        assert_eq!(o, [0, 2, 1]);
+        let sq = [[0.0, 0.0], [0.0, 1.0], [1.0, 1.0], [1.0, 0.0]];
+        let mut o = [0, 1, 2, 3];
+        counter_clockwise(&sq, &mut o).unwrap();
+        assert_eq!(o, [0, 3, 2, 1]);
+        let concave = [[0.0, 0.0], [2.0, 0.0], [0.5, 0.5], [0.0, 2.0]];
+        let e = counter_clockwise(&concave, &mut [0, 1, 2, 3]).unwrap_err();
+        assert!(e.starts_with("concave"));
+        let flat = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]];
+        assert!(counter_clockwise(&flat, &mut [0, 1, 2]).is_err());
+        // the same shapes in kilometres and in millimetres
+        for s in [1e-3, 1e6] {
+            let tiny: Vec<[f64; 2]> = concave.iter().map(|p| [p[0] * s, p[1] * s]).collect();
+            assert!(counter_clockwise(&tiny, &mut [0, 1, 2, 3]).is_err());
+            let sq: Vec<[f64; 2]> = sq.iter().map(|p| [p[0] * s, p[1] * s]).collect();
+            assert!(counter_clockwise(&sq, &mut [0, 1, 2, 3]).is_ok());
+        }
     }
 }
