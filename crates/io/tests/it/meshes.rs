@@ -550,6 +550,17 @@ fn bad_meshes_name_the_msh_file_and_line() {
         "4 1 2 2 1 2 5",
         "node 5 of physical group `bottom`",
     );
+    // a mesh of lines only (no section makes them frames)
+    let m = small_msh("", &[]).replace(
+        "3\n1 1 2 2 1 1 2\n2 2 2 1 1 1 2 3\n3 2 2 1 1 1 3 4\n",
+        "1\n1 1 2 2 1 1 2\n",
+    );
+    let (_d, r) = read(&small_model(steel), &[("small.msh", &m)]);
+    let shown = r.unwrap_err().to_string();
+    assert!(
+        shown.contains("small.msh: mesh `s` has no element the model can use"),
+        "{shown}"
+    );
     // the reader's own errors carry where the model names the mesh
     let m = small_msh("", &["4 2 2 1 1 1 3 9"]);
     bad_mesh(&m, steel, "4 2 2 1 1 1 3 9", "node 9");

@@ -281,6 +281,20 @@ impl Builder<'_> {
             };
             kinds.push((i, kind));
         }
+        if kinds.is_empty() {
+            return Err(mf.err(
+                None,
+                InputErrorKind::Invalid,
+                format!(
+                    "mesh `{n}` has no element the model can use: no triangles or quadrangles{}",
+                    if t.get("sections").is_some() {
+                        ", and no line in a group of `sections`"
+                    } else {
+                        " (lines become frames only through `sections`)"
+                    }
+                ),
+            ));
+        }
         let max_tag = mesh.nodes.iter().map(|nd| nd.tag).max().unwrap_or(0);
         let mut node_at = TagMap::new(max_tag, mesh.nodes.len());
         for (i, nd) in mesh.nodes.iter().enumerate() {
