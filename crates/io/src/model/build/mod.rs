@@ -2,7 +2,8 @@
 //! passes in order, the references between items, the numbering of the finite-element nodes,
 //! the errors of `Model::validate` placed in the file, the names). Each section of the file
 //! has its own module: `sections` (materials and sections), `geometry` (nodes and node sets),
-//! `blocks`, `members`, `elements`, `supports` (supports and springs), `loads`, `contact`.
+//! `blocks`, `members`, `meshes` (Gmsh files), `elements`, `supports` (supports and springs),
+//! `loads`, `contact`.
 //! The meshing itself (block grids, member division, coincident nodes) is pure geometry in
 //! [`unilateral_fem::mesh`].
 //!
