@@ -7,6 +7,7 @@ mod corpus;
 mod gmsh;
 mod history_input;
 mod layouts;
+mod meshes;
 mod model_bad;
 mod model_read;
 mod readers;

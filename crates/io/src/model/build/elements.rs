@@ -32,8 +32,18 @@ impl Builder<'_> {
                     ),
                 ));
             }
-            let ty = choice(&t, "type", &["frame", "bar", "plane"], None, "element type")?;
-            let count = if ty == "plane" { 4 } else { 2 };
+            let ty = choice(
+                &t,
+                "type",
+                &["frame", "bar", "plane", "triangle"],
+                None,
+                "element type",
+            )?;
+            let count = match ty {
+                "plane" => 4,
+                "triangle" => 3,
+                _ => 2,
+            };
             let nodes_node = t.require("nodes", "the element's node ids")?;
             let rs = refs(self.doc, nodes_node, &t.child("nodes"))?;
             if rs.len() != count {
@@ -43,10 +53,10 @@ impl Builder<'_> {
                     InputErrorKind::Size,
                     format!(
                         "a {ty} element has {count} nodes{}, found {}",
-                        if ty == "plane" {
-                            " (counter-clockwise)"
-                        } else {
-                            ""
+                        match ty {
+                            "plane" => " (counter-clockwise)",
+                            "triangle" => " (in either order)",
+                            _ => "",
                         },
                         rs.len()
                     ),
@@ -74,6 +84,17 @@ impl Builder<'_> {
                     let m = self.material(&t)?;
                     let (a, f) = self.plane_options(&t)?;
                     Kind::Plane(m, a, f)
+                }
+                "triangle" => {
+                    forbid("section", "plane elements take a `material`")?;
+                    forbid("releases", "plane elements have no end moments")?;
+                    forbid(
+                        "formulation",
+                        "the triangle has one formulation, constant strain",
+                    )?;
+                    let m = self.material(&t)?;
+                    let (a, _) = self.plane_options(&t)?;
+                    Kind::Triangle(m, a)
                 }
                 _ => {
                     for k in ["material", "analysis", "formulation"] {

@@ -2,7 +2,8 @@
 //! passes in order, the references between items, the numbering of the finite-element nodes,
 //! the errors of `Model::validate` placed in the file, the names). Each section of the file
 //! has its own module: `sections` (materials and sections), `geometry` (nodes and node sets),
-//! `blocks`, `members`, `elements`, `supports` (supports and springs), `loads`, `contact`.
+//! `blocks`, `members`, `meshes` (Gmsh files), `elements`, `supports` (supports and springs),
+//! `loads`, `contact`.
 //! The meshing itself (block grids, member division, coincident nodes) is pure geometry in
 //! [`unilateral_fem::mesh`].
 //!
@@ -17,6 +18,7 @@ mod elements;
 mod geometry;
 mod loads;
 mod members;
+mod meshes;
 mod sections;
 mod supports;
 
@@ -51,6 +53,7 @@ const TOP_KEYS: &[&str] = &[
     "elements",
     "blocks",
     "members",
+    "meshes",
     "node_sets",
     "supports",
     "springs",
@@ -70,6 +73,7 @@ enum Kind {
     Frame(FrameSection, Releases),
     Bar(FrameSection),
     Plane(PlaneMaterial, PlaneAnalysis, PlaneFormulation),
+    Triangle(PlaneMaterial, PlaneAnalysis),
 }
 
 struct Pending {
@@ -108,6 +112,8 @@ struct Builder<'d> {
     /// The merging of the proto nodes that `connect_to` (or a member ending on a node) joins.
     merge: NodeMerge,
     blocks: Vec<(String, [f64; 4], Option<Pos>)>,
+    /// Contact surfaces by name (the 1D groups of meshes), segments in order.
+    surfaces: HashMap<String, meshes::Surface>,
     /// Nodes created so far by blocks and members (bounded by [`MAX_GENERATED`] in all).
     generated: usize,
     // after numbering
@@ -149,6 +155,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         connects: Vec::new(),
         merge: NodeMerge::default(),
         blocks: Vec::new(),
+        surfaces: HashMap::new(),
         generated: 0,
         final_of: Vec::new(),
         model: Model::new(),
@@ -167,6 +174,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
     b.count_all_generated(top)?;
     b.blocks(top)?;
     b.members(top)?;
+    b.meshes(top)?;
     b.explicit_elements(top)?;
     b.node_sets(top)?;
     if b.protos.is_empty() {
@@ -378,6 +386,9 @@ impl<'d> Builder<'d> {
                 }
                 Kind::Plane(m, a, f) => {
                     self.model.add_plane([n[0], n[1], n[2], n[3]], *m, *a, *f);
+                }
+                Kind::Triangle(m, a) => {
+                    self.model.add_triangle([n[0], n[1], n[2]], *m, *a);
                 }
             }
             self.elem_origin.push(Origin {
