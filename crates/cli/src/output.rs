@@ -116,6 +116,13 @@ pub(crate) fn out(text: &str) {
 }
 
 /// `println!` through [`out`]: no panic on a closed pipe.
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::output::out(&format!("{}\n", format_args!($($arg)*)))
+    };
+}
+pub(crate) use outln;
+
 #[cfg(test)]
 mod tests {
     use std::path::{Path, PathBuf};
@@ -136,10 +143,3 @@ mod tests {
         assert_eq!(super::files_line(&[], dir), None);
     }
 }
-
-macro_rules! outln {
-    ($($arg:tt)*) => {
-        $crate::output::out(&format!("{}\n", format_args!($($arg)*)))
-    };
-}
-pub(crate) use outln;

@@ -85,11 +85,7 @@ pub fn with_provenance(mut doc: Value) -> Value {
 /// misread).
 fn plain_zeros(v: &mut Value) {
     match v {
-        Value::Number(n) => {
-            if n.as_f64() == Some(0.0) && n.is_f64() {
-                *v = json!(0.0);
-            }
-        }
+        Value::Number(n) if n.is_f64() && n.as_f64() == Some(0.0) => *v = json!(0.0),
         Value::Array(a) => a.iter_mut().for_each(plain_zeros),
         Value::Object(o) => o.values_mut().for_each(plain_zeros),
         _ => {}
