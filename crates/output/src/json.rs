@@ -225,8 +225,6 @@ fn path_document(
         })
         .collect();
     let mut doc = json!({
-        "title": about.title,
-        "units": about.units,
         "status": sol.outcome.status(),
         "reading": sol.outcome.reading(sol.settings.target),
         "p": sol.p,
@@ -245,6 +243,12 @@ fn path_document(
         "residual": residual_json_unchecked(sol.residual.as_ref()),
         "notes": sol.notes,
     });
+    // The file's title and units, when it gives them.
+    for (key, v) in [("title", &about.title), ("units", &about.units)] {
+        if let Some(v) = v {
+            doc[key] = json!(v);
+        }
+    }
     if at.is_some() {
         doc["step_pairs"] = json!(
             "steps[k].pairs: every pair at the step's p, without the tightening (the \

@@ -78,7 +78,7 @@ fn the_values_at_the_breakpoints_are_the_tightening_free_solution() {
     // Without the request the document has no values at the breakpoints.
     let plain = contact_json_with(&sol, &PathJsonOptions::default()).unwrap();
     assert!(plain["steps"][0].get("pairs").is_none() && plain.get("step_pairs").is_none());
-    assert_eq!(plain["units"], serde_json::Value::Null);
+    assert!(plain.get("units").is_none() && plain.get("title").is_none());
 
     let dir = tempfile::tempdir().unwrap();
     let files = write_contact_csv_with(&sol, dir.path(), &options.about).unwrap();
