@@ -78,6 +78,7 @@ impl ReportArgs {
                 StressArg::Syy => unilateral_output::StressComponent::Syy,
             },
             title,
+            units: None,
         }
     }
 }

@@ -1170,3 +1170,312 @@ fn segment_pairs_are_drawn_at_their_point_on_the_segment() {
         }
     }
 }
+
+// ---- issue 14: tables of the whole path, units and provenance, one line for the files ----
+
+/// A beam on `m` frictional supports pressed by its weight (the oracle's fixture: the zone is
+/// exact for the beam), written as a contact-zone file with a title and units.
+fn beam_zone_file(
+    dir: &Path,
+    m: usize,
+    seed: u64,
+) -> (PathBuf, unilateral_oracle::fixtures::beam::BeamZone) {
+    let z = unilateral_oracle::fixtures::beam::beam_on_supports(m, seed);
+    let names: Vec<String> = (1..=m).map(|i| format!("\"s{i}\"")).collect();
+    let text = format!(
+        "title = \"beam on {m} supports\"\nunits = \"kN, mm\"\n\n[contact_zone]\nnames = [{}]\n\
+         friction = {:?}\nRnn = {:?}\nRtt = {:?}\n\n[load.constant]\nnormal = {:?}\n\n\
+         [load.variable]\nnormal = {:?}\ntangential = {:?}\n\n[solve]\ntightening = 0.0\n\
+         trace = \"end\"\n",
+        names.join(", "),
+        z.friction,
+        z.rnn,
+        z.rtt,
+        z.constant_normal,
+        z.variable_normal,
+        z.variable_tangential
+    );
+    let path = dir.join("beam.toml");
+    std::fs::write(&path, text).unwrap();
+    (path, z)
+}
+
+/// The columns of a CSV table by name (a unit in brackets after the name is allowed).
+fn csv_rows(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut lines = text.lines();
+    let head: Vec<String> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|c| c.split(" [").next().unwrap().to_string())
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    (head, rows)
+}
+
+/// `path.csv` and the JSON's `changes` of a zone with a constant load and several events,
+/// through the binary. Reference: at every breakpoint, brute-force enumeration of the 3m LCP
+/// (the oracle's exact rational solver, `x = q0 + p·d + M z` with `M`, `d` and `q0` from
+/// formulation.md §3) must hold a solution with the pairs' values (`x_t = (x_t+ − x_t−)/2`,
+/// `z_t = (z_t+ − z_t−)/2`); a pair that opens there has `x_n = 0`, one that closes `z_n = 0`,
+/// one that starts to slip `|x_t| = f·x_n` (the definitions of the events). One line on stderr
+/// names the files.
+#[test]
+fn path_csv_holds_every_pair_at_every_breakpoint() {
+    use unilateral_oracle::{
+        enumerate_parametric_exact, fixtures::frictional_lcp, rat, rat_matrix, rat_vec, to_f64,
+    };
+    let cmd = TestCommand::new(&["solve"]);
+    let m = 3;
+    let (file, z) = beam_zone_file(cmd.dir.path(), m, 7);
+    let cmd = cmd.arg(&file).args(&["--csv", "out", "--json", "r.json"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert_eq!(
+        out.stderr.trim_end(),
+        "wrote 3 files in out: pairs.csv, steps.csv, path.csv",
+        "one line for the files written"
+    );
+    // Exact products of the file's numbers: `f·Rnn` is then exactly `f` times `Rnn`, so an
+    // open pair's two friction rows agree (rounded products would leave no exact solution).
+    let (rnn, rtt, f) = (rat_matrix(&z.rnn), rat_matrix(&z.rtt), rat_vec(&z.friction));
+    let zero = rat_vec(&vec![0.0; m]);
+    let lcp = frictional_lcp(
+        &rnn,
+        &rtt,
+        &f,
+        &rat_vec(&z.variable_normal),
+        &rat_vec(&z.variable_tangential),
+    );
+    let q0 = frictional_lcp(&rnn, &rtt, &f, &rat_vec(&z.constant_normal), &zero).d;
+    let (head, rows) = csv_rows(&std::fs::read_to_string(cmd.path("out/path.csv")).unwrap());
+    let col = |name: &str| {
+        head.iter()
+            .position(|h| h == name)
+            .unwrap_or_else(|| panic!("{name}"))
+    };
+    let (c_step, c_p, c_pair, c_name) = (col("step"), col("p"), col("pair"), col("name"));
+    let (c_xn, c_xt, c_zn, c_zt, c_state) =
+        (col("x_n"), col("x_t"), col("z_n"), col("z_t"), col("state"));
+    let j = cmd.json("r.json");
+    let steps = j["steps"].as_array().unwrap();
+    assert!(
+        steps.len() >= 3,
+        "the fixture has several events: {}",
+        steps.len()
+    );
+    assert_eq!(rows.len(), steps.len() * m, "every pair at every step");
+    let (_, step_rows) = csv_rows(&std::fs::read_to_string(cmd.path("out/steps.csv")).unwrap());
+    for (k, (st, srow)) in steps.iter().zip(&step_rows).enumerate() {
+        let block = &rows[k * m..(k + 1) * m];
+        let p: f64 = block[0][c_p].parse().unwrap();
+        assert_eq!(
+            p,
+            st["p"].as_f64().unwrap(),
+            "full precision, as in the JSON"
+        );
+        assert_eq!(block[0][c_p], srow[1], "the step's p as in steps.csv");
+        // At a mechanism's limit load no solution exists beyond it, and the rounded `p_lim`
+        // may lie just beyond the exact one: that breakpoint is checked by its load only.
+        if j["status"] == "mechanism" && k + 1 == steps.len() {
+            assert_eq!(j["p_limit"].as_f64(), Some(p));
+            continue;
+        }
+        let sols = enumerate_parametric_exact(&lcp.m, &q0, &lcp.d, &rat(p));
+        let vals: Vec<[f64; 4]> = block
+            .iter()
+            .map(|r| [c_xn, c_xt, c_zn, c_zt].map(|c| r[c].parse::<f64>().unwrap()))
+            .collect();
+        let xs = vals
+            .iter()
+            .flat_map(|v| [v[0], v[1]])
+            .fold(1e-300, |a: f64, b| a.max(b.abs()));
+        let zs = vals
+            .iter()
+            .flat_map(|v| [v[2], v[3]])
+            .fold(1e-300, |a: f64, b| a.max(b.abs()));
+        let found = sols.iter().any(|s| {
+            let w: Vec<f64> = s.w.iter().map(to_f64).collect();
+            let zz: Vec<f64> = s.z.iter().map(to_f64).collect();
+            (0..m).all(|i| {
+                let want = [
+                    w[i],
+                    (w[m + i] - w[2 * m + i]) / 2.0,
+                    zz[i],
+                    (zz[m + i] - zz[2 * m + i]) / 2.0,
+                ];
+                (0..4).all(|c| {
+                    let scale = if c < 2 { xs } else { zs };
+                    (vals[i][c] - want[c]).abs() <= 1e-9 * scale
+                })
+            })
+        });
+        assert!(
+            found,
+            "step {}: {block:?} is no solution of the LCP at p = {p}",
+            k + 1
+        );
+        for (i, r) in block.iter().enumerate() {
+            assert_eq!(r[c_step], (k + 1).to_string());
+            assert_eq!(r[c_pair], (i + 1).to_string());
+            assert_eq!(r[c_name], format!("s{}", i + 1));
+            assert!(["open", "stick", "slip+", "slip-"].contains(&r[c_state].as_str()));
+        }
+        let changes = st["changes"].as_array().unwrap();
+        assert_eq!(changes.len(), st["events"].as_array().unwrap().len());
+        for (c, sentence) in changes.iter().zip(st["events"].as_array().unwrap()) {
+            let i = c["pair"].as_u64().unwrap() as usize - 1;
+            assert_eq!(c["name"], format!("s{}", i + 1));
+            assert!(sentence
+                .as_str()
+                .unwrap()
+                .starts_with(&format!("pair s{} ", i + 1)));
+            let [x_n, x_t, z_n, _] = vals[i];
+            match (c["what"].as_str().unwrap(), c["direction"].as_str()) {
+                ("opens", None) => assert!(x_n.abs() <= 1e-9 * xs, "{c}: x_n = {x_n}"),
+                ("closes", None) => assert!(z_n.abs() <= 1e-9 * zs, "{c}: z_n = {z_n}"),
+                ("slips", Some(d)) => {
+                    assert!(d == "+" || d == "-", "{c}");
+                    if !c["while_open"].as_bool().unwrap() {
+                        let limit = z.friction[i] * x_n;
+                        assert!(
+                            (x_t.abs() - limit).abs() <= 1e-9 * xs,
+                            "{c}: {x_t} vs {limit}"
+                        );
+                    }
+                }
+                ("sticks", None) => {}
+                other => panic!("unexpected change {other:?}"),
+            }
+        }
+    }
+}
+
+/// Every JSON document carries `program` (name and version) and `schema: 1`: the paper's path,
+/// a plain LCP, a load history. Reference: the package's own name and version.
+#[test]
+fn every_json_document_says_which_program_and_schema() {
+    for (args, file) in [
+        (vec!["solve", "EX", "--json", "o.json"], example1()),
+        (
+            vec!["lcp", "EX", "--json", "o.json"],
+            root().join("tests/data/good/lcp_small.toml"),
+        ),
+        (
+            vec!["solve", "EX", "--json", "o.json"],
+            root().join("tests/data/history/zone-cycle.toml"),
+        ),
+    ] {
+        let args: Vec<String> = args
+            .iter()
+            .map(|a| {
+                if *a == "EX" {
+                    file.display().to_string()
+                } else {
+                    a.to_string()
+                }
+            })
+            .collect();
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let cmd = TestCommand::new(&args);
+        let out = cmd.run();
+        assert_eq!(out.code, 0, "{args:?}: {}", out.stderr);
+        let j = cmd.json("o.json");
+        assert_eq!(j["program"]["name"], "unilateral", "{args:?}");
+        assert_eq!(j["program"]["version"], env!("CARGO_PKG_VERSION"));
+        assert_eq!(j["schema"], 1);
+    }
+}
+
+/// Numbers written plainly through the binary on the sheet pile wall: no `-0` field in any CSV
+/// table (the fixed wall base's rotation was `-0e0`), none in the summary or the report, at
+/// most 6 significant digits in the report's tables and the summary's loads. Reference: the
+/// rule itself, checked on every number written.
+#[test]
+fn numbers_are_written_plainly_through_the_binary() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .args(&["--csv", "csv", "--report", "rep"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert_eq!(
+        out.stderr.lines().count(),
+        2,
+        "one line per directory: {}",
+        out.stderr
+    );
+    assert!(out
+        .stderr
+        .starts_with("wrote 7 files in csv: pairs.csv, steps.csv, path.csv,"));
+    let negative_zero = |t: &str| {
+        t.trim_start_matches('-')
+            .chars()
+            .all(|c| c == '0' || c == '.' || c == 'e')
+            && t.starts_with('-')
+            && t.len() > 1
+    };
+    for f in std::fs::read_dir(cmd.path("csv")).unwrap() {
+        let f = f.unwrap().path();
+        let text = std::fs::read_to_string(&f).unwrap();
+        for field in text.lines().skip(1).flat_map(|l| l.split(',')) {
+            assert!(!negative_zero(field), "{}: {field}", f.display());
+        }
+    }
+    let digits = |t: &str| {
+        let mantissa = t.trim_start_matches('-').split('e').next().unwrap();
+        mantissa
+            .trim_start_matches(['0', '.'])
+            .chars()
+            .filter(char::is_ascii_digit)
+            .count()
+    };
+    for word in out.stdout.split_whitespace() {
+        assert!(
+            !negative_zero(word.trim_end_matches([',', ')'])),
+            "summary: {word}"
+        );
+    }
+    for line in out
+        .stdout
+        .lines()
+        .filter(|l| l.trim_start().starts_with(char::is_numeric))
+    {
+        let p = line.split_whitespace().nth(1).unwrap();
+        assert!(digits(p) <= 6, "a load for people: {line}");
+    }
+    let html = std::fs::read_to_string(cmd.path("rep/report.html")).unwrap();
+    let mut cells = 0;
+    for cell in html.split("<td class=\"n\">").skip(1) {
+        let v = cell.split('<').next().unwrap();
+        assert!(v.parse::<f64>().is_ok(), "{v}");
+        assert!(!negative_zero(v) && digits(v) <= 6, "report: {v}");
+        cells += 1;
+    }
+    assert!(
+        cells > 24 * 4,
+        "the pairs' table and the events' loads were checked: {cells}"
+    );
+}
+
+/// A contact-zone file may give `title` and `units` (as a structural model does); anything but
+/// a string there is bad input, named with its place. Reference: the file as written.
+#[test]
+fn a_contact_zone_file_may_give_its_title_and_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, _) = beam_zone_file(dir.path(), 3, 1);
+    let out = TestCommand::new(&["solve"]).arg(&file).run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let text = std::fs::read_to_string(&file)
+        .unwrap()
+        .replace("units = \"kN, mm\"", "units = 3");
+    std::fs::write(&file, text).unwrap();
+    let out = TestCommand::new(&["solve"]).arg(&file).run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(
+        out.stderr.contains("beam.toml:2:") && out.stderr.contains("units"),
+        "{}",
+        out.stderr
+    );
+}

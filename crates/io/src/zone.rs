@@ -24,9 +24,13 @@ pub struct ContactZoneProblem {
     /// The stages of the file's `[[history]]`, their factors indexed like the zone's load
     /// cases ([`ContactZone::cases`]); `None` without a history (the paper's single load path).
     pub history: Option<Vec<Stage>>,
+    /// The optional top-level `title` of the file.
+    pub title: Option<String>,
+    /// The optional top-level `units` of the file, as written (`"N, m"`: force, then length).
+    pub units: Option<String>,
 }
 
-const TOP_KEYS: &[&str] = &["contact_zone", "load", "solve", "history"];
+const TOP_KEYS: &[&str] = &["title", "units", "contact_zone", "load", "solve", "history"];
 const ZONE_KEYS: &[&str] = &["friction", "gap", "Rnn", "Rtt", "Rnt", "Rtn", "names"];
 const LOAD_PART_KEYS: &[&str] = &["normal", "tangential"];
 const SOLVE_KEYS: &[&str] = &[
@@ -45,7 +49,8 @@ const SOLVE_KEYS: &[&str] = &[
 /// `[load.constant]` (optional) and `[load.variable]` (required) with `normal` and/or
 /// `tangential` per-pair vectors (a missing one is zero); `[solve]` (optional) with
 /// `tightening`, `target`, `trace` (`"target"` or `"end"`), and the expert keys
-/// `pivot_tolerance` and `max_pivots`.
+/// `pivot_tolerance` and `max_pivots`; optional top-level strings `title` and `units` (as in a
+/// structural model: the writers label their outputs with them).
 ///
 /// With `[[history]]` stages (`history.md`), `[load.NAME]` may name any load case (each with
 /// `normal` and/or `tangential`; `[load.variable]` is then not required), the stages'
@@ -97,6 +102,12 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
     let (doc, root) = Doc::load(path, "a contact-zone problem")?;
     let top = doc.table(&root, "")?;
     top.check_keys(TOP_KEYS)?;
+    let text = |k: &str| -> Result<Option<String>, InputError> {
+        top.get(k)
+            .map(|n| doc.string(n, k).map(str::to_string))
+            .transpose()
+    };
+    let (title, units) = (text("title")?, text("units")?);
 
     let Some(cz) = top.table("contact_zone")? else {
         return Err(doc.err(
@@ -293,6 +304,8 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
         zone,
         settings,
         history,
+        title,
+        units,
     })
 }
 

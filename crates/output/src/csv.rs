@@ -1,35 +1,66 @@
-//! CSV tables: pairs and steps of a contact solution; displacements, reactions, end forces and
-//! plane stresses of a structural analysis. Every number is checked finite first.
+//! CSV tables: pairs, steps and the whole path of a contact solution; displacements,
+//! reactions, end forces and plane stresses of a structural analysis. Every number is checked
+//! finite first and written with full precision (the shortest text that reads back as the same
+//! number, never `-0e0`). With the file's units, the column names carry them (`x_n [N]`): a
+//! first comment line would not be read by pandas or a spreadsheet by default.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
 use unilateral_contact::ContactSolution;
 
-use crate::finite;
-use crate::json::dof_name;
+use crate::finite::{self, full as n};
+use crate::json::{breakpoint_pairs, dof_name, About, PathOutputError};
 
-/// Writes `pairs.csv` and `steps.csv` into `dir` (created if needed).
+/// The name of the long table of the whole path: every pair at every breakpoint.
+pub const PATH_CSV: &str = "path.csv";
+
+/// Writes `pairs.csv`, `steps.csv` and `path.csv` into `dir` (created if needed), without
+/// units in the column names ([`write_contact_csv_with`]).
 ///
 /// A non-finite number in the solution is an error carrying a [`NonFiniteOutput`]
-/// ([`NonFiniteOutput::in_io_error`]), and then nothing is written.
+/// ([`NonFiniteOutput::in_io_error`]), and then nothing is written; a solution that cannot be
+/// evaluated at a breakpoint is an error carrying the [`unilateral_contact::ContactError`].
 pub fn write_contact_csv(
     sol: &ContactSolution,
     dir: &Path,
 ) -> std::io::Result<Vec<std::path::PathBuf>> {
+    write_contact_csv_with(sol, dir, &About::default())
+}
+
+/// [`write_contact_csv`] with the file's units in the column names (`x_n [N]`, `z_n [m]`).
+///
+/// `path.csv` has one row per pair and breakpoint: `step,p,pair,name,x_n,x_t,z_n,z_t,state`,
+/// the solution without the tightening at each step's `p` (the same values as the JSON's
+/// `steps[k].pairs`), all of them computed in one walk along the path.
+pub fn write_contact_csv_with(
+    sol: &ContactSolution,
+    dir: &Path,
+    about: &About,
+) -> std::io::Result<Vec<std::path::PathBuf>> {
     finite::contact_solution(sol)?;
-    std::fs::create_dir_all(dir)?;
-    let mut pairs = String::from("pair,name,x_n,x_t,z_n,z_t,state\n");
+    let at = breakpoint_pairs(sol).map_err(|e| match e {
+        PathOutputError::NonFinite(n) => std::io::Error::from(n),
+        PathOutputError::Contact(c) => std::io::Error::other(c),
+    })?;
+    let columns = [
+        about.column("x_n", |f, _| f.into()),
+        about.column("x_t", |f, _| f.into()),
+        about.column("z_n", |_, l| l.into()),
+        about.column("z_t", |_, l| l.into()),
+    ]
+    .join(",");
+    let mut pairs = format!("pair,name,{columns},state\n");
     for (i, p) in sol.pairs.iter().enumerate() {
         let _ = writeln!(
             pairs,
-            "{},{},{:e},{:e},{:e},{:e},{}",
+            "{},{},{},{},{},{},{}",
             i + 1,
             csv_field(&p.name),
-            p.x_n,
-            p.x_t,
-            p.z_n,
-            p.z_t,
+            n(p.x_n),
+            n(p.x_t),
+            n(p.z_n),
+            n(p.z_t),
             p.state
         );
     }
@@ -38,9 +69,9 @@ pub fn write_contact_csv(
         let ev: Vec<String> = st.events.iter().map(|e| e.to_string()).collect();
         let _ = writeln!(
             steps,
-            "{},{:e},{},{},{},{},{}",
+            "{},{},{},{},{},{},{}",
             st.index,
-            st.p,
+            n(st.p),
             st.entering,
             st.leaving,
             csv_field(&ev.join("; ")),
@@ -48,11 +79,32 @@ pub fn write_contact_csv(
             st.index > sol.steps_before_target
         );
     }
+    let mut path = format!("step,p,pair,name,{columns},state\n");
+    for (st, ps) in sol.steps.iter().zip(&at) {
+        for (i, p) in ps.iter().flatten().enumerate() {
+            let _ = writeln!(
+                path,
+                "{},{},{},{},{},{},{},{},{}",
+                st.index,
+                n(st.p),
+                i + 1,
+                csv_field(&p.name),
+                n(p.x_n),
+                n(p.x_t),
+                n(p.z_n),
+                n(p.z_t),
+                p.state
+            );
+        }
+    }
+    std::fs::create_dir_all(dir)?;
     let a = dir.join("pairs.csv");
     let b = dir.join("steps.csv");
+    let c = dir.join(PATH_CSV);
     std::fs::write(&a, pairs)?;
     std::fs::write(&b, steps)?;
-    Ok(vec![a, b])
+    std::fs::write(&c, path)?;
+    Ok(vec![a, b, c])
 }
 
 fn csv_field(s: &str) -> String {
@@ -63,26 +115,43 @@ fn csv_field(s: &str) -> String {
     }
 }
 
-/// Writes the contact tables and one table per kind of structural result into `dir`.
+/// Writes the contact tables and one table per kind of structural result into `dir`, without
+/// units in the column names ([`write_structural_csv_with`]).
 pub fn write_structural_csv(
     a: &unilateral_analysis::Analysis,
     dir: &Path,
 ) -> std::io::Result<Vec<std::path::PathBuf>> {
+    write_structural_csv_with(a, dir, &About::default())
+}
+
+/// [`write_structural_csv`] with the file's units in the column names (`ux [m]`, `M1 [N·m]`,
+/// `sxx [N/m²]`; rotations in `rad`; the reactions' `value` is a force or a moment by its
+/// `dof`, so it stays unlabelled).
+pub fn write_structural_csv_with(
+    a: &unilateral_analysis::Analysis,
+    dir: &Path,
+    about: &About,
+) -> std::io::Result<Vec<std::path::PathBuf>> {
     finite::analysis(a)?;
-    let mut files = write_contact_csv(&a.solution, dir)?;
+    let mut files = write_contact_csv_with(&a.solution, dir, about)?;
     let Some(r) = &a.results else {
         return Ok(files);
     };
     let names = a.names();
-    let mut t = String::from("node,ux,uy,rz\n");
+    let force = |c: &str| about.column(c, |f, _| f.into());
+    let length = |c: &str| about.column(c, |_, l| l.into());
+    let moment = |c: &str| about.column(c, |f, l| format!("{f}·{l}"));
+    let stress = |c: &str| about.column(c, |f, l| format!("{f}/{l}²"));
+    let rad = |c: &str| about.column(c, |_, _| "rad".into());
+    let mut t = format!("node,{},{},{}\n", length("ux"), length("uy"), rad("rz"));
     for (i, d) in r.displacements.iter().enumerate() {
         let _ = writeln!(
             t,
-            "{},{:e},{:e},{:e}",
+            "{},{},{},{}",
             csv_field(&names.node(unilateral_fem::NodeId(i))),
-            d[0],
-            d[1],
-            d[2]
+            n(d[0]),
+            n(d[1]),
+            n(d[2])
         );
     }
     files.push(write_table(dir, "displacements.csv", t)?);
@@ -90,43 +159,59 @@ pub fn write_structural_csv(
     for x in &r.reactions {
         let _ = writeln!(
             t,
-            "{},{},{:e}",
+            "{},{},{}",
             csv_field(&names.node(x.node)),
             csv_field(&dof_name(&x.dof)),
-            x.value
+            n(x.value)
         );
     }
     files.push(write_table(dir, "reactions.csv", t)?);
-    let mut t = String::from("element,N1,V1,M1,N2,V2,M2\n");
+    let mut t = format!(
+        "element,{},{},{},{},{},{}\n",
+        force("N1"),
+        force("V1"),
+        moment("M1"),
+        force("N2"),
+        force("V2"),
+        moment("M2")
+    );
     for l in &r.lines {
         let f = l.end_forces;
         let _ = writeln!(
             t,
-            "{},{:e},{:e},{:e},{:e},{:e},{:e}",
+            "{},{},{},{},{},{},{}",
             csv_field(&names.element(l.element)),
-            f[0],
-            f[1],
-            f[2],
-            f[3],
-            f[4],
-            f[5]
+            n(f[0]),
+            n(f[1]),
+            n(f[2]),
+            n(f[3]),
+            n(f[4]),
+            n(f[5])
         );
     }
     files.push(write_table(dir, "frame_end_forces.csv", t)?);
-    let mut t = String::from("element,gauss_point,x,y,sxx,syy,txy,szz\n");
+    let mut t = format!(
+        "element,gauss_point,{},{},{},{},{},{}\n",
+        length("x"),
+        length("y"),
+        stress("sxx"),
+        stress("syy"),
+        stress("txy"),
+        stress("szz")
+    );
     for pl in &r.planes {
         for (g, (xy, st)) in pl.gauss_points.iter().zip(&pl.stress).enumerate() {
             let _ = writeln!(
                 t,
-                "{},{},{:e},{:e},{:e},{:e},{:e},{:e}",
+                "{},{},{},{},{},{},{},{}",
                 csv_field(&names.element(pl.element)),
                 g + 1,
-                xy[0],
-                xy[1],
-                st[0],
-                st[1],
-                st[2],
-                st[3]
+                n(xy[0]),
+                n(xy[1]),
+                n(st[0]),
+                n(st[1]),
+                n(st[2]),
+                n(st[3])
             );
         }
     }

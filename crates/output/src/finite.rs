@@ -39,6 +39,47 @@ impl From<NonFiniteOutput> for io::Error {
     }
 }
 
+/// A number for files read by programs (CSV): full precision, the shortest text that reads back
+/// as the same `f64`, in exponent form (`1.5e-3`), and a negative zero as `0e0`.
+pub(crate) fn full(v: f64) -> String {
+    if v == 0.0 {
+        "0e0".into()
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// A number for people (the summary, the report): 6 significant digits, plain between 1e-4
+/// and 1e6 and in exponent form outside (`1.23457e7`), trailing zeros dropped, and never `-0`.
+pub(crate) fn plain(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return if v == 0.0 { "0".into() } else { v.to_string() };
+    }
+    fn trim(s: &str) -> &str {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            s
+        }
+    }
+    // The exponent after rounding to 6 digits (999999.7 is 1e6, written in exponent form).
+    let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    let e = rounded.abs().log10().floor() as i32;
+    let s = if (-4..6).contains(&e) {
+        let d = (5 - e) as usize;
+        trim(&format!("{v:.d$}")).to_string()
+    } else {
+        let s = format!("{v:.5e}");
+        let (m, x) = s.split_once('e').unwrap_or((&s, "0"));
+        format!("{}e{x}", trim(m))
+    };
+    if s == "-0" {
+        "0".into()
+    } else {
+        s
+    }
+}
+
 /// `Ok` if `v` is finite, else the error naming `field` (built only on failure).
 pub(crate) fn finite(v: f64, field: impl FnOnce() -> String) -> Result<(), NonFiniteOutput> {
     if v.is_finite() {
@@ -217,6 +258,33 @@ pub(crate) fn tableaux(ts: &[Tableau]) -> Result<(), NonFiniteOutput> {
 #[cfg(test)]
 mod tests {
     use std::path::Path;
+
+    /// Hand-written expectations: 6 significant digits for people, the shortest round-trip
+    /// text for programs, no negative zero in either.
+    #[test]
+    fn numbers_are_written_plainly() {
+        use super::{full, plain};
+        for (v, want) in [
+            (0.0, "0"),
+            (-0.0, "0"),
+            (1.0, "1"),
+            (-1.5, "-1.5"),
+            (213518.46, "213518"),
+            (1562.634, "1562.63"),
+            (0.000123456789, "0.000123457"),
+            (-2.5e-7, "-2.5e-7"),
+            (12345678.0, "1.23457e7"),
+            (999999.7, "1e6"),
+            (1e-300, "1e-300"),
+        ] {
+            assert_eq!(plain(v), want, "{v:e}");
+        }
+        assert_eq!(full(-0.0), "0e0");
+        assert_eq!(full(0.1), "1e-1");
+        for v in [0.1, -1.0 / 3.0, 1e-300, 6.02214076e23] {
+            assert_eq!(full(v).parse::<f64>().unwrap(), v, "round trip");
+        }
+    }
 
     use unilateral_io::{read_contact_zone, read_lcp};
 

@@ -3,10 +3,136 @@
 //! no `null`, `NaN` or `inf` is ever written.
 
 use serde_json::{json, Value};
-use unilateral_contact::{ContactSolution, Outcome};
+use unilateral_contact::{ContactError, ContactSolution, Outcome, PairResult};
 use unilateral_lcp::{LcpSolution, Residual, Tableau};
 
 use crate::finite::{self, NonFiniteOutput};
+
+/// The version of the layout of the JSON documents (`schema` in every document): raised when a
+/// key changes its meaning or disappears, not when one is added.
+pub const SCHEMA: u64 = 1;
+
+/// What the problem file says about itself: its `title` and `units`, carried into the outputs
+/// (the JSON documents, the CSV column names, the summary, the report).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct About {
+    /// The file's `title`.
+    pub title: Option<String>,
+    /// The file's `units`, as written (`"N, m"`: the force, then the length).
+    pub units: Option<String>,
+}
+
+impl About {
+    /// The force and length units of [`About::units`]: its first two comma-separated words
+    /// (`"N, m, K"` → `("N", "m")`); `None` unless both are there and non-empty, and then no
+    /// column is labelled (the units are still written as given).
+    pub fn force_length(&self) -> Option<(&str, &str)> {
+        let mut words = self.units.as_deref()?.split(',').map(str::trim);
+        match (words.next(), words.next()) {
+            (Some(f), Some(l)) if !f.is_empty() && !l.is_empty() => Some((f, l)),
+            _ => None,
+        }
+    }
+
+    /// `name [unit]` when the unit is known, else `name`.
+    pub(crate) fn column(&self, name: &str, unit: impl FnOnce(&str, &str) -> String) -> String {
+        match self.force_length() {
+            Some((f, l)) => format!("{name} [{}]", unit(f, l)),
+            None => name.to_string(),
+        }
+    }
+}
+
+/// Options of the JSON document of the paper's load path ([`contact_json_with`],
+/// [`structural_json_with`]).
+#[derive(Debug, Clone, Default)]
+pub struct PathJsonOptions {
+    /// Write the values of every pair at every breakpoint (`steps[k].pairs`), computed without
+    /// the tightening in one walk along the path ([`ContactSolution::at_many`]).
+    pub breakpoints: bool,
+    /// The file's title and units.
+    pub about: About,
+}
+
+/// Why a table of the whole path could not be written: a number that is not finite (the
+/// program's fault), or the solution could not be evaluated at a breakpoint.
+#[derive(Debug, thiserror::Error)]
+pub enum PathOutputError {
+    /// A number that is not finite.
+    #[error(transparent)]
+    NonFinite(#[from] NonFiniteOutput),
+    /// The solution at a breakpoint leaves the floating-point range, or the engine refused
+    /// the path.
+    #[error("the values at the breakpoints of the load path could not be computed: {0}")]
+    Contact(#[from] ContactError),
+}
+
+/// `program` (name and version) and `schema` added to a JSON document (when it is an object
+/// and does not have them yet), and every negative zero written as `0.0`: what every document
+/// of the program carries. The command line passes every document it writes through it.
+pub fn with_provenance(mut doc: Value) -> Value {
+    plain_zeros(&mut doc);
+    if let Some(obj) = doc.as_object_mut() {
+        obj.entry("program").or_insert_with(
+            || json!({ "name": "unilateral", "version": env!("CARGO_PKG_VERSION") }),
+        );
+        obj.entry("schema").or_insert_with(|| json!(SCHEMA));
+    }
+    doc
+}
+
+/// Every `-0.0` of a document as `0.0` (the same number, without a sign a reader would
+/// misread).
+fn plain_zeros(v: &mut Value) {
+    match v {
+        Value::Number(n) if n.is_f64() && n.as_f64() == Some(0.0) => *v = json!(0.0),
+        Value::Array(a) => a.iter_mut().for_each(plain_zeros),
+        Value::Object(o) => o.values_mut().for_each(plain_zeros),
+        _ => {}
+    }
+}
+
+/// The pairs of one load as JSON (1-based `pair`, name, forces, displacements, state).
+pub(crate) fn pairs_json(ps: &[PairResult]) -> Value {
+    Value::Array(
+        ps.iter()
+            .enumerate()
+            .map(|(i, p)| {
+                json!({
+                    "pair": i + 1,
+                    "name": p.name,
+                    "x_n": p.x_n,
+                    "x_t": p.x_t,
+                    "z_n": p.z_n,
+                    "z_t": p.z_t,
+                    "state": p.state.as_str(),
+                })
+            })
+            .collect(),
+    )
+}
+
+/// The solutions without the tightening at every breakpoint of the path (`None` where a load
+/// is not on it), in one walk along the path, each number checked finite.
+pub(crate) fn breakpoint_pairs(
+    sol: &ContactSolution,
+) -> Result<Vec<Option<Vec<PairResult>>>, PathOutputError> {
+    let loads: Vec<f64> = sol.steps.iter().map(|s| s.p).collect();
+    let at = sol.at_many(&loads)?;
+    let mut out = Vec::with_capacity(at.len());
+    for (st, point) in sol.steps.iter().zip(at) {
+        let pairs = point.map(|(pairs, _)| pairs);
+        for (i, p) in pairs.iter().flatten().enumerate() {
+            let at = |what: &str| format!("steps[{}].pairs[{}].{what}", st.index, i + 1);
+            finite::finite(p.x_n, || at("x_n"))?;
+            finite::finite(p.x_t, || at("x_t"))?;
+            finite::finite(p.z_n, || at("z_n"))?;
+            finite::finite(p.z_t, || at("z_t"))?;
+        }
+        out.push(pairs);
+    }
+    Ok(out)
+}
 
 /// The JSON value of a residual.
 pub fn residual_json(r: Option<&Residual>) -> Result<Value, NonFiniteOutput> {
@@ -27,8 +153,33 @@ fn residual_json_unchecked(r: Option<&Residual>) -> Value {
     }
 }
 
-/// The result document of a contact solve (`interfaces.md`, "Result JSON").
+/// The result document of a contact solve (`interfaces.md`, "Result JSON"), without the values
+/// at the breakpoints and without the file's title and units ([`contact_json_with`]).
 pub fn contact_json(sol: &ContactSolution) -> Result<Value, NonFiniteOutput> {
+    path_document(sol, None, &About::default())
+}
+
+/// The result document of a contact solve with its options: the file's `title` and `units`
+/// and, on request, `steps[k].pairs`, the values of every pair at every breakpoint without
+/// the tightening (labelled so in `step_pairs`).
+pub fn contact_json_with(
+    sol: &ContactSolution,
+    options: &PathJsonOptions,
+) -> Result<Value, PathOutputError> {
+    finite::contact_solution(sol)?;
+    let at = if options.breakpoints {
+        Some(breakpoint_pairs(sol)?)
+    } else {
+        None
+    };
+    path_document(sol, at.as_deref(), &options.about).map_err(PathOutputError::from)
+}
+
+fn path_document(
+    sol: &ContactSolution,
+    at: Option<&[Option<Vec<PairResult>>]>,
+    about: &About,
+) -> Result<Value, NonFiniteOutput> {
     finite::contact_solution(sol)?;
     let p_limit = match &sol.outcome {
         Outcome::Mechanism { p_limit, .. } => json!(p_limit),
@@ -46,35 +197,34 @@ pub fn contact_json(sol: &ContactSolution) -> Result<Value, NonFiniteOutput> {
     let steps: Vec<Value> = sol
         .steps
         .iter()
-        .map(|s| {
-            json!({
+        .enumerate()
+        .map(|(k, s)| {
+            let mut step = json!({
                 "step": s.index,
                 "p": s.p,
                 "entering": s.entering,
                 "leaving": s.leaving,
                 "events": s.events.iter().map(|e| e.to_string()).collect::<Vec<_>>(),
+                "changes": s.events.iter().map(|e| {
+                    let (what, direction) = crate::history::change_word(e.kind);
+                    json!({
+                        "pair": e.pair + 1,
+                        "name": e.name,
+                        "what": what,
+                        "direction": direction,
+                        "while_open": e.while_open,
+                    })
+                }).collect::<Vec<_>>(),
                 "turning": s.turning,
                 "beyond_target": s.index > sol.steps_before_target,
-            })
+            });
+            if let Some(at) = at {
+                step["pairs"] = at[k].as_deref().map_or(Value::Null, pairs_json);
+            }
+            step
         })
         .collect();
-    let pairs: Vec<Value> = sol
-        .pairs
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            json!({
-                "pair": i + 1,
-                "name": p.name,
-                "x_n": p.x_n,
-                "x_t": p.x_t,
-                "z_n": p.z_n,
-                "z_t": p.z_t,
-                "state": p.state.as_str(),
-            })
-        })
-        .collect();
-    Ok(json!({
+    let mut doc = json!({
         "status": sol.outcome.status(),
         "reading": sol.outcome.reading(sol.settings.target),
         "p": sol.p,
@@ -88,11 +238,24 @@ pub fn contact_json(sol: &ContactSolution) -> Result<Value, NonFiniteOutput> {
         "tightening_pivots": sol.tightening_pivots,
         "pivots": sol.steps.len(),
         "steps": steps,
-        "pairs": pairs,
+        "pairs": pairs_json(&sol.pairs),
         "mechanism": mechanism,
         "residual": residual_json_unchecked(sol.residual.as_ref()),
         "notes": sol.notes,
-    }))
+    });
+    // The file's title and units, when it gives them.
+    for (key, v) in [("title", &about.title), ("units", &about.units)] {
+        if let Some(v) = v {
+            doc[key] = json!(v);
+        }
+    }
+    if at.is_some() {
+        doc["step_pairs"] = json!(
+            "steps[k].pairs: every pair at the step's p, without the tightening (the \
+             tightening-free solution on the traced path's basis); null where p is not on it"
+        );
+    }
+    Ok(with_provenance(doc))
 }
 
 /// The result document of a plain LCP solve.
@@ -106,7 +269,7 @@ pub fn lcp_json(sol: &LcpSolution) -> Result<Value, NonFiniteOutput> {
         ),
         None => (Value::Null, Value::Null, Value::Null),
     };
-    Ok(json!({
+    Ok(with_provenance(json!({
         "status": sol.status.as_str(),
         "z": z,
         "w": w,
@@ -114,7 +277,7 @@ pub fn lcp_json(sol: &LcpSolution) -> Result<Value, NonFiniteOutput> {
         "residual": r,
         "strategy": format!("{:?}", sol.strategy),
         "attempts": sol.attempts,
-    }))
+    })))
 }
 
 /// The tableaux as JSON (entries by row).
@@ -155,13 +318,27 @@ pub(crate) fn dof_name(d: &unilateral_fem::SupportDof) -> String {
 /// displacements, reactions, frame end forces, plane-element stresses and the equilibrium check.
 pub fn structural_json(a: &unilateral_analysis::Analysis) -> Result<Value, NonFiniteOutput> {
     finite::analysis(a)?;
-    let mut doc = contact_json(&a.solution)?;
+    let doc = contact_json(&a.solution)?;
+    Ok(with_results(a, doc))
+}
+
+/// [`structural_json`] with the options of [`contact_json_with`].
+pub fn structural_json_with(
+    a: &unilateral_analysis::Analysis,
+    options: &PathJsonOptions,
+) -> Result<Value, PathOutputError> {
+    finite::analysis(a)?;
+    let doc = contact_json_with(&a.solution, options)?;
+    Ok(with_results(a, doc))
+}
+
+fn with_results(a: &unilateral_analysis::Analysis, mut doc: Value) -> Value {
     let Some(r) = &a.results else {
-        return Ok(doc);
+        return doc;
     };
     let obj = doc.as_object_mut().expect("an object");
     obj.extend(crate::history_structure::results_json(a.names(), r));
-    Ok(doc)
+    with_provenance(doc)
 }
 
 /// The `timings` object of a result document: the seconds of each part of the run that

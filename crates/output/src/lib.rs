@@ -42,18 +42,23 @@ pub mod svg;
 mod vtk;
 mod zone_file;
 
-pub use csv::{write_contact_csv, write_structural_csv};
+pub use csv::{
+    write_contact_csv, write_contact_csv_with, write_structural_csv, write_structural_csv_with,
+    PATH_CSV,
+};
 pub use finite::NonFiniteOutput;
 pub use json::{
-    contact_json, lcp_json, residual_json, structural_json, tableaux_json, timings_json,
-    with_timings,
+    contact_json, contact_json_with, lcp_json, residual_json, structural_json,
+    structural_json_with, tableaux_json, timings_json, with_provenance, with_timings, About,
+    PathJsonOptions, PathOutputError, SCHEMA,
 };
 pub use report::{
     report_html, write_path_report, write_report, write_report_for, write_structural_report,
     Pictures,
 };
 pub use summary::{
-    contact_summary, lcp_summary, structural_summary, tableau_text, timings_summary,
+    contact_summary, contact_summary_with, lcp_summary, structural_summary,
+    structural_summary_with, tableau_text, timings_summary,
 };
 pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
 pub use zone_file::zone_toml;
@@ -105,6 +110,8 @@ pub struct ReportOptions {
     pub stress: StressComponent,
     /// A title for the report (for instance the model file's `title`).
     pub title: Option<String>,
+    /// The file's `units` (`"N, m"`): in the report's title and the headings of its tables.
+    pub units: Option<String>,
 }
 
 /// Errors of writing a report.

@@ -142,11 +142,25 @@ pub fn report_html(
     options: &ReportOptions,
     pics: &Pictures<'_>,
 ) -> String {
+    use crate::finite::plain;
     use svg::esc;
     let title = options
         .title
         .clone()
         .unwrap_or_else(|| "unilateral — contact analysis report".into());
+    let title = match &options.units {
+        Some(u) => format!("{title} ({u})"),
+        None => title,
+    };
+    // `[N]` after a force's heading, `[m]` after a length's, when the units are known.
+    let about = crate::json::About {
+        title: None,
+        units: options.units.clone(),
+    };
+    let unit = |force: bool| match about.force_length() {
+        Some((f, l)) => format!(" [{}]", esc(if force { f } else { l })),
+        None => String::new(),
+    };
     let mut h = String::new();
     let _ = write!(
         h,
@@ -170,6 +184,9 @@ pub fn report_html(
             ),
         );
     }
+    if let Some(u) = &options.units {
+        row("Units", u.clone());
+    }
     row("Contact pairs", sol.lcp.pairs.to_string());
     row(
         "Status",
@@ -181,12 +198,10 @@ pub fn report_html(
     );
     row(
         "Reported load p",
-        sol.p
-            .map(|p| format!("{p}"))
-            .unwrap_or_else(|| "none".into()),
+        sol.p.map(plain).unwrap_or_else(|| "none".into()),
     );
-    row("Target p*", format!("{}", sol.settings.target));
-    row("Tightening c", format!("{}", sol.tightening));
+    row("Target p*", plain(sol.settings.target));
+    row("Tightening c", plain(sol.tightening));
     row(
         "Steps of the load path",
         format!(
@@ -208,19 +223,19 @@ pub fn report_html(
         if let Some(d) = ext.displacement {
             row(
                 "Largest displacement",
-                format!("{} at node {}", svg::num(d.value), d.name),
+                format!("{} at node {}", plain(d.value), d.name),
             );
         }
         if let Some(m) = ext.moment {
             row(
                 "Largest |M|",
-                format!("{} in element {}", svg::num(m.value), m.name),
+                format!("{} in element {}", plain(m.value.abs()), m.name),
             );
         }
         if let Some(s) = ext.von_mises {
             row(
                 "Largest von Mises stress",
-                format!("{} in element {}", svg::num(s.value), s.name),
+                format!("{} in element {}", plain(s.value), s.name),
             );
         }
     }
@@ -264,7 +279,7 @@ pub fn report_html(
             h,
             "<tr><td class=\"n\">{}</td><td class=\"n\">{}</td><td>{}</td><td>{}</td><td>{}{}</td></tr>",
             st.index,
-            st.p,
+            plain(st.p),
             esc(&st.entering),
             esc(&st.leaving),
             esc(&ev),
@@ -278,15 +293,17 @@ pub fn report_html(
     // pairs
     let _ = writeln!(
         h,
-        "<h2 id=\"pairs\">Pairs at p = {}</h2>\n<table class=\"pairs\">\n<tr><th>pair</th><th>x<sub>n</sub> (compression +)</th><th>x<sub>t</sub></th><th>z<sub>n</sub> (opening +)</th><th>z<sub>t</sub></th><th>state</th></tr>",
-        sol.p.map(|p| p.to_string()).unwrap_or_else(|| "—".into())
+        "<h2 id=\"pairs\">Pairs at p = {}</h2>\n<table class=\"pairs\">\n<tr><th>pair</th><th>x<sub>n</sub>{f} (compression +)</th><th>x<sub>t</sub>{f}</th><th>z<sub>n</sub>{l} (opening +)</th><th>z<sub>t</sub>{l}</th><th>state</th></tr>",
+        sol.p.map(plain).unwrap_or_else(|| "—".into()),
+        f = unit(true),
+        l = unit(false),
     );
     for r in &sol.pairs {
         let (c, _) = state_style(r.state);
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td class=\"n\">{:.6e}</td><td class=\"n\">{:.6e}</td><td class=\"n\">{:.6e}</td><td class=\"n\">{:.6e}</td><td><span class=\"sw\" style=\"background:{c}\"></span>{}</td></tr>",
-            esc(&r.name), r.x_n, r.x_t, r.z_n, r.z_t, r.state
+            "<tr><td>{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td class=\"n\">{}</td><td><span class=\"sw\" style=\"background:{c}\"></span>{}</td></tr>",
+            esc(&r.name), plain(r.x_n), plain(r.x_t), plain(r.z_n), plain(r.z_t), r.state
         );
     }
     h.push_str("</table>\n");

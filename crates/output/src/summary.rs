@@ -9,27 +9,39 @@ use unilateral_lcp::{LcpSolution, Tableau};
 
 use crate::finite::{self, NonFiniteOutput};
 
+use crate::json::About;
+
+/// Numbers for people: 6 significant digits, never `-0`.
 fn fmt_num(v: f64) -> String {
-    if v == 0.0 {
-        "0".into()
-    } else if v.abs() >= 1e-4 && v.abs() < 1e7 {
-        let s = format!("{v:.6}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s == "-0" {
-            "0".into()
-        } else {
-            s.to_string()
-        }
-    } else {
-        format!("{v:.4e}")
-    }
+    finite::plain(v)
 }
 
 /// The human-readable summary of a contact solve.
 pub fn contact_summary(sol: &ContactSolution, title: &str) -> Result<String, NonFiniteOutput> {
+    contact_summary_with(sol, title, &About::default())
+}
+
+/// The header of a summary: the program's `title` line, then the file's title (unless the
+/// line already holds it) and units.
+fn header(s: &mut String, title: &str, about: &About) {
+    let _ = writeln!(s, "{title}");
+    if let Some(t) = about.title.as_deref().filter(|t| !title.contains(t)) {
+        let _ = writeln!(s, "title: {t}");
+    }
+    if let Some(u) = &about.units {
+        let _ = writeln!(s, "units: {u}");
+    }
+}
+
+/// [`contact_summary`] with the file's title and units in its header.
+pub fn contact_summary_with(
+    sol: &ContactSolution,
+    title: &str,
+    about: &About,
+) -> Result<String, NonFiniteOutput> {
     finite::contact_solution(sol)?;
     let mut s = String::new();
-    let _ = writeln!(s, "{title}");
+    header(&mut s, title, about);
     let _ = writeln!(
         s,
         "status: {} — {}",
@@ -244,8 +256,17 @@ pub fn structural_summary(
     a: &unilateral_analysis::Analysis,
     title: &str,
 ) -> Result<String, NonFiniteOutput> {
+    structural_summary_with(a, title, &About::default())
+}
+
+/// [`structural_summary`] with the file's title and units in its header.
+pub fn structural_summary_with(
+    a: &unilateral_analysis::Analysis,
+    title: &str,
+    about: &About,
+) -> Result<String, NonFiniteOutput> {
     finite::analysis(a)?;
-    let mut s = contact_summary(&a.solution, title)?;
+    let mut s = contact_summary_with(&a.solution, title, about)?;
     if let (Some(r), Some(ex)) = (&a.results, a.extremes()) {
         let _ = writeln!(s, "\nstructure at p = {}:", fmt_num(r.p));
         if let Some(d) = &ex.displacement {
@@ -259,12 +280,13 @@ pub fn structural_summary(
                 fmt_num(uy)
             );
         }
+        // The magnitude under a `|…|` label (its sign is the element's convention, not a size).
         let line = |label: &str, v: &Option<unilateral_analysis::ElementValue>, s: &mut String| {
             if let Some(v) = v {
                 let _ = writeln!(
                     s,
                     "  {label:<22} {:>12} in element {} at s = {}",
-                    fmt_num(v.value),
+                    fmt_num(v.value.abs()),
                     v.name,
                     fmt_num(v.at[0])
                 );

@@ -3,4 +3,5 @@
 
 mod examples;
 mod history;
+mod units;
 mod vtk;
