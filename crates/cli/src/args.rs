@@ -68,7 +68,11 @@ impl ReportArgs {
         Ok(())
     }
 
-    pub(crate) fn options(&self, title: Option<String>) -> unilateral_output::ReportOptions {
+    pub(crate) fn options(
+        &self,
+        title: Option<String>,
+        units: Option<String>,
+    ) -> unilateral_output::ReportOptions {
         unilateral_output::ReportOptions {
             pairs: self.report_pairs.clone(),
             moments: self.moments,
@@ -78,7 +82,7 @@ impl ReportArgs {
                 StressArg::Syy => unilateral_output::StressComponent::Syy,
             },
             title,
-            units: None,
+            units,
         }
     }
 }
@@ -124,6 +128,10 @@ pub(crate) struct SolveArgs {
     /// Write the result document as JSON to this file (`-` for stdout).
     #[arg(long, value_name = "OUT.json")]
     pub(crate) json: Option<PathBuf>,
+    /// In the JSON document, every pair at every step of the load path (`steps[k].pairs`,
+    /// without the tightening).
+    #[arg(long)]
+    pub(crate) json_breakpoints: bool,
     /// Write CSV tables (pairs.csv, steps.csv) into this directory.
     #[arg(long, value_name = "DIR")]
     pub(crate) csv: Option<PathBuf>,

@@ -92,6 +92,19 @@ fn files_line(files: &[PathBuf], dir: &Path) -> Option<String> {
     ))
 }
 
+/// A table of the whole path that could not be made: a number that is not finite (ours), or
+/// the solution at a breakpoint beyond the floating-point range (the user's extreme values, as
+/// at the reported load) or refused by the engine (ours).
+pub(crate) fn path_output_failure(e: unilateral_output::PathOutputError) -> Failure {
+    use unilateral_contact::ContactError;
+    use unilateral_output::PathOutputError as E;
+    match e {
+        E::NonFinite(n) => Failure::Internal(n.to_string()),
+        E::Contact(ContactError::OutOfRange(_)) => Failure::Input(e.to_string()),
+        E::Contact(_) => Failure::Internal(e.to_string()),
+    }
+}
+
 /// Writes a JSON document (`-`: stdout), with `program`, `schema` and no negative zero
 /// ([`unilateral_output::with_provenance`]): every document the program writes goes through
 /// here.

@@ -1479,3 +1479,29 @@ fn a_contact_zone_file_may_give_its_title_and_units() {
         out.stderr
     );
 }
+
+/// The file's units and title reach the outputs through the command line, and
+/// `--json-breakpoints` puts every pair's values at every step into the JSON (Example 3:
+/// `units = "N, m"`, 39 steps, 24 pairs).
+#[test]
+fn units_title_and_breakpoints_through_the_command_line() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .args(&["--json", "out.json", "--json-breakpoints", "--csv", "csv"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(out.stdout.contains("units: N, m"), "{}", out.stdout);
+    let j = cmd.json("out.json");
+    assert_eq!(j["units"], "N, m");
+    assert!(j["title"].as_str().unwrap().starts_with("Example 3"));
+    let steps = j["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 39);
+    assert!(steps
+        .iter()
+        .all(|s| s["pairs"].as_array().map(|p| p.len()) == Some(24)));
+    let header = std::fs::read_to_string(cmd.path("csv/path.csv")).unwrap();
+    assert!(
+        header.lines().next().unwrap().contains("x_n [N]"),
+        "{header}"
+    );
+}

@@ -126,7 +126,7 @@ pub(crate) fn zone(
         args,
         timings,
         || unilateral_output::history_summary(&h, &title),
-        || unilateral_output::history_document(&h),
+        || unilateral_output::history_document(&h).map_err(Failure::from),
         || {
             if let Some(dir) = &args.csv {
                 let files = unilateral_output::history_csv(&h).map_err(Failure::from)?;
@@ -221,7 +221,7 @@ pub(crate) fn structural(
         args,
         timings,
         || unilateral_output::history_summary(&a.history, &title),
-        || unilateral_output::history_structural_document(&a),
+        || unilateral_output::history_structural_document(&a).map_err(Failure::from),
         || {
             if let Some(dir) = &args.csv {
                 let files = unilateral_output::history_csv(&a.history).map_err(Failure::from)?;

@@ -17,7 +17,7 @@ use crate::failure::{
     analysis_failure, contact_failure, input_failure, outcome_failure, report_failure, Failure,
     ZoneOrigin,
 };
-use crate::output::{report_files, write_json, Progress};
+use crate::output::{path_output_failure, report_files, write_json, Progress};
 use unilateral_output::{timings_summary, with_timings};
 
 pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
@@ -97,7 +97,7 @@ pub(crate) fn write_outputs(
     args: &SolveArgs,
     mut timings: Timings,
     summary: impl FnOnce() -> Result<String, unilateral_output::NonFiniteOutput>,
-    json: impl FnOnce() -> Result<serde_json::Value, unilateral_output::NonFiniteOutput>,
+    json: impl FnOnce() -> Result<serde_json::Value, Failure>,
     files: impl FnOnce() -> Result<(), Failure>,
 ) -> Result<(), Failure> {
     let started = Instant::now();
@@ -110,9 +110,7 @@ pub(crate) fn write_outputs(
         timings.write = Some(started.elapsed());
     }
     let json_written = match &args.json {
-        Some(out) => json()
-            .map_err(Failure::from)
-            .and_then(|doc| write_json(out, &with_timings(doc, &timings))),
+        Some(out) => json().and_then(|doc| write_json(out, &with_timings(doc, &timings))),
         None => Ok(()),
     };
     written.and(json_written)
@@ -148,17 +146,30 @@ fn contact_zone(
         file.display(),
         problem.zone.pairs()
     );
+    let about = unilateral_output::About {
+        title: problem.title.clone(),
+        units: problem.units.clone(),
+    };
+    let json_options = unilateral_output::PathJsonOptions {
+        breakpoints: args.json_breakpoints,
+        about: about.clone(),
+    };
     write_outputs(
         args,
         timings,
-        || unilateral_output::contact_summary(&sol, &title),
-        || unilateral_output::contact_json(&sol),
+        || unilateral_output::contact_summary_with(&sol, &title, &about),
+        || unilateral_output::contact_json_with(&sol, &json_options).map_err(path_output_failure),
         || {
             if let Some(dir) = &args.csv {
-                report_files(unilateral_output::write_contact_csv(&sol, dir), dir)?;
+                report_files(
+                    unilateral_output::write_contact_csv_with(&sol, dir, &about),
+                    dir,
+                )?;
             }
             if let Some(dir) = &args.report {
-                let options = args.report_args.options(None);
+                let options = args
+                    .report_args
+                    .options(problem.title.clone(), problem.units.clone());
                 let files = unilateral_output::write_path_report(&sol, dir, &options)
                     .map_err(|e| report_failure(&e))?;
                 report_files(Ok(files), dir)?;
@@ -215,20 +226,33 @@ fn structural(
         problem.model.names().elements.len(),
         a.zone.pairs()
     );
+    let about = unilateral_output::About {
+        title: problem.title.clone(),
+        units: problem.units.clone(),
+    };
+    let json_options = unilateral_output::PathJsonOptions {
+        breakpoints: args.json_breakpoints,
+        about: about.clone(),
+    };
     write_outputs(
         args,
         timings,
-        || unilateral_output::structural_summary(&a, &title),
-        || unilateral_output::structural_json(&a),
+        || unilateral_output::structural_summary_with(&a, &title, &about),
+        || unilateral_output::structural_json_with(&a, &json_options).map_err(path_output_failure),
         || {
             if let Some(dir) = &args.csv {
-                report_files(unilateral_output::write_structural_csv(&a, dir), dir)?;
+                report_files(
+                    unilateral_output::write_structural_csv_with(&a, dir, &about),
+                    dir,
+                )?;
             }
             if let Some(dir) = &args.vtk {
                 report_files(unilateral_output::write_vtk(&a, dir), dir)?;
             }
             if let Some(dir) = &args.report {
-                let options = args.report_args.options(problem.title.clone());
+                let options = args
+                    .report_args
+                    .options(problem.title.clone(), problem.units.clone());
                 let files = unilateral_output::write_structural_report(&a, dir, &options)
                     .map_err(|e| report_failure(&e))?;
                 report_files(Ok(files), dir)?;

@@ -62,6 +62,8 @@ pub struct StructuralProblem {
     pub settings: SolveSettings,
     /// The optional `title` of the file.
     pub title: Option<String>,
+    /// The optional `units` of the file, as written (`"N, m"`).
+    pub units: Option<String>,
     /// The stages of the file's `[[history]]`, their factors indexed like the model's load
     /// cases ([`Model::cases`]); `None` without a history (the paper's single load path).
     pub history: Option<Vec<unilateral_contact::Stage>>,

@@ -135,7 +135,11 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         Some(n) => Some(doc.string(n, "title")?.to_string()),
         None => None,
     };
-    for k in ["units", "description"] {
+    let units = match top.get("units") {
+        Some(n) => Some(doc.string(n, "units")?.to_string()),
+        None => None,
+    };
+    for k in ["description"] {
         if let Some(n) = top.get(k) {
             doc.string(n, k)?;
         }
@@ -212,6 +216,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         model: b.model,
         settings,
         title,
+        units,
         history,
     })
 }
