@@ -102,6 +102,9 @@ pub struct LoadStep {
     pub events: Vec<Event>,
     /// `p` decreased at this step (a turning point: solutions may be non-unique).
     pub turning: bool,
+    /// The pivot only settles the working scheme at the start (`p = 0`): not a change of the
+    /// scheme as the load grows, not an event.
+    pub settling: bool,
 }
 
 /// Forces, mutual displacements and state of one pair.
@@ -172,6 +175,10 @@ impl Outcome {
         match self {
             Outcome::TargetReached => {
                 format!("the load reached the target p* = {target} (Criterion 1)")
+            }
+            Outcome::Ray { p_from } if *p_from == 0.0 => {
+                "the working scheme is the same for every p > 0 (Criterion 2a: ray from the start)"
+                    .to_string()
             }
             Outcome::Ray { p_from } => format!(
                 "the working scheme no longer changes for p ≥ {p_from:.6} (Criterion 2a: ray)"

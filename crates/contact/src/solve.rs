@@ -119,6 +119,7 @@ pub fn solve(
             }
             LoadStep {
                 index: s.index,
+                settling: s.p.abs() <= 1e-12 * settings.target.abs().max(1.0),
                 p: s.p,
                 entering: lcp.label(s.entering),
                 leaving: lcp.label(s.leaving),
@@ -187,6 +188,14 @@ pub fn solve(
              reported solution does not contain it",
             settings.tightening
         ));
+    }
+    if settings.tightening == 0.0 && no_constant {
+        notes.push(
+            "the problem is homogeneous (no constant load, no gaps, no tightening): the working \
+             scheme is the same for every p > 0 — the one settled at p = 0 — and every force and \
+             displacement is proportional to p; the pivots at p = 0 are not events"
+                .into(),
+        );
     }
     if steps.iter().any(|s| s.turning) {
         notes.push(

@@ -216,6 +216,7 @@ fn path_document(
                     })
                 }).collect::<Vec<_>>(),
                 "turning": s.turning,
+                "settling": s.settling,
                 "beyond_target": s.index > sol.steps_before_target,
             });
             if let Some(at) = at {

@@ -71,14 +71,25 @@ pub fn contact_summary_with(
         }
     }
     let _ = writeln!(s);
-    if sol.steps.is_empty() {
+    let settling = sol.steps.iter().filter(|st| st.settling).count();
+    if settling > 0 {
+        let _ = writeln!(
+            s,
+            "the working scheme at the start (p = 0) is settled by {settling} pivot{} — not \
+             events (listed with --json as `settling` steps)",
+            if settling == 1 { "" } else { "s" }
+        );
+    }
+    let events: Vec<&unilateral_contact::LoadStep> =
+        sol.steps.iter().filter(|st| !st.settling).collect();
+    if events.is_empty() {
         let _ = writeln!(s, "load path: no change of the working scheme");
     } else {
         let _ = writeln!(
             s,
             "load path ({} step{}{}):",
-            sol.steps.len(),
-            if sol.steps.len() == 1 { "" } else { "s" },
+            events.len(),
+            if events.len() == 1 { "" } else { "s" },
             if sol.tightening > 0.0 {
                 format!(", traced with tightening c = {}", fmt_num(sol.tightening))
             } else {
@@ -90,7 +101,7 @@ pub fn contact_summary_with(
             "  {:>5}  {:>14}  {:<9} {:<9} events",
             "step", "p", "entering", "leaving"
         );
-        for st in &sol.steps {
+        for st in events {
             let mut ev: Vec<String> = st.events.iter().map(|e| e.to_string()).collect();
             if st.turning {
                 ev.push("(load decreases: turning point)".into());
