@@ -6,6 +6,7 @@ mod example1;
 mod example2;
 mod example3;
 mod fixes;
+mod hertz;
 mod history;
 mod keys;
 mod mindlin;
