@@ -80,8 +80,26 @@ pub fn contact_summary_with(
             if settling == 1 { "" } else { "s" }
         );
     }
-    let events: Vec<&unilateral_contact::LoadStep> =
+    let moving: Vec<&unilateral_contact::LoadStep> =
         sol.steps.iter().filter(|st| !st.settling).collect();
+    // Pivots with no event (the friction parts of an open pair trading places) change nothing
+    // a structure shows: counted, not listed.
+    let quiet = moving
+        .iter()
+        .filter(|st| st.events.is_empty() && !st.turning)
+        .count();
+    let events: Vec<&unilateral_contact::LoadStep> = moving
+        .into_iter()
+        .filter(|st| !st.events.is_empty() || st.turning)
+        .collect();
+    if quiet > 0 {
+        let _ = writeln!(
+            s,
+            "{quiet} pivot{} of the path change no pair's state (friction parts of open pairs \
+             trading places): not listed (they are in --json)",
+            if quiet == 1 { "" } else { "s" }
+        );
+    }
     if events.is_empty() {
         let _ = writeln!(s, "load path: no change of the working scheme");
     } else {

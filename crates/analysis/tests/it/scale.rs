@@ -634,7 +634,12 @@ fn load_cases() -> Vec<Case> {
 fn structural_examples() -> Vec<PathBuf> {
     let files: Vec<PathBuf> = toml_files("examples")
         .into_iter()
-        .filter(|f| is_structural(&doc_of(f)) && !doc_of(f).contains_key("history"))
+        // Models whose geometry lives in `.msh` files are left out: rewriting the model file
+        // cannot rescale the coordinates of its meshes (their own tests check their physics).
+        .filter(|f| {
+            let d = doc_of(f);
+            is_structural(&d) && !d.contains_key("history") && !d.contains_key("meshes")
+        })
         .collect();
     assert_eq!(
         files.len(),
