@@ -643,8 +643,8 @@ fn structural_examples() -> Vec<PathBuf> {
         .collect();
     assert_eq!(
         files.len(),
-        3,
-        "examples 1 (beam), 2 and 3 in structural form: {files:?}"
+        4,
+        "examples 1 (beam), 2 and 3 in structural form, and the sheet pile wall with real loads: {files:?}"
     );
     files
 }

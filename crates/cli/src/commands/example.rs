@@ -30,6 +30,24 @@ const EXAMPLES: &[(&str, &str, &str, &str)] = &[
         "the paper's Example 3 (reconstruction): sheet pile wall in soil pushed at the top",
         include_str!("../../../../examples/example3-sheet-pile.toml"),
     ),
+    (
+        "sheet-pile-wall",
+        "sheet-pile-wall.toml",
+        "the sheet pile wall with real loads: the soil's weight, then a growing push (no tightening)",
+        include_str!("../../../../examples/sheet-pile-wall.toml"),
+    ),
+    (
+        "sheet-pile-stages",
+        "sheet-pile-stages.toml",
+        "the sheet pile wall loaded in stages: soil weight, push, release, push again ([[history]])",
+        include_str!("../../../../examples/sheet-pile-stages.toml"),
+    ),
+    (
+        "deck-bearings-temperature",
+        "deck-bearings-temperature.toml",
+        "a deck on sliding bearings under a daily temperature cycle ([[history]]: shakedown)",
+        include_str!("../../../../examples/deck-bearings-temperature.toml"),
+    ),
 ];
 
 pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Failure> {
