@@ -18,6 +18,33 @@ pub(crate) struct Quad<'a> {
     pub formulation: PlaneFormulation,
 }
 
+/// The two translations of every node of a plane element, in node order.
+pub(crate) fn plane_dofs(nodes: &[NodeId]) -> Vec<usize> {
+    nodes.iter().flat_map(|n| [3 * n.0, 3 * n.0 + 1]).collect()
+}
+
+/// The checks of a plane material shared by every plane element: `E` and the thickness
+/// positive, Poisson's ratio in (−1, 0.5), a finite expansion coefficient.
+pub(crate) fn check_plane_material(
+    material: &PlaneMaterial,
+    id: ElementId,
+) -> Result<(), FemError> {
+    positive(id, "E", material.e)?;
+    positive(id, "thickness", material.thickness)?;
+    if !(material.nu > -1.0 && material.nu < 0.5) {
+        return Err(FemError::PoissonOutOfRange {
+            element: id,
+            nu: material.nu,
+        });
+    }
+    if !material.alpha.is_finite() {
+        return Err(FemError::NotFinite {
+            what: format!("alpha of element {}", id.0),
+        });
+    }
+    Ok(())
+}
+
 impl Quad<'_> {
     fn xy(&self, model: &Model) -> [[f64; 2]; 4] {
         self.nodes.map(|n| model.nodes[n.0])
@@ -30,27 +57,11 @@ impl ElementUnit for Quad<'_> {
     }
 
     fn dofs(&self) -> Vec<usize> {
-        self.nodes
-            .iter()
-            .flat_map(|n| [3 * n.0, 3 * n.0 + 1])
-            .collect()
+        plane_dofs(self.nodes)
     }
 
     fn check(&self, model: &Model, id: ElementId) -> Result<(), FemError> {
-        let material = self.material;
-        positive(id, "E", material.e)?;
-        positive(id, "thickness", material.thickness)?;
-        if !(material.nu > -1.0 && material.nu < 0.5) {
-            return Err(FemError::PoissonOutOfRange {
-                element: id,
-                nu: material.nu,
-            });
-        }
-        if !material.alpha.is_finite() {
-            return Err(FemError::NotFinite {
-                what: format!("alpha of element {}", id.0),
-            });
-        }
+        check_plane_material(self.material, id)?;
         plane_min_det_j(&self.xy(model), id)
     }
 

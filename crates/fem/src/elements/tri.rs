@@ -12,7 +12,7 @@
 //! squared (collinear or coincident nodes) is refused, naming the element.
 
 use super::quad::elasticity;
-use super::{positive, ElementUnit, Recovered};
+use super::{ElementUnit, Recovered};
 use crate::error::FemError;
 use crate::model::{ElementId, Load, Model, NodeId, PlaneAnalysis, PlaneMaterial};
 use crate::results::PlaneResult;
@@ -70,28 +70,12 @@ impl ElementUnit for Tri<'_> {
     }
 
     fn dofs(&self) -> Vec<usize> {
-        self.nodes
-            .iter()
-            .flat_map(|n| [3 * n.0, 3 * n.0 + 1])
-            .collect()
+        crate::elements::quad::plane_dofs(self.nodes)
     }
 
     fn check(&self, model: &Model, id: ElementId) -> Result<(), FemError> {
         // the material checks of the quadrilaterals (the same plane material)
-        let material = self.material;
-        positive(id, "E", material.e)?;
-        positive(id, "thickness", material.thickness)?;
-        if !(material.nu > -1.0 && material.nu < 0.5) {
-            return Err(FemError::PoissonOutOfRange {
-                element: id,
-                nu: material.nu,
-            });
-        }
-        if !material.alpha.is_finite() {
-            return Err(FemError::NotFinite {
-                what: format!("alpha of element {}", id.0),
-            });
-        }
+        crate::elements::quad::check_plane_material(self.material, id)?;
         let xy = self.xy(model);
         let scale = (0..3)
             .map(|i| {
