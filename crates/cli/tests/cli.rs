@@ -1549,3 +1549,18 @@ fn sheet_pile_wall_with_real_loads_is_the_main_job() {
         .count();
     assert!(kept > 0);
 }
+
+/// The summary says how many pairs each `[[contact]]` entry made (Example 3: 12 wall nodes above
+/// the base on each side, by the file's geometry).
+#[test]
+fn summary_counts_the_pairs_of_each_contact_entry() {
+    let out = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(
+        out.stdout.lines().nth(1) == Some("pairs by [[contact]] entry: left 12, right 12"),
+        "{}",
+        out.stdout
+    );
+}

@@ -202,20 +202,11 @@ pub(crate) fn structural(
         read: Some(read),
         ..a.timings
     };
-    let title = format!(
-        "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs, load history of {} \
-         stages)",
-        env!("CARGO_PKG_VERSION"),
-        file.display(),
-        problem
-            .title
-            .as_deref()
-            .map(|t| format!(": {t}"))
-            .unwrap_or_default(),
-        problem.model.names().nodes.len(),
-        problem.model.names().elements.len(),
+    let title = crate::commands::solve::structural_title(
+        &problem,
+        file,
         a.zone.pairs(),
-        stages.len()
+        &format!(", load history of {} stages", stages.len()),
     );
     write_outputs(
         args,

@@ -53,6 +53,43 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
     }
 }
 
+/// The first lines of a structural model's summary: the program, the file and its title, the
+/// model's size (`extra` after the pairs, e.g. the history's stages), and how many pairs each
+/// `[[contact]]` entry made when there are several entries (the contract of surface matching:
+/// a user sees what `nearest` and `surface` found; an entry that makes none is an error).
+pub(crate) fn structural_title(
+    problem: &unilateral_io::StructuralProblem,
+    file: &Path,
+    pairs: usize,
+    extra: &str,
+) -> String {
+    let mut title = format!(
+        "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs{extra})",
+        env!("CARGO_PKG_VERSION"),
+        file.display(),
+        problem
+            .title
+            .as_deref()
+            .map(|t| format!(": {t}"))
+            .unwrap_or_default(),
+        problem.model.names().nodes.len(),
+        problem.model.names().elements.len(),
+        pairs
+    );
+    if problem.contact_entries.len() > 1 {
+        let parts: Vec<String> = problem
+            .contact_entries
+            .iter()
+            .map(|(name, n)| format!("{name} {n}"))
+            .collect();
+        title.push_str(&format!(
+            "\npairs by [[contact]] entry: {}",
+            parts.join(", ")
+        ));
+    }
+    title
+}
+
 /// `--report-nodes` charts a structural model's load history; anywhere else it would be
 /// ignored, so it is refused.
 pub(crate) fn nodes_need_a_structural_history(args: &SolveArgs) -> Result<(), Failure> {
@@ -213,19 +250,7 @@ fn structural(
         read: Some(read),
         ..a.timings
     };
-    let title = format!(
-        "unilateral {} — {}{} ({} nodes, {} elements, {} contact pairs)",
-        env!("CARGO_PKG_VERSION"),
-        file.display(),
-        problem
-            .title
-            .as_deref()
-            .map(|t| format!(": {t}"))
-            .unwrap_or_default(),
-        problem.model.names().nodes.len(),
-        problem.model.names().elements.len(),
-        a.zone.pairs()
-    );
+    let title = structural_title(&problem, file, a.zone.pairs(), "");
     let about = unilateral_output::About {
         title: problem.title.clone(),
         units: problem.units.clone(),

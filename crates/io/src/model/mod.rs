@@ -64,6 +64,9 @@ pub struct StructuralProblem {
     pub title: Option<String>,
     /// The optional `units` of the file, as written (`"N, m"`).
     pub units: Option<String>,
+    /// How many contact pairs each `[[contact]]` entry made, in file order, with the entry's
+    /// `name` (`contact[K]`, 1-based, for an unnamed one).
+    pub contact_entries: Vec<(String, usize)>,
     /// The stages of the file's `[[history]]`, their factors indexed like the model's load
     /// cases ([`Model::cases`]); `None` without a history (the paper's single load path).
     pub history: Option<Vec<unilateral_contact::Stage>>,

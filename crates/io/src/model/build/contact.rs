@@ -249,6 +249,11 @@ impl Builder<'_> {
                 ));
             }
             let count = pairs.len();
+            self.contact_counts.push((
+                name.as_ref()
+                    .map_or_else(|| t.key.to_string(), |r| r.name.clone()),
+                count,
+            ));
             let gap_list = match &gap {
                 Gap::Given(v) => Some(v),
                 Gap::Geometry => None,

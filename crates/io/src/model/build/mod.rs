@@ -114,6 +114,8 @@ struct Builder<'d> {
     blocks: Vec<(String, [f64; 4], Option<Pos>)>,
     /// Contact surfaces by name (the 1D groups of meshes), segments in order.
     surfaces: HashMap<String, meshes::Surface>,
+    /// How many pairs each `[[contact]]` entry made, with its name (`contact[K]` unnamed).
+    contact_counts: Vec<(String, usize)>,
     /// Nodes created so far by blocks and members (bounded by [`MAX_GENERATED`] in all).
     generated: usize,
     // after numbering
@@ -160,6 +162,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         merge: NodeMerge::default(),
         blocks: Vec::new(),
         surfaces: HashMap::new(),
+        contact_counts: Vec::new(),
         generated: 0,
         final_of: Vec::new(),
         model: Model::new(),
@@ -218,6 +221,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         title,
         units,
         history,
+        contact_entries: b.contact_counts,
     })
 }
 
