@@ -142,6 +142,11 @@ pub(crate) struct SolveArgs {
     /// (structural models).
     #[arg(long, value_name = "DIR")]
     pub(crate) vtk: Option<PathBuf>,
+    /// List every step and every pair in the summary, however many (by default a problem of
+    /// more than 24 pairs gets counts of states, the first and last events, and the pairs with
+    /// the largest forces and slips).
+    #[arg(long)]
+    pub(crate) verbose: bool,
     #[command(flatten)]
     pub(crate) report_args: ReportArgs,
 }

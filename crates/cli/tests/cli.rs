@@ -1564,3 +1564,45 @@ fn summary_counts_the_pairs_of_each_contact_entry() {
         out.stdout
     );
 }
+
+/// For many pairs the summary scales: counts of the states (which add up to m), the first and
+/// last events, the pairs with the largest forces and slips; `--verbose` lists everything (a
+/// beam on 60 frictional supports, the oracle's fixture).
+#[test]
+fn the_summary_scales_with_the_pairs() {
+    let dir = tempfile::tempdir().unwrap();
+    let (file, _) = beam_zone_file(dir.path(), 60, 3);
+    let short = TestCommand::new(&["solve"]).arg(&file).run();
+    assert_eq!(short.code, 0, "{}", short.stderr);
+    let long = TestCommand::new(&["solve"])
+        .arg(&file)
+        .arg("--verbose")
+        .run();
+    assert_eq!(long.code, 0, "{}", long.stderr);
+    let line = short
+        .stdout
+        .lines()
+        .find(|l| l.contains("(60 pairs):"))
+        .unwrap_or_else(|| panic!("{}", short.stdout));
+    let counts: usize = line
+        .split(':')
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .filter_map(|w| w.split_whitespace().next()?.parse::<usize>().ok())
+        .sum();
+    assert_eq!(counts, 60, "{line}");
+    assert!(
+        short.stdout.contains("largest normal forces") && short.stdout.contains("largest slips")
+    );
+    // Every pair is in the verbose table, and the short summary is much shorter.
+    assert!((1..=60).all(|i| long
+        .stdout
+        .lines()
+        .any(|l| l.trim_start().starts_with(&format!("s{i} ")))));
+    assert!(
+        short.stdout.lines().count() * 2 < long.stdout.lines().count(),
+        "{}",
+        short.stdout
+    );
+}

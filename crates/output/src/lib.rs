@@ -57,8 +57,9 @@ pub use report::{
     Pictures,
 };
 pub use summary::{
-    contact_summary, contact_summary_with, lcp_summary, structural_summary,
-    structural_summary_with, tableau_text, timings_summary,
+    contact_summary, contact_summary_detail, contact_summary_with, lcp_summary, structural_summary,
+    structural_summary_detail, structural_summary_with, tableau_text, timings_summary, Detail,
+    SUMMARY_LIST_PAIRS,
 };
 pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
 pub use zone_file::zone_toml;

@@ -33,12 +33,37 @@ fn header(s: &mut String, title: &str, about: &About) {
     }
 }
 
-/// [`contact_summary`] with the file's title and units in its header.
+/// How much a summary says: everything (`verbose`), or — for more than [`SUMMARY_PAIRS`]
+/// pairs — counts of states, the first and last events, and the pairs with the largest forces
+/// and slips.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Detail {
+    /// Every step and every pair, whatever their number.
+    pub verbose: bool,
+}
+
+/// The number of pairs up to which a summary lists every pair and every step.
+pub const SUMMARY_LIST_PAIRS: usize = 24;
+
+/// [`contact_summary`] with the file's title and units in its header (everything listed).
 pub fn contact_summary_with(
     sol: &ContactSolution,
     title: &str,
     about: &About,
 ) -> Result<String, NonFiniteOutput> {
+    contact_summary_detail(sol, title, about, Detail { verbose: true })
+}
+
+/// [`contact_summary_with`] that scales: for many pairs, unless `detail.verbose`, the counts of
+/// states, the first and last 10 events, and the 10 pairs with the largest normal forces and
+/// slips instead of every step and pair.
+pub fn contact_summary_detail(
+    sol: &ContactSolution,
+    title: &str,
+    about: &About,
+    detail: Detail,
+) -> Result<String, NonFiniteOutput> {
+    let brief = !detail.verbose && sol.pairs.len() > SUMMARY_LIST_PAIRS;
     finite::contact_solution(sol)?;
     let mut s = String::new();
     header(&mut s, title, about);
@@ -119,7 +144,18 @@ pub fn contact_summary_with(
             "  {:>5}  {:>14}  {:<9} {:<9} events",
             "step", "p", "entering", "leaving"
         );
-        for st in events {
+        let shown = events.len();
+        for (k, st) in events.into_iter().enumerate() {
+            if brief && shown > 20 && (10..shown - 10).contains(&k) {
+                if k == 10 {
+                    let _ = writeln!(
+                        s,
+                        "  … {} more steps (all of them with --verbose)",
+                        shown - 20
+                    );
+                }
+                continue;
+            }
             let mut ev: Vec<String> = st.events.iter().map(|e| e.to_string()).collect();
             if st.turning {
                 ev.push("(load decreases: turning point)".into());
@@ -159,7 +195,44 @@ pub fn contact_summary_with(
     for note in &sol.notes {
         let _ = writeln!(s, "note: {note}");
     }
-    if !sol.pairs.is_empty() {
+    if brief {
+        let count =
+            |k: unilateral_contact::PairState| sol.pairs.iter().filter(|p| p.state == k).count();
+        let _ = writeln!(s);
+        let _ = writeln!(
+            s,
+            "pairs at p = {} ({} pairs): {} open, {} stick, {} slip+, {} slip- (every pair with --verbose)",
+            sol.p.map(fmt_num).unwrap_or_default(),
+            sol.pairs.len(),
+            count(unilateral_contact::PairState::Open),
+            count(unilateral_contact::PairState::Stick),
+            count(unilateral_contact::PairState::SlipPlus),
+            count(unilateral_contact::PairState::SlipMinus)
+        );
+        let top = |key: &dyn Fn(&unilateral_contact::PairResult) -> f64| {
+            let mut v: Vec<&unilateral_contact::PairResult> = sol.pairs.iter().collect();
+            v.sort_by(|a, b| key(b).total_cmp(&key(a)));
+            v.into_iter().take(10).collect::<Vec<_>>()
+        };
+        for (label, list) in [
+            ("largest normal forces", top(&|p| p.x_n.abs())),
+            ("largest slips", top(&|p| p.z_t.abs())),
+        ] {
+            let _ = writeln!(s, "  {label}:");
+            for p in list {
+                let _ = writeln!(
+                    s,
+                    "  {:<8} {:>14} {:>14} {:>14} {:>14}  {}",
+                    p.name,
+                    fmt_num(p.x_n),
+                    fmt_num(p.x_t),
+                    fmt_num(p.z_n),
+                    fmt_num(p.z_t),
+                    p.state
+                );
+            }
+        }
+    } else if !sol.pairs.is_empty() {
         let _ = writeln!(s);
         let _ = writeln!(
             s,
@@ -288,14 +361,24 @@ pub fn structural_summary(
     structural_summary_with(a, title, &About::default())
 }
 
-/// [`structural_summary`] with the file's title and units in its header.
+/// [`structural_summary`] with the file's title and units in its header (everything listed).
 pub fn structural_summary_with(
     a: &unilateral_analysis::Analysis,
     title: &str,
     about: &About,
 ) -> Result<String, NonFiniteOutput> {
+    structural_summary_detail(a, title, about, Detail { verbose: true })
+}
+
+/// [`structural_summary_with`] that scales with the number of pairs ([`contact_summary_detail`]).
+pub fn structural_summary_detail(
+    a: &unilateral_analysis::Analysis,
+    title: &str,
+    about: &About,
+    detail: Detail,
+) -> Result<String, NonFiniteOutput> {
     finite::analysis(a)?;
-    let mut s = contact_summary_with(&a.solution, title, about)?;
+    let mut s = contact_summary_detail(&a.solution, title, about, detail)?;
     if let (Some(r), Some(ex)) = (&a.results, a.extremes()) {
         let _ = writeln!(s, "\nstructure at p = {}:", fmt_num(r.p));
         if let Some(d) = &ex.displacement {

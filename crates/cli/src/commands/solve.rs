@@ -194,7 +194,12 @@ fn contact_zone(
     write_outputs(
         args,
         timings,
-        || unilateral_output::contact_summary_with(&sol, &title, &about),
+        || {
+            let detail = unilateral_output::Detail {
+                verbose: args.verbose,
+            };
+            unilateral_output::contact_summary_detail(&sol, &title, &about, detail)
+        },
         || unilateral_output::contact_json_with(&sol, &json_options).map_err(path_output_failure),
         || {
             if let Some(dir) = &args.csv {
@@ -262,7 +267,12 @@ fn structural(
     write_outputs(
         args,
         timings,
-        || unilateral_output::structural_summary_with(&a, &title, &about),
+        || {
+            let detail = unilateral_output::Detail {
+                verbose: args.verbose,
+            };
+            unilateral_output::structural_summary_detail(&a, &title, &about, detail)
+        },
         || unilateral_output::structural_json_with(&a, &json_options).map_err(path_output_failure),
         || {
             if let Some(dir) = &args.csv {
