@@ -90,6 +90,28 @@ pub(crate) fn structural_title(
     title
 }
 
+/// What the writers of the paper's path are told: the file's title and units, whether the JSON
+/// holds the values at every breakpoint, how much the summary lists.
+fn writer_options(
+    args: &SolveArgs,
+    title: Option<String>,
+    units: Option<String>,
+) -> (
+    unilateral_output::About,
+    unilateral_output::PathJsonOptions,
+    unilateral_output::Detail,
+) {
+    let about = unilateral_output::About { title, units };
+    let json = unilateral_output::PathJsonOptions {
+        breakpoints: args.json_breakpoints,
+        about: about.clone(),
+    };
+    let detail = unilateral_output::Detail {
+        verbose: args.verbose,
+    };
+    (about, json, detail)
+}
+
 /// `--report-nodes` charts a structural model's load history; anywhere else it would be
 /// ignored, so it is refused.
 pub(crate) fn nodes_need_a_structural_history(args: &SolveArgs) -> Result<(), Failure> {
@@ -183,23 +205,12 @@ fn contact_zone(
         file.display(),
         problem.zone.pairs()
     );
-    let about = unilateral_output::About {
-        title: problem.title.clone(),
-        units: problem.units.clone(),
-    };
-    let json_options = unilateral_output::PathJsonOptions {
-        breakpoints: args.json_breakpoints,
-        about: about.clone(),
-    };
+    let (about, json_options, detail) =
+        writer_options(args, problem.title.clone(), problem.units.clone());
     write_outputs(
         args,
         timings,
-        || {
-            let detail = unilateral_output::Detail {
-                verbose: args.verbose,
-            };
-            unilateral_output::contact_summary_detail(&sol, &title, &about, detail)
-        },
+        || unilateral_output::contact_summary_detail(&sol, &title, &about, detail),
         || unilateral_output::contact_json_with(&sol, &json_options).map_err(path_output_failure),
         || {
             if let Some(dir) = &args.csv {
@@ -256,23 +267,12 @@ fn structural(
         ..a.timings
     };
     let title = structural_title(&problem, file, a.zone.pairs(), "");
-    let about = unilateral_output::About {
-        title: problem.title.clone(),
-        units: problem.units.clone(),
-    };
-    let json_options = unilateral_output::PathJsonOptions {
-        breakpoints: args.json_breakpoints,
-        about: about.clone(),
-    };
+    let (about, json_options, detail) =
+        writer_options(args, problem.title.clone(), problem.units.clone());
     write_outputs(
         args,
         timings,
-        || {
-            let detail = unilateral_output::Detail {
-                verbose: args.verbose,
-            };
-            unilateral_output::structural_summary_detail(&a, &title, &about, detail)
-        },
+        || unilateral_output::structural_summary_detail(&a, &title, &about, detail),
         || unilateral_output::structural_json_with(&a, &json_options).map_err(path_output_failure),
         || {
             if let Some(dir) = &args.csv {
