@@ -70,6 +70,9 @@ impl View {
     }
 }
 
+/// The shortest arrow drawn for a non-zero contact force, in pixels (with its 8 px head).
+const MIN_ARROW: f64 = 14.0;
+
 /// The SVG picture of the structure at the reported load.
 pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> String {
     let nodes = model.nodes();
@@ -406,6 +409,14 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         let f = force(i);
         if kf > 0.0 && f[0].hypot(f[1]) > 1e-9 * fmax {
             let (dx, dy) = (kf * k * f[0], -kf * k * f[1]);
+            // A force far smaller than the largest still shows as an arrow: never shorter
+            // than MIN_ARROW pixels (the legend says so).
+            let l0 = dx.hypot(dy);
+            let (dx, dy) = if l0 < MIN_ARROW {
+                (dx * MIN_ARROW / l0, dy * MIN_ARROW / l0)
+            } else {
+                (dx, dy)
+            };
             let l = dx.hypot(dy);
             let tip = (c.0 - 7.0 * dx / l, c.1 - 7.0 * dy / l); // stop at the symbol's edge
             g.arrow((tip.0 - dx, tip.1 - dy), tip, "#2e7d32", 1.6, 8.0);
@@ -434,7 +445,7 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
     }
     g.arrow((x, ly - 4.0), (x + 26.0, ly - 4.0), "#2e7d32", 1.6, 8.0);
     g.text(
-        "contact force on side B",
+        &format!("contact force on side B (drawn at least {MIN_ARROW} px long)"),
         x + 32.0,
         ly,
         9.0,

@@ -260,3 +260,42 @@ fn contact_zone_problem() {
     let pairs: Vec<String> = sol.pairs.iter().map(|r| r.name.clone()).collect();
     check_report(&files, false, &pairs);
 }
+
+/// Small contact forces beside large ones stay visible: on the sheet pile wall the forces of
+/// the lower pairs are a few per cent of the largest, which at the picture's scale would be
+/// arrows of 2–3 px; every force arrow is drawn at least 14 px long (its shaft from the tail to
+/// the 8 px head, at least 6 px). Reference: the arrow's geometry (`Svg::arrow`).
+#[test]
+fn small_contact_forces_get_a_visible_arrow() {
+    let Problem::Structural(pb) =
+        unilateral_io::read_problem(&examples().join("example3-sheet-pile.toml")).unwrap()
+    else {
+        panic!("a structural model");
+    };
+    let a = analyze(&pb.model, &pb.settings).unwrap();
+    let svg = unilateral_output::structure_svg(&pb.model, &a, &ReportOptions::default());
+    let num = |l: &str, key: &str| -> f64 {
+        let at = l.find(&format!(" {key}=\"")).unwrap() + key.len() + 3;
+        l[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    let shafts: Vec<f64> = svg
+        .lines()
+        .filter(|l| l.starts_with("<line") && l.contains("#2e7d32"))
+        .map(|l| (num(l, "x2") - num(l, "x1")).hypot(num(l, "y2") - num(l, "y1")))
+        .collect();
+    // The pressed pairs' arrows and the legend's.
+    let pressed = a.solution.pairs.iter().filter(|p| p.x_n > 0.0).count();
+    assert!(shafts.len() > pressed.min(3), "{} arrows", shafts.len());
+    // (coordinates are written to 0.01 px)
+    assert!(shafts.iter().all(|&l| l >= 6.0 - 0.02), "{shafts:?}");
+    let fmax = a
+        .solution
+        .pairs
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x_n.hypot(p.x_t)));
+    assert!(a
+        .solution
+        .pairs
+        .iter()
+        .any(|p| p.x_n > 0.0 && p.x_n.hypot(p.x_t) < 0.05 * fmax));
+}
