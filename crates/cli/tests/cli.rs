@@ -1606,3 +1606,27 @@ fn the_summary_scales_with_the_pairs() {
         short.stdout
     );
 }
+
+/// A history's summary and JSON carry the file's units and title too (the deck: `units =
+/// "N, m, K"`).
+#[test]
+fn history_outputs_carry_units_and_title() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/deck-bearings-temperature.toml"))
+        .args(&["--json", "out.json"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert_eq!(
+        out.stdout.lines().nth(1),
+        Some("units: N, m, K"),
+        "{}",
+        out.stdout
+    );
+    let j = cmd.json("out.json");
+    assert_eq!(j["units"], "N, m, K");
+    assert_eq!(
+        j["title"],
+        "Deck on sliding bearings: a daily temperature cycle"
+    );
+    assert_eq!(j["schema"], 1);
+}

@@ -32,6 +32,33 @@ fn chart_options(args: &SolveArgs) -> HistoryChartOptions {
     }
 }
 
+/// The summary with the file's units under its first line (as the paper's path has them).
+fn with_units_line(summary: String, units: Option<&str>) -> String {
+    let Some(u) = units else { return summary };
+    match summary.split_once('\n') {
+        Some((first, rest)) => format!("{first}\nunits: {u}\n{rest}"),
+        None => format!("{summary}\nunits: {u}\n"),
+    }
+}
+
+/// The result document with the file's `title` and `units` (absent when the file has none, as
+/// in the paper's path's documents).
+fn with_about(
+    mut doc: serde_json::Value,
+    title: Option<&str>,
+    units: Option<&str>,
+) -> serde_json::Value {
+    if let Some(obj) = doc.as_object_mut() {
+        if let Some(t) = title {
+            obj.insert("title".into(), t.into());
+        }
+        if let Some(u) = units {
+            obj.insert("units".into(), u.into());
+        }
+    }
+    doc
+}
+
 /// Exit status of a history: every status is an answer except a numerical failure (exit 1).
 fn history_failure(file: &Path, h: &HistorySolution) -> Option<Failure> {
     let last = h.stages.last()?;
@@ -125,8 +152,15 @@ pub(crate) fn zone(
     write_outputs(
         args,
         timings,
-        || unilateral_output::history_summary(&h, &title),
-        || unilateral_output::history_document(&h).map_err(Failure::from),
+        || {
+            unilateral_output::history_summary(&h, &title)
+                .map(|s| with_units_line(s, problem.units.as_deref()))
+        },
+        || {
+            unilateral_output::history_document(&h)
+                .map(|d| with_about(d, problem.title.as_deref(), problem.units.as_deref()))
+                .map_err(Failure::from)
+        },
         || {
             if let Some(dir) = &args.csv {
                 let files = unilateral_output::history_csv(&h).map_err(Failure::from)?;
@@ -211,8 +245,15 @@ pub(crate) fn structural(
     write_outputs(
         args,
         timings,
-        || unilateral_output::history_summary(&a.history, &title),
-        || unilateral_output::history_structural_document(&a).map_err(Failure::from),
+        || {
+            unilateral_output::history_summary(&a.history, &title)
+                .map(|s| with_units_line(s, problem.units.as_deref()))
+        },
+        || {
+            unilateral_output::history_structural_document(&a)
+                .map(|d| with_about(d, problem.title.as_deref(), problem.units.as_deref()))
+                .map_err(Failure::from)
+        },
         || {
             if let Some(dir) = &args.csv {
                 let files = unilateral_output::history_csv(&a.history).map_err(Failure::from)?;
