@@ -663,12 +663,21 @@ pub fn ranked(s: &PathSamples, count: usize) -> Vec<usize> {
     };
     let rx: Vec<f64> = (0..m).map(|i| range(i, &|r| r.x_n)).collect();
     let rz: Vec<f64> = (0..m).map(|i| range(i, &|r| r.z_n)).collect();
+    most_changing(&rx, &rz, count)
+}
+
+/// The `count` indices (in ascending order) with the largest `a_i/max a + b_i/max b`: the pairs
+/// whose two charted quantities change most, each relative to its largest change (ties to the
+/// lower index).
+pub(crate) fn most_changing(a: &[f64], b: &[f64], count: usize) -> Vec<usize> {
     let top = |v: &[f64]| v.iter().copied().fold(0.0f64, f64::max);
-    let (tx, tz) = (top(&rx), top(&rz));
+    let (ta, tb) = (top(a), top(b));
     let part = |r: f64, t: f64| if t > 0.0 { r / t } else { 0.0 };
-    let score: Vec<f64> = (0..m).map(|i| part(rx[i], tx) + part(rz[i], tz)).collect();
-    let mut order: Vec<usize> = (0..m).collect();
-    order.sort_by(|&a, &b| score[b].total_cmp(&score[a]).then(a.cmp(&b)));
+    let score: Vec<f64> = (0..a.len())
+        .map(|i| part(a[i], ta) + part(b[i], tb))
+        .collect();
+    let mut order: Vec<usize> = (0..a.len()).collect();
+    order.sort_by(|&x, &y| score[y].total_cmp(&score[x]).then(x.cmp(&y)));
     order.truncate(count);
     order.sort_unstable();
     order

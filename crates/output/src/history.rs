@@ -12,6 +12,7 @@ use unilateral_contact::{
 };
 
 use crate::finite::{finite, NonFiniteOutput};
+use crate::json::pairs_json;
 
 /// The pseudo-time of a point of a history: `stage − 1 + s` (stage 1-based), so that stage
 /// `K` runs from `K − 1` to `K`.
@@ -88,25 +89,6 @@ fn factors_json(cases: &[String], fs: &[f64]) -> Value {
             .zip(fs)
             .map(|(c, v)| (c.clone(), json!(v)))
             .collect::<Map<_, _>>(),
-    )
-}
-
-fn pairs_json(ps: &[PairResult]) -> Value {
-    Value::Array(
-        ps.iter()
-            .enumerate()
-            .map(|(i, p)| {
-                json!({
-                    "pair": i + 1,
-                    "name": p.name,
-                    "x_n": p.x_n,
-                    "x_t": p.x_t,
-                    "z_n": p.z_n,
-                    "z_t": p.z_t,
-                    "state": p.state.as_str(),
-                })
-            })
-            .collect(),
     )
 }
 

@@ -103,15 +103,7 @@ pub fn curve_pairs(h: &HistorySolution, names: Option<&[String]>, count: usize) 
     };
     let rz: Vec<f64> = (0..m).map(|i| r(i, &|p| p.z_t)).collect();
     let rx: Vec<f64> = (0..m).map(|i| r(i, &|p| p.x_t)).collect();
-    let top = |v: &[f64]| v.iter().copied().fold(0.0f64, f64::max);
-    let (tz, tx) = (top(&rz), top(&rx));
-    let part = |a: f64, t: f64| if t > 0.0 { a / t } else { 0.0 };
-    let score: Vec<f64> = (0..m).map(|i| part(rz[i], tz) + part(rx[i], tx)).collect();
-    let mut order: Vec<usize> = (0..m).collect();
-    order.sort_by(|&a, &b| score[b].total_cmp(&score[a]).then(a.cmp(&b)));
-    order.truncate(count);
-    order.sort_unstable();
-    order
+    crate::chart::most_changing(&rz, &rx, count)
 }
 
 /// The case whose factor changes most over the history (the first of equals), `None` without

@@ -18,6 +18,18 @@ pub(crate) struct Quad<'a> {
     pub formulation: PlaneFormulation,
 }
 
+/// The uniform temperature change of a plane element: its temperature loads, each times its
+/// load factor.
+pub(crate) fn uniform_temperature(loads: &[(f64, &Load)]) -> f64 {
+    loads
+        .iter()
+        .filter_map(|(fc, l)| match l {
+            Load::Temperature { uniform, .. } => Some(fc * uniform),
+            _ => None,
+        })
+        .sum()
+}
+
 /// The two translations of every node of a plane element, in node order.
 pub(crate) fn plane_dofs(nodes: &[NodeId]) -> Vec<usize> {
     nodes.iter().flat_map(|n| [3 * n.0, 3 * n.0 + 1]).collect()
@@ -107,13 +119,7 @@ impl ElementUnit for Quad<'_> {
         loads: &[(f64, &Load)],
     ) -> Recovered {
         let xy = self.xy(model);
-        let dt: f64 = loads
-            .iter()
-            .filter_map(|(fc, l)| match l {
-                Load::Temperature { uniform, .. } => Some(fc * uniform),
-                _ => None,
-            })
-            .sum();
+        let dt = uniform_temperature(loads);
         let st = plane_stresses(&xy, self.material, self.analysis, self.formulation, ue, dt);
         Recovered::Plane {
             result: PlaneResult {

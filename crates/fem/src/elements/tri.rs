@@ -149,13 +149,7 @@ impl ElementUnit for Tri<'_> {
     ) -> Recovered {
         let xy = self.xy(model);
         let g = geometry(&xy);
-        let dt: f64 = loads
-            .iter()
-            .filter_map(|(fc, l)| match l {
-                Load::Temperature { uniform, .. } => Some(fc * uniform),
-                _ => None,
-            })
-            .sum();
+        let dt = crate::elements::quad::uniform_temperature(loads);
         let (d, fac) = elasticity(self.material, self.analysis);
         let eth = fac * self.material.alpha * dt;
         let mut eps: [f64; 3] =
