@@ -2,6 +2,7 @@
 //! link for all of them (a binary per file costs minutes on a two-core machine).
 
 mod bad_models;
+mod beam_bearings;
 mod example1;
 mod example2;
 mod example3;

@@ -1,0 +1,375 @@
+//! The whole-process benchmark's long-path model (`crates/cli/benches/whole_process.rs`, case
+//! `beam`: a continuous beam on frictional elastic bearings) at m = 5, read from its file
+//! text, against an independent computation: the bonded structure written out by hand (the
+//! textbook stiffness of Euler–Bernoulli frames, bars and springs, the consistent loads of a
+//! uniform and a linearly varying distributed load) and solved exactly in rationals with the
+//! oracle (`unilateral_oracle::solve`), with the links as Lagrange multipliers — no
+//! condensation, no sparse factorization, nothing of the code under test. From that contact
+//! zone: the condensed matrices and load vectors, the first event in closed form, and the
+//! contact conditions (formulation.md §1–§3) at every breakpoint of the traced path.
+
+use unilateral_analysis::analyze;
+use unilateral_io::{read_problem, Problem};
+use unilateral_oracle::{rat, solve, to_f64, Rat};
+
+/// The benchmark's model text for `m` bearings (the same as `beam_model` in the benchmark).
+fn beam_model(m: usize) -> String {
+    let l = m - 1;
+    format!(
+        r#"title = "Continuous beam on {m} frictional elastic bearings (benchmark)"
+units = "N, m"
+
+[[sections]]
+name = "beam"
+E = 3.0e10
+A = 0.5
+I = 0.04
+
+[[sections]]
+name = "tie"
+E = 2.0e11
+A = 1.0e-7
+I = 1.0e-9
+
+[[members]]
+name = "beam"
+start = [0.0, 0.0]
+end = [{l}.0, 0.0]
+divisions = {l}
+section = "beam"
+
+[[members]]
+name = "soles"
+type = "bar"
+start = [0.0, 0.0]
+end = [{l}.0, 0.0]
+divisions = {l}
+section = "tie"
+
+[[springs]]
+nodes = "soles.nodes"
+direction = [0.0, 1.0]
+stiffness = 1.0e9
+
+[[springs]]
+nodes = "soles.nodes"
+direction = [1.0, 0.0]
+stiffness = 2.0e6
+
+[[contact]]
+name = "bearing"
+from = "soles.nodes"
+to = "beam.nodes"
+normal = [0.0, 1.0]
+friction = 0.3
+
+[[loads.constant.distributed]]
+elements = "beam"
+q = [0.0, -1.0e4]
+
+[[loads.variable.distributed]]
+elements = "beam"
+start = [1.0e3, -4.0e4]
+end = [1.0e3, 1.0e4]
+
+[solve]
+target = 1.0
+trace = "end"
+"#
+    )
+}
+
+/// Five bearings: the path has a slip, a lift-off and a slip again before its ray.
+const M: usize = 5;
+const EA: f64 = 3.0e10 * 0.5;
+const EI: f64 = 3.0e10 * 0.04;
+const EA_TIE: f64 = 2.0e11 * 1.0e-7;
+const K_V: f64 = 1.0e9;
+const K_H: f64 = 2.0e6;
+const FRICTION: f64 = 0.3;
+
+/// The independent contact zone: `R` (2m × 2m, normal links first) and the bonded link forces
+/// `R_c`, `R_v` (normal entries, then tangential).
+struct HandZone {
+    r: Vec<Vec<f64>>,
+    rc: Vec<f64>,
+    rv: Vec<f64>,
+}
+
+/// DOFs: beam node `i` (at x = i) has u, v, θ at `3i..3i+3`; sole `i` has its ux, uy at
+/// `3m + 2i`. Pair `i` joins sole `i` (A) and beam node `i` (B), `n = (0, 1)`, `t = (1, 0)`:
+/// `z_n = v_i − uy_i`, `z_t = u_i − ux_i` (docs/fem.md), and with `K u = f + Cᵀ x`,
+/// `C u = z` the bordered system `[[K, −Cᵀ], [C, 0]]·[u; x] = [f; z]` gives `x = R z + R_F`
+/// exactly (formulation.md §2).
+fn hand_zone() -> HandZone {
+    let nb = 3 * M;
+    let n = nb + 2 * M;
+    let mut k = vec![vec![0.0f64; n]; n];
+    let mut add = |dofs: &[usize], ke: &[Vec<f64>]| {
+        for (a, &da) in dofs.iter().enumerate() {
+            for (b, &db) in dofs.iter().enumerate() {
+                k[da][db] += ke[a][b];
+            }
+        }
+    };
+    let h = 1.0; // spans of 1 m
+    for e in 0..M - 1 {
+        let (i, j) = (e, e + 1);
+        // axial EA/h·[[1, −1], [−1, 1]] on u
+        let ka = EA / h;
+        add(&[3 * i, 3 * j], &[vec![ka, -ka], vec![-ka, ka]]);
+        // bending on (v_i, θ_i, v_j, θ_j): EI/h³·[[12, 6h, −12, 6h], …]
+        let c = EI / (h * h * h);
+        let kb = [
+            [12.0, 6.0 * h, -12.0, 6.0 * h],
+            [6.0 * h, 4.0 * h * h, -6.0 * h, 2.0 * h * h],
+            [-12.0, -6.0 * h, 12.0, -6.0 * h],
+            [6.0 * h, 2.0 * h * h, -6.0 * h, 4.0 * h * h],
+        ];
+        let kb: Vec<Vec<f64>> = kb
+            .iter()
+            .map(|r| r.iter().map(|v| c * v).collect())
+            .collect();
+        add(&[3 * i + 1, 3 * i + 2, 3 * j + 1, 3 * j + 2], &kb);
+        // the soles' tie bar on their ux
+        let kt = EA_TIE / h;
+        add(&[nb + 2 * i, nb + 2 * j], &[vec![kt, -kt], vec![-kt, kt]]);
+    }
+    for i in 0..M {
+        k[nb + 2 * i][nb + 2 * i] += K_H;
+        k[nb + 2 * i + 1][nb + 2 * i + 1] += K_V;
+    }
+    // link rows: normal links first, then tangential
+    let mut c = vec![vec![0.0f64; n]; 2 * M];
+    for i in 0..M {
+        c[i][3 * i + 1] = 1.0;
+        c[i][nb + 2 * i + 1] = -1.0;
+        c[M + i][3 * i] = 1.0;
+        c[M + i][nb + 2 * i] = -1.0;
+    }
+    // consistent loads (equivalent nodal forces of a load varying linearly from a to b over an
+    // element of length h: transverse L(7a+3b)/20, L²(3a+2b)/60, L(3a+7b)/20, −L²(2a+3b)/60;
+    // axial L(2a+b)/6, L(a+2b)/6)
+    let consistent = |qx: &dyn Fn(f64) -> f64, qy: &dyn Fn(f64) -> f64| {
+        let mut f = vec![0.0f64; n];
+        for e in 0..M - 1 {
+            let (x0, x1) = (e as f64, e as f64 + h);
+            let (i, j) = (e, e + 1);
+            let (a, b) = (qy(x0), qy(x1));
+            f[3 * i + 1] += h * (7.0 * a + 3.0 * b) / 20.0;
+            f[3 * i + 2] += h * h * (3.0 * a + 2.0 * b) / 60.0;
+            f[3 * j + 1] += h * (3.0 * a + 7.0 * b) / 20.0;
+            f[3 * j + 2] -= h * h * (2.0 * a + 3.0 * b) / 60.0;
+            let (a, b) = (qx(x0), qx(x1));
+            f[3 * i] += h * (2.0 * a + b) / 6.0;
+            f[3 * j] += h * (a + 2.0 * b) / 6.0;
+        }
+        f
+    };
+    let len = (M - 1) as f64;
+    let f_c = consistent(&|_| 0.0, &|_| -1.0e4);
+    let f_v = consistent(&|_| 1.0e3, &|x| -4.0e4 + (1.0e4 + 4.0e4) * x / len);
+
+    // the bordered system, exactly
+    let nn = n + 2 * M;
+    let mut a = vec![vec![rat(0.0); nn]; nn];
+    for r in 0..n {
+        for s in 0..n {
+            a[r][s] = rat(k[r][s]);
+        }
+    }
+    for l in 0..2 * M {
+        for s in 0..n {
+            a[n + l][s] = rat(c[l][s]);
+            a[s][n + l] = -rat(c[l][s]);
+        }
+    }
+    let link_forces = |rhs: Vec<Rat>| -> Vec<f64> {
+        let y = solve(&a, &rhs).expect("the bonded structure is stable");
+        y[n..].iter().map(to_f64).collect()
+    };
+    let mut r = vec![vec![0.0; 2 * M]; 2 * M];
+    for j in 0..2 * M {
+        let mut rhs = vec![rat(0.0); nn];
+        rhs[n + j] = rat(1.0);
+        let col = link_forces(rhs);
+        for i in 0..2 * M {
+            r[i][j] = col[i];
+        }
+    }
+    let load = |f: &[f64]| {
+        let mut rhs: Vec<Rat> = f.iter().map(|&v| rat(v)).collect();
+        rhs.extend((0..2 * M).map(|_| rat(0.0)));
+        link_forces(rhs)
+    };
+    HandZone {
+        r,
+        rc: load(&f_c),
+        rv: load(&f_v),
+    }
+}
+
+fn analysis() -> unilateral_analysis::Analysis {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("beam5.toml");
+    std::fs::write(&path, beam_model(M)).unwrap();
+    let p = match read_problem(&path).unwrap() {
+        Problem::Structural(p) => p,
+        Problem::ContactZone(_) => panic!("a structural model"),
+    };
+    assert_eq!(p.model.names().pairs.len(), M);
+    analyze(&p.model, &p.settings).unwrap()
+}
+
+/// The condensed matrices and load vectors are those of the bonded structure solved by hand:
+/// every entry to 1e-9 of the largest entry of its block (the round-off of a sparse
+/// factorization of a structure whose stiffnesses span 2e4 … 1.4e10 stays far below that).
+#[test]
+fn the_condensed_zone_is_the_hand_zone() {
+    let a = analysis();
+    let c = &a.condensed;
+    let hz = hand_zone();
+    let blocks = [
+        (&c.rnn, 0, 0, "Rnn"),
+        (&c.rnt, 0, M, "Rnt"),
+        (&c.rtn, M, 0, "Rtn"),
+        (&c.rtt, M, M, "Rtt"),
+    ];
+    // scale of each block: its largest entry; the coupling blocks (zero for a straight beam:
+    // axial and bending decoupled) against the geometric mean of the two diagonal blocks
+    let big = |r0: usize, c0: usize| {
+        (0..M)
+            .flat_map(|i| (0..M).map(move |j| (i, j)))
+            .fold(0.0f64, |s, (i, j)| s.max(hz.r[r0 + i][c0 + j].abs()))
+    };
+    let (snn, stt) = (big(0, 0), big(M, M));
+    assert!(snn > 0.0 && stt > 0.0);
+    for (blk, r0, c0, name) in blocks {
+        let scale = if r0 == c0 {
+            big(r0, c0)
+        } else {
+            (snn * stt).sqrt()
+        };
+        for i in 0..M {
+            for j in 0..M {
+                let (got, want) = (blk[(i, j)], hz.r[r0 + i][c0 + j]);
+                assert!(
+                    (got - want).abs() <= 1e-9 * scale,
+                    "{name}[{i}][{j}]: {got} vs hand {want}"
+                );
+            }
+        }
+    }
+    for (clv, hand, name) in [(&c.constant, &hz.rc, "R_c"), (&c.variable, &hz.rv, "R_v")] {
+        let scale = hand.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        assert!(scale > 0.0);
+        let got: Vec<f64> = clv.normal.iter().chain(&clv.tangential).copied().collect();
+        for (k, (g, w)) in got.iter().zip(hand).enumerate() {
+            assert!(
+                (g - w).abs() <= 1e-9 * scale,
+                "{name}[{k}]: {g} vs hand {w}"
+            );
+        }
+    }
+    // statics of the hand zone: the bonded normal reactions carry the whole weight, 1e4 N/m
+    // over the length, and the variable vertical load's resultant, (−4e4 + 1e4)/2 N/m over
+    // the length, downwards
+    let len = (M - 1) as f64;
+    let sum = |v: &[f64]| v[..M].iter().sum::<f64>();
+    assert!((sum(&hz.rc) - 1.0e4 * len).abs() <= 1e-12 * 1.0e4 * len);
+    assert!((sum(&hz.rv) - 1.5e4 * len).abs() <= 1e-12 * 1.5e4 * len);
+    // and the tangential ones the sideways 1e3 N/m, against the push (x_t acts on the beam
+    // along +t: the bearings hold the beam back)
+    assert!((hz.rv[M..].iter().sum::<f64>() + 1.0e3 * len).abs() <= 1e-12 * 1.0e3 * len);
+}
+
+/// The first event of the path is where the first bonded pair reaches a limit in closed form:
+/// with the hand zone's `x(p) = R_c + p·R_v` (bonded), the smallest `p > 0` at which a pair's
+/// `x_n` vanishes or `|x_t|` reaches `f·x_n`. And at every breakpoint the pairs satisfy the
+/// contact conditions in the hand zone: `x = R_c + p·R_v + R·z`, `x_n ≥ 0`, `z_n ≥ 0`,
+/// `x_n·z_n = 0`, `|x_t| ≤ f·x_n`, a slip against its friction force at the limit; and so on
+/// the ray beyond the last breakpoint (at 1.5 times its load).
+#[test]
+fn the_path_satisfies_the_contact_conditions_of_the_hand_zone() {
+    let a = analysis();
+    let hz = hand_zone();
+    let sol = &a.solution;
+    let steps: Vec<_> = sol.steps.iter().filter(|s| !s.settling).collect();
+    assert!(
+        steps.len() >= 3,
+        "a path with events: {} steps",
+        steps.len()
+    );
+
+    // closed-form first event
+    let (rc, rv) = (&hz.rc, &hz.rv);
+    let mut first = f64::INFINITY;
+    for i in 0..M {
+        let (n0, n1, t0, t1) = (rc[i], rv[i], rc[M + i], rv[M + i]);
+        assert!(n0 > 0.0, "every bearing pressed by the weight at p = 0");
+        // x_n = 0, x_t − f·x_n = 0, x_t + f·x_n = 0, each linear in p
+        for (c0, c1) in [
+            (n0, n1),
+            (FRICTION * n0 - t0, FRICTION * n1 - t1),
+            (FRICTION * n0 + t0, FRICTION * n1 + t1),
+        ] {
+            if c1 < 0.0 {
+                first = first.min(-c0 / c1);
+            }
+        }
+    }
+    let p1 = steps[0].p;
+    assert!(
+        (p1 - first).abs() <= 1e-9 * first,
+        "first event at p = {p1}, closed form {first}"
+    );
+
+    // the conditions at every breakpoint and on the final ray
+    let last = steps.last().expect("steps").p;
+    let loads: Vec<f64> = steps.iter().map(|s| s.p).chain([1.5 * last]).collect();
+    let scale_x = rc[..M]
+        .iter()
+        .chain(&rv[..M])
+        .fold(0.0f64, |s, v| s.max(v.abs()));
+    for &p in &loads {
+        let Some((pairs, _)) = sol.at(p).unwrap() else {
+            panic!("no solution at p = {p}")
+        };
+        let sx = scale_x * p.abs().max(1.0);
+        let tol = 1e-9 * sx;
+        let z: Vec<f64> = pairs
+            .iter()
+            .map(|q| q.z_n)
+            .chain(pairs.iter().map(|q| q.z_t))
+            .collect();
+        let sz = z.iter().fold(0.0f64, |s, v| s.max(v.abs())).max(sx / K_V);
+        for (i, q) in pairs.iter().enumerate() {
+            for (row, got) in [(i, q.x_n), (M + i, q.x_t)] {
+                let want =
+                    rc[row] + p * rv[row] + (0..2 * M).map(|j| hz.r[row][j] * z[j]).sum::<f64>();
+                assert!(
+                    (got - want).abs() <= tol,
+                    "p = {p}, pair {i}, row {row}: {got} vs hand {want}"
+                );
+            }
+            assert!(q.x_n >= -tol && q.z_n >= -1e-9 * sz, "p = {p}, pair {i}");
+            assert!(
+                q.x_n <= tol || q.z_n <= 1e-9 * sz,
+                "p = {p}, pair {i}: pressed and open ({}, {})",
+                q.x_n,
+                q.z_n
+            );
+            assert!(q.x_t.abs() <= FRICTION * q.x_n + tol, "p = {p}, pair {i}");
+            if q.z_t.abs() > 1e-9 * sz {
+                // slip along +t: the friction force on the beam acts along −t at its limit
+                let limit = -q.z_t.signum() * FRICTION * q.x_n;
+                assert!(
+                    (q.x_t - limit).abs() <= tol,
+                    "p = {p}, pair {i}: slip {} with x_t {} (limit {limit})",
+                    q.z_t,
+                    q.x_t
+                );
+            }
+        }
+    }
+}
