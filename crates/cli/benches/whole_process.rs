@@ -15,7 +15,14 @@
 //!   event);
 //! * `model`: a structural model, a continuous deck on `m` frictional elastic bearings (an
 //!   elastomer layer meshed with QM6 under a frame member, the bearings' bases on the ground),
-//!   condensed and traced to the end in the process.
+//!   condensed and traced to the end in the process (an early mechanism at m = 2000: a short
+//!   path);
+//! * `beam`: a structural model, a continuous frame beam (spans 1 m) on `m` frictional elastic
+//!   bearings, each a vertical and a horizontal spring under a sole plate with a frictional
+//!   contact pair to the beam; dead weight, a variable load from down to up along the beam and a
+//!   sideways load (bearings lift and slide in turn: the long path), `solve --trace end`.
+//!
+//! `UNILATERAL_BENCH_CASES=beam` (a comma-separated list of the case names) runs only those.
 //!
 //! Every case writes `--json`; the column `solve s` is its `timings.solve`, the solve alone.
 //!
@@ -25,6 +32,7 @@
 //! ```sh
 //! cargo bench -p unilateral --bench whole_process                       # m = 100, 300, 1000, 2000
 //! UNILATERAL_BENCH_SIZES=100,300 cargo bench -p unilateral --bench whole_process
+//! UNILATERAL_BENCH_CASES=beam cargo bench -p unilateral --bench whole_process
 //! ```
 
 use std::fmt::Write as _;
@@ -43,6 +51,13 @@ fn sizes() -> Vec<usize> {
         .ok()
         .map(|s| s.split(',').filter_map(|w| w.trim().parse().ok()).collect())
         .unwrap_or_else(|| vec![100, 300, 1000, 2000])
+}
+
+/// Whether the case `name` is selected by `UNILATERAL_BENCH_CASES` (all when unset).
+fn selected(name: &str) -> bool {
+    std::env::var("UNILATERAL_BENCH_CASES")
+        .map(|s| s.split(',').any(|w| w.trim() == name))
+        .unwrap_or(true)
 }
 
 fn report_max() -> usize {
@@ -190,6 +205,91 @@ trace = "end"
     path
 }
 
+/// The structural model of the long path: a continuous beam (frame member, spans 1 m,
+/// EI = 1.2e9 N·m²) on `m` frictional elastic bearings. Each bearing is a sole plate (a node of
+/// the member `soles`, at the beam's node) on a vertical spring of 1e9 N/m and a horizontal one
+/// of 2e6 N/m to the ground, with a contact pair (friction 0.3) from the sole into the beam:
+/// the spring in series with the unilateral frictional contact. The model format makes nodes
+/// only with elements, so the soles are joined by a light tie of bars (EA = 2e4 N, 1 % of a
+/// bearing's horizontal stiffness per metre) that makes the file a few lines for any `m`.
+/// Dead weight 10 kN/m; the variable load goes from 40 kN/m down at the left end to 10 kN/m up
+/// at the right end, with 1 kN/m sideways: as `p` grows the bearings lift one after another
+/// from the right and slide in turn, until the working scheme no longer changes (a ray).
+fn write_beam(dir: &Path, m: usize) -> PathBuf {
+    let s = beam_model(m);
+    let path = dir.join(format!("beam{m}.toml"));
+    std::fs::write(&path, s).unwrap();
+    path
+}
+
+/// The text of [`write_beam`]'s model (the same model as
+/// `crates/analysis/tests/it/beam_bearings.rs` checks at m = 3).
+fn beam_model(m: usize) -> String {
+    let l = m - 1;
+    format!(
+        r#"title = "Continuous beam on {m} frictional elastic bearings (benchmark)"
+units = "N, m"
+
+[[sections]]
+name = "beam"
+E = 3.0e10
+A = 0.5
+I = 0.04
+
+[[sections]]
+name = "tie"
+E = 2.0e11
+A = 1.0e-7
+I = 1.0e-9
+
+[[members]]
+name = "beam"
+start = [0.0, 0.0]
+end = [{l}.0, 0.0]
+divisions = {l}
+section = "beam"
+
+[[members]]
+name = "soles"
+type = "bar"
+start = [0.0, 0.0]
+end = [{l}.0, 0.0]
+divisions = {l}
+section = "tie"
+
+[[springs]]
+nodes = "soles.nodes"
+direction = [0.0, 1.0]
+stiffness = 1.0e9
+
+[[springs]]
+nodes = "soles.nodes"
+direction = [1.0, 0.0]
+stiffness = 2.0e6
+
+[[contact]]
+name = "bearing"
+from = "soles.nodes"
+to = "beam.nodes"
+normal = [0.0, 1.0]
+friction = 0.3
+
+[[loads.constant.distributed]]
+elements = "beam"
+q = [0.0, -1.0e4]
+
+[[loads.variable.distributed]]
+elements = "beam"
+start = [1.0e3, -4.0e4]
+end = [1.0e3, 1.0e4]
+
+[solve]
+target = 1.0
+trace = "end"
+"#
+    )
+}
+
 struct Run {
     wall: f64,
     cpu: f64,
@@ -197,6 +297,8 @@ struct Run {
     status: String,
     /// The solve alone, from the JSON's `timings.solve` (when a JSON was written to `out.json`).
     solve: Option<f64>,
+    /// The steps of the load path, from the JSON (when written).
+    steps: Option<usize>,
 }
 
 /// Runs the binary under `/usr/bin/time` and reads its figures.
@@ -233,10 +335,13 @@ fn run(args: &[&str], dir: &Path) -> Run {
         _ => (f64::NAN, f64::NAN),
     };
     let json = dir.join("out.json");
-    let solve = std::fs::read_to_string(&json)
+    let doc = std::fs::read_to_string(&json)
         .ok()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v["timings"]["solve"].as_f64());
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok());
+    let solve = doc.as_ref().and_then(|v| v["timings"]["solve"].as_f64());
+    let steps = doc
+        .as_ref()
+        .and_then(|v| v["steps"].as_array().map(|a| a.len()));
     let _ = std::fs::remove_file(&json);
     Run {
         wall,
@@ -244,6 +349,7 @@ fn run(args: &[&str], dir: &Path) -> Run {
         peak_mib: peak,
         status,
         solve,
+        steps,
     }
 }
 
@@ -280,8 +386,19 @@ fn main() {
         load_average()
     );
     println!(
-        "{:>5} {:>5} {:>9} {:>14} {:>9} {:>9} {:>9} {:>9} {:>8} {:>10}",
-        "m", "n", "case", "status", "wall s", "CPU s", "solve s", "LU s", "wall/LU", "peak MiB"
+        "{:>5} {:>5} {:>9} {:>14} {:>6} {:>9} {:>9} {:>9} {:>9} {:>8} {:>10} {:>9}",
+        "m",
+        "n",
+        "case",
+        "status",
+        "steps",
+        "wall s",
+        "CPU s",
+        "solve s",
+        "LU s",
+        "wall/LU",
+        "peak MiB",
+        "peak/n²"
     );
     for m in sizes() {
         let dir = tempfile::tempdir().unwrap();
@@ -292,10 +409,14 @@ fn main() {
         let dat = write_dat(d, &z);
         let zone_file = write_zone(d, &z);
         let model = write_model(d, m);
+        let beam = write_beam(d, m);
         let row = |case: &str, r: &Run| {
             let solve = r.solve.map_or("-".to_string(), |s| format!("{s:.3}"));
+            let steps = r.steps.map_or("-".to_string(), |s| s.to_string());
+            // peak memory in doubles per n² (the issue's goal: ≤ 3)
+            let per_n2 = r.peak_mib * 1024.0 * 1024.0 / 8.0 / (n * n) as f64;
             println!(
-                "{m:>5} {n:>5} {case:>9} {:>14} {:>9.3} {:>9.2} {solve:>9} {lu:>9.3} {:>8.1} {:>10.0}",
+                "{m:>5} {n:>5} {case:>9} {:>14} {steps:>6} {:>9.3} {:>9.2} {solve:>9} {lu:>9.3} {:>8.1} {:>10.0} {per_n2:>9.2}",
                 r.status,
                 r.wall,
                 r.cpu,
@@ -306,7 +427,10 @@ fn main() {
         let dat_s = dat.to_string_lossy().into_owned();
         let zone_s = zone_file.to_string_lossy().into_owned();
         let model_s = model.to_string_lossy().into_owned();
-        row("lcp", &run(&["lcp", &dat_s, "--json", "out.json"], d));
+        let beam_s = beam.to_string_lossy().into_owned();
+        if selected("lcp") {
+            row("lcp", &run(&["lcp", &dat_s, "--json", "out.json"], d));
+        }
         let zone_args = [
             "solve",
             &zone_s,
@@ -317,15 +441,23 @@ fn main() {
             "--json",
             "out.json",
         ];
-        row("zone", &run(&zone_args, d));
-        if m <= report_max() {
+        if selected("zone") {
+            row("zone", &run(&zone_args, d));
+        }
+        if m <= report_max() && selected("zone+out") {
             let mut a = zone_args.to_vec();
             a.extend(["--csv", "csv", "--report", "rep"]);
             row("zone+out", &run(&a, d));
             let html = std::fs::metadata(d.join("rep").join("report.html")).map_or(0, |m| m.len());
             println!("{:>5} report.html: {:.1} MB", m, html as f64 / 1e6);
         }
-        row("model", &run(&["solve", &model_s, "--json", "out.json"], d));
+        if selected("model") {
+            row("model", &run(&["solve", &model_s, "--json", "out.json"], d));
+        }
+        if selected("beam") {
+            let args = ["solve", &beam_s, "--trace", "end", "--json", "out.json"];
+            row("beam", &run(&args, d));
+        }
     }
     println!("load average after: {}", load_average());
 }
