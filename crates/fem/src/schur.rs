@@ -305,75 +305,6 @@ fn abs_quadratic_forms(k: &SparseColMat<usize, f64>, x: &Mat<f64>) -> Vec<f64> {
     e
 }
 
-/// What one chunk of static modes contributes: `K_zI·x_j` for its columns (`nz` entries per
-/// column, column after column), the magnitudes of its diagonal entries of `R` (the terms of
-/// `K_zI·x_j` and the round-off bound of the solves) and of its entries of `R_F`.
-struct ChunkPart {
-    kzx: Vec<f64>,
-    mag: Vec<f64>,
-    rf_mag: [Vec<f64>; 2],
-}
-
-/// [`ChunkPart`] of the static modes `x` (columns `c0 …` of `K_Iz`, rows in the solver's
-/// order, as `kiz`, `weights` and `kxb`).
-fn chunk_part(
-    x: &Mat<f64>,
-    c0: usize,
-    kiz: &[crate::dofs::Row],
-    kii: Option<&SparseColMat<usize, f64>>,
-    weights: &[f64],
-    kxb: &[Vec<f64>],
-    method: Method,
-) -> ChunkPart {
-    let nz = kiz.len();
-    let w = x.ncols();
-    let mut kzx = vec![0.0; nz * w];
-    let mut mag = vec![0.0; w];
-    let mut rf_mag = [vec![0.0; w], vec![0.0; w]];
-    for (row, col) in kiz.iter().enumerate() {
-        if col.is_empty() {
-            continue;
-        }
-        for j in 0..w {
-            let xj = x.col_as_slice(j);
-            kzx[j * nz + row] = col.iter().map(|&(i, v)| v * xj[i]).sum();
-            if row == c0 + j {
-                mag[j] += col.iter().map(|&(i, v)| (v * xj[i]).abs()).sum::<f64>();
-            }
-        }
-    }
-    // The round-off of the solves: the computed x_j satisfies K_II x_j = K_Iz,j up to a
-    // residual of order u·|K_II|·|x_j|, which reaches R_ij as x_iᵀ·residual
-    // (K_zI K_II⁻¹ = x_iᵀ): bounded by |x_i|ᵀ|K_II||x_j| ≤ √(e_i e_j) with
-    // e_j = |x_j|ᵀ|K_II||x_j| ≤ Σ_a w_a x_ja² (abs_form_weights: O(n) per column instead of
-    // a sparse pass). This grows with the number of elements the static mode x_j spans,
-    // where the terms of K_zz and K_zI x_j alone do not.
-    if let Some(_k) = kii {
-        #[cfg(test)]
-        let exact = (method == Method::Reference).then(|| abs_quadratic_forms(_k, x));
-        for j in 0..w {
-            let xj = x.col_as_slice(j);
-            #[cfg(test)]
-            if let Some(e) = &exact {
-                mag[j] += e[j];
-            }
-            if method == Method::Fast {
-                mag[j] += xj.iter().zip(weights).map(|(x, w)| w * x * x).sum::<f64>();
-            }
-            for g in 0..2 {
-                if !kxb[g].is_empty() {
-                    rf_mag[g][j] += xj
-                        .iter()
-                        .zip(&kxb[g])
-                        .map(|(a, b)| a.abs() * b)
-                        .sum::<f64>();
-                }
-            }
-        }
-    }
-    ChunkPart { kzx, mag, rf_mag }
-}
-
 pub(crate) fn condense(
     asm: &Assembled,
     kii: Option<&SparseColMat<usize, f64>>,
@@ -454,32 +385,55 @@ fn condense_with(
             .iter()
             .map(|c| c.iter().map(|&(i, v)| (row_of[i], v)).collect())
             .collect();
-        // The chunks are independent: solved on the rayon pool (sized to the machine), each
-        // applying its block of `K_zI X` and its magnitudes as soon as it is done. Every entry
-        // of `R`, `mag` and `rf_mag` gets exactly one contribution from one chunk, so the
-        // result is the same bit for bit whatever the number of threads or the order in
-        // which the chunks finish; at most one chunk of static modes per thread is held.
-        use rayon::prelude::*;
-        let acc = std::sync::Mutex::new((&mut r, &mut mag, &mut rf_mag));
-        (0..nz).into_par_iter().step_by(CHUNK).for_each(|c0| {
+        let mut c0 = 0;
+        while c0 < nz {
             let w = CHUNK.min(nz - c0);
             let x = solver.solve_sparse(n_i, &asm.kiz[c0..c0 + w]);
-            let part = chunk_part(&x, c0, &kiz, kii, &weights, &kxb, method);
-            drop(x);
-            // a poisoned lock is a panic of another chunk, which rayon propagates anyway
-            let mut guard = acc.lock().unwrap_or_else(|e| e.into_inner());
-            let (r, mag, rf_mag) = &mut *guard;
-            for j in 0..w {
-                let col = &part.kzx[j * nz..(j + 1) * nz];
-                for (row, v) in col.iter().enumerate() {
-                    r[(row, c0 + j)] -= v;
+            for row in 0..nz {
+                let col = &kiz[row];
+                if col.is_empty() {
+                    continue;
                 }
-                mag[c0 + j] += part.mag[j];
-                for g in 0..2 {
-                    rf_mag[g][c0 + j] += part.rf_mag[g][j];
+                for j in 0..w {
+                    let xj = x.col_as_slice(j);
+                    let s: f64 = col.iter().map(|&(i, v)| v * xj[i]).sum();
+                    r[(row, c0 + j)] -= s;
+                    if row == c0 + j {
+                        mag[row] += col.iter().map(|&(i, v)| (v * xj[i]).abs()).sum::<f64>();
+                    }
                 }
             }
-        });
+            // The round-off of the solves: the computed x_j satisfies K_II x_j = K_Iz,j up
+            // to a residual of order u·|K_II|·|x_j|, which reaches R_ij as x_iᵀ·residual
+            // (K_zI K_II⁻¹ = x_iᵀ): bounded by |x_i|ᵀ|K_II||x_j| ≤ √(e_i e_j) with
+            // e_j = |x_j|ᵀ|K_II||x_j| ≤ Σ_a w_a x_ja² (abs_form_weights: O(n) per column
+            // instead of a sparse pass). This grows with the number of elements the static
+            // mode x_j spans, where the terms of K_zz and K_zI x_j alone do not.
+            if let Some(_k) = kii {
+                #[cfg(test)]
+                let exact = (method == Method::Reference).then(|| abs_quadratic_forms(_k, &x));
+                for j in 0..w {
+                    let xj = x.col_as_slice(j);
+                    #[cfg(test)]
+                    if let Some(e) = &exact {
+                        mag[c0 + j] += e[j];
+                    }
+                    if method == Method::Fast {
+                        mag[c0 + j] += xj.iter().zip(&weights).map(|(x, w)| w * x * x).sum::<f64>();
+                    }
+                    for g in 0..2 {
+                        if !kxb[g].is_empty() {
+                            rf_mag[g][c0 + j] += xj
+                                .iter()
+                                .zip(&kxb[g])
+                                .map(|(a, b)| a.abs() * b)
+                                .sum::<f64>();
+                        }
+                    }
+                }
+            }
+            c0 += w;
+        }
     }
     // symmetrize, recording the round-off asymmetry
     let mut maxr = 0.0f64;
