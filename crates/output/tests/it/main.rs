@@ -5,3 +5,4 @@ mod examples;
 mod history;
 mod units;
 mod vtk;
+mod vtk_binary;
