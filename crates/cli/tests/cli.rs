@@ -1756,3 +1756,38 @@ fn history_vtk_format_compressed() {
     let s = "compressor=\"vtkZLibDataCompressor\"";
     assert!(vtu.windows(s.len()).any(|w| w == s.as_bytes()));
 }
+
+/// The structure picture of `--report` through the binary. References: the model files —
+/// Example 1 has three pairs (`support.1…3`) and no support, a variable nodal load; the sheet
+/// pile wall pins its wall's foot, fixes the soil's bottom (plane-element nodes have no rotation:
+/// ux and uy, drawn pinned), puts the soil's outer sides on rollers
+/// (`ux = true`), loads the soil by its weight (a body force, constant) and pushes the wall's
+/// top with `p·F` (a variable nodal force).
+#[test]
+fn structure_picture_names_pairs_and_draws_supports_and_loads() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .args(&["--report", "r"]);
+    assert_eq!(cmd.run().code, 0);
+    let svg = std::fs::read_to_string(cmd.path("r/structure.svg")).unwrap();
+    for k in 1..=3 {
+        assert!(svg.contains(&format!("support.{k}")), "support.{k}");
+    }
+    assert!(svg.contains("every pair labelled with its name"));
+    assert_eq!(svg.matches("<g class=\"support ").count(), 0);
+    assert_eq!(svg.matches("<g class=\"load variable force\">").count(), 1);
+    assert_eq!(svg.matches("<g class=\"load constant").count(), 0);
+
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/sheet-pile-wall.toml"))
+        .args(&["--report", "r"]);
+    assert_eq!(cmd.run().code, 0);
+    let svg = std::fs::read_to_string(cmd.path("r/structure.svg")).unwrap();
+    assert!(svg.matches("<g class=\"support pinned\">").count() > 2);
+    assert!(svg.matches("<g class=\"support roller\">").count() > 2);
+    assert_eq!(svg.matches("<g class=\"support fixed\">").count(), 0);
+    assert_eq!(svg.matches("<g class=\"load variable force\">").count(), 1);
+    assert!(svg.contains("body forces on"), "the soil's weight is said");
+    let report = std::fs::read_to_string(cmd.path("r/report.html")).unwrap();
+    assert!(report.contains("<g class=\"support pinned\">"));
+}
