@@ -733,13 +733,15 @@ fn num(s: &mut String, x: f64) {
 ///   comparable by eye or `diff`, and read by scripts that parse the text).
 /// * [`VtkFormat::Binary`] — the arrays as raw little-endian bytes in one
 ///   `<AppendedData encoding="raw">` block at the end of the file, each array preceded by its
-///   byte count as a `UInt64` (`header_type="UInt64"`): exact, and
-///   faster to write and to read (smaller for full-precision numbers; a file of many exact
-///   zeros and small integers can be larger than its text).
+///   byte count as a `UInt64` (`header_type="UInt64"`): exact, and no number is
+///   formatted or parsed as text (smaller for full-precision numbers: the 156 files of the
+///   sheet pile wall's path take 3.4 MB against 5.6 MB of text; a file of many exact zeros and
+///   small integers can be larger than its text).
 /// * [`VtkFormat::Compressed`] — the same, each array zlib-compressed in blocks of
 ///   [`ZLIB_BLOCK`] bytes (`compressor="vtkZLibDataCompressor"`: a `UInt64` header of the
 ///   block count, the block size, the size of a partial last block (0 when it is full) and
-///   the compressed size of every block, then the compressed blocks).
+///   the compressed size of every block, then the compressed blocks; 1.7 MB for the sheet
+///   pile wall).
 ///
 /// The small field data of a file (`TimeValue`, `reported`, `stage`) stays text in every
 /// format.
