@@ -662,7 +662,7 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
             "every pair labelled with its name".to_string()
         } else {
             format!(
-                "{} of {} pair names left out where they would overlap (every pair by name in the tables)",
+                "{} of {} pair names left out where they would cover something or sit as near another pair (every pair by name in the tables)",
                 skipped,
                 pairs.len()
             )
@@ -1036,7 +1036,8 @@ fn moment_arrow(g: &mut Svg, c: (f64, f64), m: f64, ink: &str) -> Vec<(f64, f64)
 
 /// Places the labels greedily in pair order: each name next to its symbol (right, left, above
 /// or below), skipped where it would overlap another label, a symbol, an arrow or a support,
-/// or leave the drawing. Returns how many were left out.
+/// or leave the drawing, or where another symbol would be about as near to it as its own
+/// (the name would not say which pair it names). Returns how many were left out.
 fn place_labels(
     g: &mut Svg,
     labels: &[(String, (f64, f64))],
@@ -1053,10 +1054,23 @@ fn place_labels(
     for &p in marks {
         grid.entry(key(p)).or_default().push(p);
     }
-    let overlaps =
-        |a: &[f64; 4], b: &[f64; 4]| a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+    // the symbols, so that a name is drawn only where its own symbol is the nearest one
+    let mut symbols: std::collections::HashMap<(i64, i64), Vec<(usize, (f64, f64))>> =
+        Default::default();
+    for (i, (_, c)) in labels.iter().enumerate() {
+        symbols.entry(key(*c)).or_default().push((i, *c));
+    }
+    let distance = |p: (f64, f64), b: &[f64; 4]| {
+        let dx = (b[0] - p.0).max(p.0 - b[2]).max(0.0);
+        let dy = (b[1] - p.1).max(p.1 - b[3]).max(0.0);
+        dx.hypot(dy)
+    };
+    // two names at least 3 px apart
+    let overlaps = |a: &[f64; 4], b: &[f64; 4]| {
+        a[0] < b[2] + 3.0 && b[0] < a[2] + 3.0 && a[1] < b[3] + 3.0 && b[1] < a[3] + 3.0
+    };
     let mut skipped = 0;
-    for (name, c) in labels {
+    for (own, (name, c)) in labels.iter().enumerate() {
         let w = font::width(name, size);
         let candidates = [
             (
@@ -1100,6 +1114,19 @@ fn place_labels(
             }
             if placed.iter().chain(boxes).any(|o| overlaps(o, b)) {
                 return false;
+            }
+            // another symbol nearer than its own, or as near within half a pixel
+            let d = distance(*c, b) + 0.5;
+            let (k0, k1) = (key((b[0] - d, b[1] - d)), key((b[2] + d, b[3] + d)));
+            for i in k0.0..=k1.0 {
+                for j in k0.1..=k1.1 {
+                    let nearer = symbols
+                        .get(&(i, j))
+                        .is_some_and(|ps| ps.iter().any(|&(k, q)| k != own && distance(q, b) < d));
+                    if nearer {
+                        return false;
+                    }
+                }
             }
             // A mark is a point: 1.5 px of room around the label (a symbol's own marks lie
             // 2.5 px outside its candidate boxes).
