@@ -1034,6 +1034,9 @@ fn moment_arrow(g: &mut Svg, c: (f64, f64), m: f64, ink: &str) -> Vec<(f64, f64)
     pts
 }
 
+/// Items by their cell of a grid over the picture.
+type Grid<T> = std::collections::HashMap<(i64, i64), Vec<T>>;
+
 /// Places the labels greedily in pair order: each name next to its symbol (right, left, above
 /// or below), skipped where it would overlap another label, a symbol, an arrow or a support,
 /// or leave the drawing, or where another symbol would be about as near to it as its own
@@ -1050,13 +1053,12 @@ fn place_labels(
     // marks on a grid of 24 px cells, so that a label is tested against the marks near it only
     let cell = 24.0;
     let key = |p: (f64, f64)| ((p.0 / cell).floor() as i64, (p.1 / cell).floor() as i64);
-    let mut grid: std::collections::HashMap<(i64, i64), Vec<(f64, f64)>> = Default::default();
+    let mut grid: Grid<(f64, f64)> = Default::default();
     for &p in marks {
         grid.entry(key(p)).or_default().push(p);
     }
     // the symbols, so that a name is drawn only where its own symbol is the nearest one
-    let mut symbols: std::collections::HashMap<(i64, i64), Vec<(usize, (f64, f64))>> =
-        Default::default();
+    let mut symbols: Grid<(usize, (f64, f64))> = Default::default();
     for (i, (_, c)) in labels.iter().enumerate() {
         symbols.entry(key(*c)).or_default().push((i, *c));
     }
