@@ -33,6 +33,28 @@ pub(crate) enum StressArg {
     Syy,
 }
 
+/// How `--vtk` writes the data arrays of its `.vtu` files.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(crate) enum VtkFormatArg {
+    /// Every value as text (the default: readable, and read by scripts that parse it).
+    Ascii,
+    /// Raw little-endian bytes appended to the file: exact, smaller, faster to read.
+    Binary,
+    /// The binary arrays zlib-compressed (smallest).
+    Compressed,
+}
+
+impl VtkFormatArg {
+    /// The writers' format.
+    pub(crate) fn format(self) -> unilateral_output::VtkFormat {
+        match self {
+            VtkFormatArg::Ascii => unilateral_output::VtkFormat::Ascii,
+            VtkFormatArg::Binary => unilateral_output::VtkFormat::Binary,
+            VtkFormatArg::Compressed => unilateral_output::VtkFormat::Compressed,
+        }
+    }
+}
+
 /// Options of `--report`.
 #[derive(clap::Args, Debug, Clone)]
 pub(crate) struct ReportArgs {
@@ -142,6 +164,9 @@ pub(crate) struct SolveArgs {
     /// (structural models).
     #[arg(long, value_name = "DIR")]
     pub(crate) vtk: Option<PathBuf>,
+    /// How the .vtu files of --vtk hold their data arrays.
+    #[arg(long, value_enum, value_name = "FORMAT", default_value = "ascii")]
+    pub(crate) vtk_format: VtkFormatArg,
     /// List every step and every pair in the summary, however many (by default a problem of
     /// more than 24 pairs gets counts of states, the first and last events, and the pairs with
     /// the largest forces and slips).

@@ -1630,3 +1630,164 @@ fn history_outputs_carry_units_and_title() {
     );
     assert_eq!(j["schema"], 1);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The structure picture and binary VTK (issue 14, "Pictures" and "VTK").
+
+/// `--vtk-format`: the same files in every format, the same collection; `binary` appends raw
+/// arrays (`header_type="UInt64"`), `compressed` zlib blocks; the default is ascii. Reference:
+/// the ascii run of the same problem — the points of the pairs' file decoded from the binary
+/// one (an 8-byte count, then little-endian doubles) are the ascii file's numbers; the full
+/// decoding of every array, compressed too, is `crates/output/tests/it/vtk_binary.rs`.
+#[test]
+fn vtk_format_binary_and_compressed_through_the_binary() {
+    let file = root().join("examples/example2-cantilever.toml");
+    let run = |dir: &str, format: Option<&str>| {
+        let mut cmd = TestCommand::new(&["solve"])
+            .arg(&file)
+            .args(&["--vtk", dir]);
+        if let Some(f) = format {
+            cmd = cmd.args(&["--vtk-format", f]);
+        }
+        let out = cmd.run();
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        let mut names: Vec<String> = std::fs::read_dir(cmd.path(dir))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        let read = |n: &str| std::fs::read(cmd.path(&format!("{dir}/{n}"))).unwrap();
+        let files: Vec<(String, Vec<u8>)> = names.iter().map(|n| (n.clone(), read(n))).collect();
+        files
+    };
+    let ascii = run("a", None);
+    let binary = run("b", Some("binary"));
+    let compressed = run("z", Some("compressed"));
+    let names = |f: &[(String, Vec<u8>)]| f.iter().map(|x| x.0.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&ascii), names(&binary));
+    assert_eq!(names(&ascii), names(&compressed));
+    let find = |f: &[(String, Vec<u8>)], n: &str| f.iter().find(|x| x.0 == n).unwrap().1.clone();
+    let pvd = "unilateral.pvd";
+    assert_eq!(find(&ascii, pvd), find(&binary, pvd));
+    assert_eq!(find(&ascii, pvd), find(&compressed, pvd));
+    let contains = |b: &[u8], s: &str| b.windows(s.len()).any(|w| w == s.as_bytes());
+    for (name, bytes) in &ascii {
+        if name.ends_with(".vtu") {
+            assert!(!contains(bytes, "appended"), "{name}");
+        }
+    }
+    for (name, bytes) in &binary {
+        if name.ends_with(".vtu") {
+            assert!(contains(bytes, "header_type=\"UInt64\""), "{name}");
+            assert!(!contains(bytes, "compressor"), "{name}");
+            assert!(contains(bytes, "<AppendedData encoding=\"raw\">"), "{name}");
+        }
+    }
+    for (name, bytes) in &compressed {
+        if name.ends_with(".vtu") {
+            assert!(
+                contains(bytes, "compressor=\"vtkZLibDataCompressor\""),
+                "{name}"
+            );
+        }
+    }
+    // The points of a pairs file, from the text and from the appended bytes.
+    let text = String::from_utf8(find(&ascii, "pairs_001.vtu")).unwrap();
+    let from_text: Vec<f64> = text
+        .split("Name=\"Points\"")
+        .nth(1)
+        .and_then(|s| s.split('>').nth(1))
+        .and_then(|s| s.split('<').next())
+        .unwrap()
+        .split_whitespace()
+        .map(|w| w.parse().unwrap())
+        .collect();
+    let bytes = find(&binary, "pairs_001.vtu");
+    let tag_at = bytes
+        .windows(13)
+        .position(|w| w == b"Name=\"Points\"")
+        .unwrap();
+    let tag = String::from_utf8_lossy(&bytes[tag_at..tag_at + 200]).into_owned();
+    let offset: usize = tag
+        .split("offset=\"")
+        .nth(1)
+        .and_then(|s| s.split('"').next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    let mark = b"<AppendedData encoding=\"raw\">";
+    let data_at = bytes.windows(mark.len()).position(|w| w == mark).unwrap() + mark.len();
+    let underscore = data_at + bytes[data_at..].iter().position(|&b| b == b'_').unwrap() + 1;
+    let data = &bytes[underscore + offset..];
+    let count = u64::from_le_bytes(data[..8].try_into().unwrap()) as usize;
+    let from_bytes: Vec<f64> = data[8..8 + count]
+        .chunks(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(from_text, from_bytes);
+    // A format that does not exist is refused by the command line.
+    let out = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--vtk", "v", "--vtk-format", "xml"])
+        .run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(out.stderr.contains("--vtk-format"), "{}", out.stderr);
+}
+
+/// A history's ParaView files in the compressed format: the same names and collection as in
+/// ascii, each `.vtu` with zlib blocks (reference: the ascii run; the values are compared in
+/// `crates/output/tests/it/vtk_binary.rs`).
+#[test]
+fn history_vtk_format_compressed() {
+    let file = root().join("examples/deck-bearings-temperature.toml");
+    let a = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--vtk", "a"]);
+    assert_eq!(a.run().code, 0);
+    let z =
+        TestCommand::new(&["solve"])
+            .arg(&file)
+            .args(&["--vtk", "z", "--vtk-format", "compressed"]);
+    assert_eq!(z.run().code, 0);
+    let pvd_a = std::fs::read_to_string(a.path("a/history.pvd")).unwrap();
+    let pvd_z = std::fs::read_to_string(z.path("z/history.pvd")).unwrap();
+    assert_eq!(pvd_a, pvd_z);
+    let vtu = std::fs::read(z.path("z/history_mesh_001.vtu")).unwrap();
+    let s = "compressor=\"vtkZLibDataCompressor\"";
+    assert!(vtu.windows(s.len()).any(|w| w == s.as_bytes()));
+}
+
+/// The structure picture of `--report` through the binary. References: the model files —
+/// Example 1 has three pairs (`support.1…3`) and no support, a variable nodal load; the sheet
+/// pile wall pins its wall's foot, fixes the soil's bottom (plane-element nodes have no rotation:
+/// ux and uy, drawn pinned), puts the soil's outer sides on rollers
+/// (`ux = true`), loads the soil by its weight (a body force, constant) and pushes the wall's
+/// top with `p·F` (a variable nodal force).
+#[test]
+fn structure_picture_names_pairs_and_draws_supports_and_loads() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .args(&["--report", "r"]);
+    assert_eq!(cmd.run().code, 0);
+    let svg = std::fs::read_to_string(cmd.path("r/structure.svg")).unwrap();
+    for k in 1..=3 {
+        assert!(svg.contains(&format!("support.{k}")), "support.{k}");
+    }
+    assert!(svg.contains("every pair labelled with its name"));
+    assert_eq!(svg.matches("<g class=\"support ").count(), 0);
+    assert_eq!(svg.matches("<g class=\"load variable force\">").count(), 1);
+    assert_eq!(svg.matches("<g class=\"load constant").count(), 0);
+
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/sheet-pile-wall.toml"))
+        .args(&["--report", "r"]);
+    assert_eq!(cmd.run().code, 0);
+    let svg = std::fs::read_to_string(cmd.path("r/structure.svg")).unwrap();
+    assert!(svg.matches("<g class=\"support pinned\">").count() > 2);
+    assert!(svg.matches("<g class=\"support roller\">").count() > 2);
+    assert_eq!(svg.matches("<g class=\"support fixed\">").count(), 0);
+    assert_eq!(svg.matches("<g class=\"load variable force\">").count(), 1);
+    assert!(svg.contains("body forces on"), "the soil's weight is said");
+    let report = std::fs::read_to_string(cmd.path("r/report.html")).unwrap();
+    assert!(report.contains("<g class=\"support pinned\">"));
+}

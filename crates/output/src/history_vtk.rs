@@ -9,7 +9,8 @@
 //! pair: a `VTK_VERTEX` at node B for a pair with the ground, a `VTK_LINE` A–B otherwise; cell
 //! data `state` (0 open, 1 stick, 2 slip+, 3 slip−), `x_n`, `x_t`, `z_n`, `z_t` (the
 //! accumulated slip), `pair`), and [`HISTORY_PVD`]. Each `.vtu` carries its pseudo-time as
-//! the field `TimeValue` and its stage as the field `stage`.
+//! the field `TimeValue` and its stage as the field `stage`. The data arrays are text, raw
+//! appended binary or zlib-compressed ([`VtkFormat`], [`history_vtk_with`]), as the path's.
 //!
 //! The writer of one state here is small on purpose: it holds what a history needs to be
 //! stepped through in ParaView. The full set of fields of `vtk.rs` (stresses, forces,
@@ -24,6 +25,7 @@ use unilateral_fem::{Element, Endpoint, Model, Results};
 
 use crate::finite::finite;
 use crate::history::{check, pseudo_time};
+use crate::vtk::{Body, VtkFormat};
 
 /// The collection file of a history.
 pub const HISTORY_PVD: &str = "history.pvd";
@@ -47,6 +49,22 @@ struct State<'a> {
 /// against the model (else an [`std::io::ErrorKind::InvalidInput`] error: results that are
 /// not the analysed model's are the program's fault, as in [`crate::write_vtk_for`]).
 pub fn history_vtk(a: &HistoryAnalysis) -> std::io::Result<Vec<(String, String)>> {
+    history_vtk_with(a, VtkFormat::Ascii)?
+        .into_iter()
+        .map(|(name, bytes)| {
+            String::from_utf8(bytes)
+                .map(|text| (name, text))
+                .map_err(|e| std::io::Error::other(e.to_string()))
+        })
+        .collect()
+}
+
+/// [`history_vtk`] with the data arrays of the `.vtu` files in the given [`VtkFormat`], the
+/// files as bytes.
+pub fn history_vtk_with(
+    a: &HistoryAnalysis,
+    format: VtkFormat,
+) -> std::io::Result<Vec<(String, Vec<u8>)>> {
     check(&a.history)?;
     let model = a.condensed.model();
     // Every change of the working scheme strictly inside a stage, recovered (the evolution is
@@ -124,7 +142,8 @@ pub fn history_vtk(a: &HistoryAnalysis) -> std::io::Result<Vec<(String, String)>
             "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{mesh}\"/>",
             Num(s.t)
         );
-        files.push((mesh, mesh_vtu(model, s)));
+        let text = mesh_vtu(model, s, format).finish(&mesh)?;
+        files.push((mesh, text));
         if m > 0 {
             let pairs = format!("history_pairs_{k:0width$}.vtu");
             let _ = writeln!(
@@ -132,11 +151,12 @@ pub fn history_vtk(a: &HistoryAnalysis) -> std::io::Result<Vec<(String, String)>
                 "    <DataSet timestep=\"{}\" group=\"\" part=\"1\" file=\"{pairs}\"/>",
                 Num(s.t)
             );
-            files.push((pairs, pairs_vtu(model, &a.zone.gap, s)));
+            let text = pairs_vtu(model, &a.zone.gap, s, format).finish(&pairs)?;
+            files.push((pairs, text));
         }
     }
     pvd.push_str("  </Collection>\n</VTKFile>\n");
-    files.push((HISTORY_PVD.to_string(), pvd));
+    files.push((HISTORY_PVD.to_string(), pvd.into_bytes()));
     Ok(files)
 }
 
@@ -174,22 +194,26 @@ fn check_results(
     Ok(())
 }
 
-fn header(s: &State, points: usize, cells: usize) -> String {
-    format!(
-        "<?xml version=\"1.0\"?>\n\
-         <VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
+fn header(s: &State, points: usize, cells: usize, format: VtkFormat) -> Body {
+    let mut b = Body::new(format);
+    let text = format!(
+        "<?xml version=\"1.0\"?>\n{}\
          \x20 <UnstructuredGrid>\n\
          \x20   <FieldData>\n\
          \x20     <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{}</DataArray>\n\
          \x20     <DataArray type=\"Int32\" Name=\"stage\" NumberOfTuples=\"1\" format=\"ascii\">{}</DataArray>\n\
          \x20   </FieldData>\n\
          \x20   <Piece NumberOfPoints=\"{points}\" NumberOfCells=\"{cells}\">\n",
+        b.file_tag(),
         Num(s.t),
         s.stage
-    )
+    );
+    b.push_str(&text);
+    b
 }
 
-const FOOTER: &str = "    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
+/// The end of an unstructured grid (the [`Body`] adds the appended data and `</VTKFile>`).
+const FOOTER: &str = "    </Piece>\n  </UnstructuredGrid>\n";
 
 /// A number as plain decimals where that is short, else in exponent form; both read back to
 /// the same `f64` (Rust's shortest round trip).
@@ -208,41 +232,51 @@ impl std::fmt::Display for Num {
     }
 }
 
-/// A data array of `ty`, its tuples one a line.
-fn array<T: std::fmt::Display>(
-    out: &mut String,
+/// A data array of `ty`, its tuples one a line (as text); integer types hold integers.
+fn array(
+    b: &mut Body,
     ty: &str,
     name: &str,
     components: usize,
-    values: impl IntoIterator<Item = T>,
+    values: impl IntoIterator<Item = f64>,
 ) {
-    let _ = write!(
-        out,
-        "        <DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{components}\" format=\"ascii\">"
+    let head = format!(
+        "        <DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{components}\""
     );
+    if !b.is_ascii() {
+        b.binary_array(&head, name, ty, values);
+        return;
+    }
+    let out = &mut b.xml;
+    let _ = write!(out, "{head} format=\"ascii\">");
     for (k, v) in values.into_iter().enumerate() {
         out.push_str(if k % components.max(1) == 0 {
             "\n          "
         } else {
             " "
         });
-        let _ = write!(out, "{v}");
+        if ty == "Float64" {
+            let _ = write!(out, "{}", Num(v));
+        } else {
+            let _ = write!(out, "{}", v as i64);
+        }
     }
     out.push_str("\n        </DataArray>\n");
 }
 
-fn cells(out: &mut String, connectivity: Vec<usize>, offsets: Vec<usize>, types: Vec<u8>) {
+fn cells(out: &mut Body, connectivity: Vec<usize>, offsets: Vec<usize>, types: Vec<u8>) {
+    let f = |v: Vec<usize>| v.into_iter().map(|x| x as f64);
     out.push_str("      <Cells>\n");
-    array(out, "Int64", "connectivity", 1, connectivity);
-    array(out, "Int64", "offsets", 1, offsets);
-    array(out, "UInt8", "types", 1, types);
+    array(out, "Int64", "connectivity", 1, f(connectivity));
+    array(out, "Int64", "offsets", 1, f(offsets));
+    array(out, "UInt8", "types", 1, types.into_iter().map(f64::from));
     out.push_str("      </Cells>\n");
 }
 
-fn mesh_vtu(model: &Model, s: &State) -> String {
+fn mesh_vtu(model: &Model, s: &State, format: VtkFormat) -> Body {
     let nodes = model.nodes();
     let elements = model.elements();
-    let mut out = header(s, nodes.len(), elements.len());
+    let mut out = header(s, nodes.len(), elements.len(), format);
     let disp = |i: usize| s.results.map_or([0.0; 3], |r| r.displacements[i]);
     out.push_str("      <PointData Vectors=\"displacement\">\n");
     array(
@@ -252,7 +286,7 @@ fn mesh_vtu(model: &Model, s: &State) -> String {
         3,
         (0..nodes.len()).flat_map(|i| {
             let d = disp(i);
-            [d[0], d[1], 0.0].map(Num)
+            [d[0], d[1], 0.0]
         }),
     );
     array(
@@ -260,7 +294,7 @@ fn mesh_vtu(model: &Model, s: &State) -> String {
         "Float64",
         "rotation",
         1,
-        (0..nodes.len()).map(|i| Num(disp(i)[2])),
+        (0..nodes.len()).map(|i| disp(i)[2]),
     );
     out.push_str("      </PointData>\n      <Points>\n");
     array(
@@ -268,7 +302,7 @@ fn mesh_vtu(model: &Model, s: &State) -> String {
         "Float64",
         "Points",
         3,
-        nodes.iter().flat_map(|&[x, y]| [x, y, 0.0].map(Num)),
+        nodes.iter().flat_map(|&[x, y]| [x, y, 0.0]),
     );
     out.push_str("      </Points>\n");
     let (mut conn, mut offs, mut types) = (Vec::new(), Vec::new(), Vec::new());
@@ -284,7 +318,13 @@ fn mesh_vtu(model: &Model, s: &State) -> String {
     }
     cells(&mut out, conn, offs, types);
     out.push_str("      <CellData Scalars=\"element\">\n");
-    array(&mut out, "Int64", "element", 1, 0..elements.len());
+    array(
+        &mut out,
+        "Int64",
+        "element",
+        1,
+        (0..elements.len()).map(|e| e as f64),
+    );
     out.push_str("      </CellData>\n");
     out.push_str(FOOTER);
     out
@@ -299,7 +339,7 @@ fn state_code(s: PairState) -> u8 {
     }
 }
 
-fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
+fn pairs_vtu(model: &Model, gaps: &[f64], s: &State, format: VtkFormat) -> Body {
     let specs = model.pairs();
     let m = specs.len();
     // Points 0..m are the B nodes; the A nodes of node-to-node pairs follow.
@@ -322,7 +362,7 @@ fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
         conn.push(i);
         offs.push(conn.len());
     }
-    let mut out = header(s, point_node.len(), m);
+    let mut out = header(s, point_node.len(), m, format);
     out.push_str("      <Points>\n");
     let nodes = model.nodes();
     array(
@@ -332,7 +372,7 @@ fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
         3,
         point_node.iter().flat_map(|&(n1, n2, xi)| {
             let ([x1, y1], [x2, y2]) = (nodes[n1], nodes[n2]);
-            [(1.0 - xi) * x1 + xi * x2, (1.0 - xi) * y1 + xi * y2, 0.0].map(Num)
+            [(1.0 - xi) * x1 + xi * x2, (1.0 - xi) * y1 + xi * y2, 0.0]
         }),
     );
     out.push_str("      </Points>\n");
@@ -357,7 +397,9 @@ fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
         "UInt8",
         "state",
         1,
-        (0..m).map(|i| at(i).map_or_else(|| state_code(start(i).state), |r| state_code(r.state))),
+        (0..m).map(|i| {
+            f64::from(at(i).map_or_else(|| state_code(start(i).state), |r| state_code(r.state)))
+        }),
     );
     for (name, f) in [
         ("x_n", (|r: &PairResult| r.x_n) as fn(&PairResult) -> f64),
@@ -370,10 +412,10 @@ fn pairs_vtu(model: &Model, gaps: &[f64], s: &State) -> String {
             "Float64",
             name,
             1,
-            (0..m).map(|i| Num(at(i).map_or_else(|| f(&start(i)), f))),
+            (0..m).map(|i| at(i).map_or_else(|| f(&start(i)), f)),
         );
     }
-    array(&mut out, "Int64", "pair", 1, 0..m);
+    array(&mut out, "Int64", "pair", 1, (0..m).map(|i| i as f64));
     out.push_str("      </CellData>\n");
     out.push_str(FOOTER);
     out

@@ -61,7 +61,7 @@ pub use summary::{
     structural_summary_detail, structural_summary_with, tableau_text, timings_summary, Detail,
     SUMMARY_LIST_PAIRS,
 };
-pub use vtk::{write_vtk, write_vtk_for, PVD_FILE};
+pub use vtk::{write_vtk, write_vtk_for, write_vtk_with, VtkFormat, PVD_FILE, ZLIB_BLOCK};
 pub use zone_file::zone_toml;
 
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};
@@ -86,7 +86,7 @@ pub use history_chart::{
 pub use history_nodes::{node_curves, node_curves_svg, NodePoint};
 pub use history_report::{history_pictures, write_history_report, HISTORY_REPORT_HTML};
 pub use history_structure::history_structural_document;
-pub use history_vtk::{history_vtk, HISTORY_PVD, HISTORY_VTK_STEPS};
+pub use history_vtk::{history_vtk, history_vtk_with, HISTORY_PVD, HISTORY_VTK_STEPS};
 
 /// The stress that colours plane elements.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]

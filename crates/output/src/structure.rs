@@ -1,8 +1,11 @@
 //! The structure picture: undeformed and deformed shape, bending moments, stresses in plane
-//! elements, contact pairs by state and their forces.
+//! elements, contact pairs by state and their forces, the pairs' names where they fit, the
+//! supports and the loads.
 
 use unilateral_analysis::{Analysis, PairState};
-use unilateral_fem::{Element, Endpoint, Model, NodeId, Releases};
+use unilateral_fem::{
+    Element, Endpoint, Load, LoadFrame, Model, NodeId, Releases, Results, SupportDof,
+};
 
 use crate::font::{self, Anchor};
 use crate::svg::{self, num, Svg};
@@ -186,22 +189,42 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         grow([x0, y0 - 0.1 * size]);
         grow([x1, y1 + 0.1 * size]);
     }
-    let pad = 0.06 * size;
+    // Supports and load arrows have sizes in pixels: room for them beyond the model.
+    let p_drawn = sol.p.unwrap_or(1.0);
+    let loads = loads_at(model, p_drawn);
+    let supports = res.map(supports_of).unwrap_or_default();
+    let margin_px = if !loads.nodal.is_empty() || !loads.lines.is_empty() {
+        LOAD_ARROW + 12.0
+    } else if !supports.is_empty() {
+        24.0
+    } else {
+        0.0
+    };
+    let (draw_w, draw_h_max) = (760.0, 620.0);
+    let k0 = (draw_w / (bx1 - bx0 + 0.12 * size)).min(draw_h_max / (by1 - by0 + 0.12 * size));
+    let pad = 0.06 * size + margin_px / k0;
     let (bx0, bx1, by0, by1) = (bx0 - pad, bx1 + pad, by0 - pad, by1 + pad);
 
     let planes_exist = model
         .elements()
         .iter()
         .any(|e| matches!(e, Element::Plane { .. } | Element::Triangle { .. }));
-    let draw_w = 760.0;
-    let draw_h_max = 620.0;
     let k = (draw_w / (bx1 - bx0)).min(draw_h_max / (by1 - by0));
     let dw = (bx1 - bx0) * k;
     let dh = ((by1 - by0) * k).max(160.0);
     let header = 76.0;
     let bar_w = if planes_exist { 110.0 } else { 0.0 };
     let width = (dw + 40.0 + bar_w).max(640.0);
-    let height = header + dh + 70.0;
+    let legend_rows = if supports.is_empty()
+        && loads.nodal.is_empty()
+        && loads.lines.is_empty()
+        && loads.body == 0
+    {
+        0.0
+    } else {
+        18.0
+    };
+    let height = header + dh + 70.0 + legend_rows + if pairs.is_empty() { 0.0 } else { 12.0 };
     let view = View {
         xmin: bx0,
         ymax: by1 + (dh / k - (by1 - by0)) / 2.0,
@@ -397,10 +420,115 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
             Element::Plane { .. } | Element::Triangle { .. } => {}
         }
     }
+    // Marks the pairs' names must not cover: frames and bars, arrows, symbols.
+    let mut marks: Vec<(f64, f64)> = Vec::new();
+    let mut boxes: Vec<[f64; 4]> = Vec::new();
+    for e in model.elements() {
+        if let Element::Frame { nodes: n, .. } | Element::Bar { nodes: n, .. } = e {
+            let (a0, b0) = (def(n[0].0), def(n[1].0));
+            marks.extend(samples_along(view.p(a0[0], a0[1]), view.p(b0[0], b0[1])));
+        }
+    }
+    // supports: the ground side is away from the elements at the node
+    for &(n, kind) in &supports {
+        let d = def(n);
+        let c = view.p(d[0], d[1]);
+        let up = match kind {
+            SupportKind::Roller { dir, .. } => {
+                // the roller pushes along its restrained direction, from the side away from
+                // the structure
+                let away = away_from_elements(model, n);
+                let sg = if dir[0] * away[0] + dir[1] * away[1] > 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                (sg * dir[0], -sg * dir[1])
+            }
+            _ => {
+                let away = away_from_elements(model, n);
+                (-away[0], away[1])
+            }
+        };
+        g.raw(&format!("<g class=\"support {}\">", kind.name()));
+        boxes.push(support_symbol(&mut g, c, kind, up));
+        g.raw("</g>");
+    }
+    // loads at the drawn state, one scale for all nodal forces and one for distributed loads
+    let fl_max = loads
+        .nodal
+        .iter()
+        .map(|l| l.2[0].hypot(l.2[1]))
+        .fold(0.0f64, f64::max);
+    let wl_max = loads
+        .lines
+        .iter()
+        .flat_map(|l| [l.2[0].hypot(l.2[1]), l.3[0].hypot(l.3[1])])
+        .fold(0.0f64, f64::max);
+    let ink = |constant: bool| if constant { CONSTANT_INK } else { VARIABLE_INK };
+    let group = |constant: bool| if constant { "constant" } else { "variable" };
+    for &(constant, e, w0, w1) in &loads.lines {
+        let Some(Element::Frame { nodes: n, .. } | Element::Bar { nodes: n, .. }) =
+            model.elements().get(e)
+        else {
+            continue;
+        };
+        let (a0, b0) = (def(n[0].0), def(n[1].0));
+        let (pa, pb) = (view.p(a0[0], a0[1]), view.p(b0[0], b0[1]));
+        // an arrow every 25 px or so, at the middles of equal parts (none twice at a node
+        // shared by two loaded elements)
+        let stations = ((pb.0 - pa.0).hypot(pb.1 - pa.1) / 25.0)
+            .round()
+            .clamp(1.0, 6.0) as usize;
+        let mut tails = Vec::new();
+        for j in 0..stations {
+            let t = (j as f64 + 0.5) / stations as f64;
+            let w = [w0[0] + t * (w1[0] - w0[0]), w0[1] + t * (w1[1] - w0[1])];
+            let wl = w[0].hypot(w[1]);
+            let c = (pa.0 + t * (pb.0 - pa.0), pa.1 + t * (pb.1 - pa.1));
+            if wl <= 1e-12 * wl_max || wl_max <= 0.0 {
+                tails.push(c);
+                continue;
+            }
+            let len = (LINE_LOAD_ARROW * wl / wl_max).max(MIN_ARROW);
+            let u = (w[0] / wl, -w[1] / wl);
+            g.raw(&format!(
+                "<g class=\"load {} distributed\">",
+                group(constant)
+            ));
+            marks.extend(load_arrow(&mut g, c, u, len, 1.0, ink(constant)));
+            g.raw("</g>");
+            tails.push((c.0 - (len + 1.0) * u.0, c.1 - (len + 1.0) * u.1));
+        }
+        g.polyline(&tails, ink(constant), 0.9, "");
+    }
+    for &(constant, n, f, m) in &loads.nodal {
+        let d = def(n);
+        let c = view.p(d[0], d[1]);
+        let fl = f[0].hypot(f[1]);
+        if fl > 1e-12 * fl_max && fl_max > 0.0 {
+            let len = (LOAD_ARROW * fl / fl_max).max(MIN_ARROW);
+            g.raw(&format!("<g class=\"load {} force\">", group(constant)));
+            marks.extend(load_arrow(
+                &mut g,
+                c,
+                (f[0] / fl, -f[1] / fl),
+                len,
+                3.0,
+                ink(constant),
+            ));
+            g.raw("</g>");
+        }
+        if m != 0.0 {
+            g.raw(&format!("<g class=\"load {} moment\">", group(constant)));
+            marks.extend(moment_arrow(&mut g, c, m, ink(constant)));
+            g.raw("</g>");
+        }
+    }
     // contact forces and pair symbols
     let off = 7.0; // pixels, along the normal into side B, so that the two sides of a wall separate
-    for (i, spec) in pairs.iter().enumerate() {
-        let _ = spec;
+    let mut labels: Vec<(String, (f64, f64))> = Vec::with_capacity(pairs.len());
+    for i in 0..pairs.len() {
         let p = pair_at(i);
         let nv = normals.get(i).copied().unwrap_or([0.0, 1.0]);
         let tv = tangents.get(i).copied().unwrap_or([1.0, 0.0]);
@@ -420,6 +548,7 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
             let l = dx.hypot(dy);
             let tip = (c.0 - 7.0 * dx / l, c.1 - 7.0 * dy / l); // stop at the symbol's edge
             g.arrow((tip.0 - dx, tip.1 - dy), tip, "#2e7d32", 1.6, 8.0);
+            marks.extend(samples_along((tip.0 - dx, tip.1 - dy), tip));
         }
         let state = sol
             .pairs
@@ -427,7 +556,22 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
             .map(|r| r.state)
             .unwrap_or(PairState::Stick);
         symbol(&mut g, c, state, (tv[0], -tv[1]));
+        marks.extend([
+            c,
+            (c.0 - 4.5, c.1),
+            (c.0 + 4.5, c.1),
+            (c.0, c.1 - 4.5),
+            (c.0, c.1 + 4.5),
+        ]);
+        labels.push((model.pair_name(i), c));
     }
+    let skipped = place_labels(
+        &mut g,
+        &labels,
+        &marks,
+        &boxes,
+        [4.0, header, width - bar_w - 4.0, header + dh],
+    );
 
     // legend
     let ly = header + dh + 26.0;
@@ -452,14 +596,79 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         Anchor::Start,
         "#222222",
     );
+    let mut note_y = ly + 18.0;
+    if legend_rows > 0.0 {
+        let y = ly + 20.0;
+        let mut x = 24.0;
+        let kinds = [
+            (SupportKind::Clamped, "fixed"),
+            (SupportKind::Pinned, "pinned"),
+            (
+                SupportKind::Roller {
+                    dir: [0.0, 1.0],
+                    rotation: false,
+                },
+                "roller",
+            ),
+        ];
+        for (kind, name) in kinds {
+            let present = supports
+                .iter()
+                .any(|s| std::mem::discriminant(&s.1) == std::mem::discriminant(&kind));
+            if present {
+                support_symbol(&mut g, (x + 8.0, y - 12.0), kind, (0.0, -1.0));
+                g.text(name, x + 18.0, y, 9.0, Anchor::Start, "#222222");
+                x += 30.0 + font::width(name, 9.0);
+            }
+        }
+        for (constant, name) in [(true, "constant load"), (false, "variable load p·F")] {
+            let present = loads.nodal.iter().any(|l| l.0 == constant)
+                || loads.lines.iter().any(|l| l.0 == constant);
+            if present {
+                g.arrow((x, y - 4.0), (x + 24.0, y - 4.0), ink(constant), 1.5, 7.0);
+                g.text(name, x + 30.0, y, 9.0, Anchor::Start, "#222222");
+                x += 42.0 + font::width(name, 9.0);
+            }
+        }
+        let mut scale = Vec::new();
+        if fl_max > 0.0 {
+            scale.push(format!("longest load arrow {}", num(fl_max)));
+        }
+        if wl_max > 0.0 {
+            scale.push(format!("distributed up to {} per length", num(wl_max)));
+        }
+        if loads.body > 0 {
+            scale.push(format!("body forces on {} elements not drawn", loads.body));
+        }
+        let pstr = sol.p.map(num).unwrap_or_else(|| "1".into());
+        let note = if scale.is_empty() {
+            String::new()
+        } else {
+            format!("at p = {pstr}: {}", scale.join("; "))
+        };
+        g.text(&note, x, y, 8.0, Anchor::Start, "#555555");
+        note_y = y + 18.0;
+    }
     g.text(
         "slip triangles point in the direction of the slip of side B (+t or −t); symbols are moved slightly along the normal into side B",
         24.0,
-        ly + 18.0,
+        note_y,
         8.0,
         Anchor::Start,
         "#555555",
     );
+    if !pairs.is_empty() {
+        let text = if skipped == 0 {
+            "every pair labelled with its name".to_string()
+        } else {
+            format!(
+                "{} of {} pair names left out where they would cover something or sit as near another pair (every pair by name in the tables)",
+                skipped,
+                pairs.len()
+            )
+        };
+        g.text(&text, 24.0, note_y + 12.0, 8.0, Anchor::Start, "#555555");
+    }
 
     // colour bar
     if planes_exist && !cell.is_empty() {
@@ -568,4 +777,423 @@ fn frame_curve(
             ]
         })
         .collect()
+}
+
+/// The kind of support symbol of a node, from the DOFs its supports fix.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum SupportKind {
+    /// `ux`, `uy` and `rz` fixed: a clamp (a hatched block).
+    Clamped,
+    /// `ux` and `uy` fixed: a pin (a triangle on a hatched base).
+    Pinned,
+    /// One translation fixed (along `dir`, world components): a roller, with a small square
+    /// when the rotation is held too.
+    Roller { dir: [f64; 2], rotation: bool },
+    /// Only the rotation held: a small square.
+    Rotation,
+}
+
+/// The supports of the model, one symbol a node, from the reactions of the results (one per
+/// prescribed DOF: the model's fixed DOFs).
+fn supports_of(r: &Results) -> Vec<(usize, SupportKind)> {
+    let mut per: Vec<(usize, Vec<SupportDof>)> = Vec::new();
+    for x in &r.reactions {
+        match per.iter_mut().find(|(n, _)| *n == x.node.0) {
+            Some((_, v)) => v.push(x.dof),
+            None => per.push((x.node.0, vec![x.dof])),
+        }
+    }
+    per.into_iter()
+        .map(|(n, dofs)| {
+            let rot = dofs.iter().any(|d| matches!(d, SupportDof::Rz));
+            let trans: Vec<[f64; 2]> = dofs
+                .iter()
+                .filter_map(|d| match d {
+                    SupportDof::Ux => Some([1.0, 0.0]),
+                    SupportDof::Uy => Some([0.0, 1.0]),
+                    SupportDof::Along(v) => {
+                        let l = v[0].hypot(v[1]);
+                        (l > 0.0).then(|| [v[0] / l, v[1] / l])
+                    }
+                    SupportDof::Rz => None,
+                })
+                .collect();
+            let kind = match (trans.len(), rot) {
+                (0, _) => SupportKind::Rotation,
+                (1, rotation) => SupportKind::Roller {
+                    dir: trans[0],
+                    rotation,
+                },
+                (_, true) => SupportKind::Clamped,
+                (_, false) => SupportKind::Pinned,
+            };
+            (n, kind)
+        })
+        .collect()
+}
+
+impl SupportKind {
+    /// The name of the symbol (in the legend and as the SVG group's class).
+    fn name(self) -> &'static str {
+        match self {
+            SupportKind::Clamped => "fixed",
+            SupportKind::Pinned => "pinned",
+            SupportKind::Roller { .. } => "roller",
+            SupportKind::Rotation => "rotation",
+        }
+    }
+}
+
+const SUPPORT_INK: &str = "#37474f";
+
+/// Draws a support symbol at the node `c` (pixels); `up` is the unit direction (screen) from
+/// the ground into the structure. Returns the box it covers.
+fn support_symbol(g: &mut Svg, c: (f64, f64), kind: SupportKind, up: (f64, f64)) -> [f64; 4] {
+    let s = 7.0;
+    // across: perpendicular to `up`
+    let (ux, uy) = up;
+    let (ax, ay) = (-uy, ux);
+    let at = |along: f64, across: f64| {
+        (
+            c.0 - ux * along + ax * across,
+            c.1 - uy * along + ay * across,
+        )
+    };
+    let hatch = |g: &mut Svg, base: f64, half: f64| {
+        g.line(at(base, -half), at(base, half), SUPPORT_INK, 1.2, "");
+        let n = 4;
+        for k in 0..=n {
+            let t = -half + 2.0 * half * k as f64 / n as f64;
+            g.line(at(base, t), at(base + 3.5, t - 3.0), SUPPORT_INK, 0.7, "");
+        }
+    };
+    match kind {
+        SupportKind::Clamped => {
+            let pts = [at(0.0, -s), at(0.0, s), at(5.0, s), at(5.0, -s)];
+            g.polygon(&pts, "#cfd8dc", SUPPORT_INK, 1.0, "");
+            hatch(g, 5.0, s);
+        }
+        SupportKind::Pinned => {
+            g.polygon(
+                &[c, at(s * 1.3, -s * 0.8), at(s * 1.3, s * 0.8)],
+                "#eceff1",
+                SUPPORT_INK,
+                1.0,
+                "",
+            );
+            hatch(g, s * 1.3, s);
+        }
+        SupportKind::Roller { rotation, .. } => {
+            g.polygon(
+                &[c, at(s * 1.2, -s * 0.75), at(s * 1.2, s * 0.75)],
+                "#eceff1",
+                SUPPORT_INK,
+                1.0,
+                "",
+            );
+            for t in [-0.45 * s, 0.45 * s] {
+                g.circle(at(s * 1.2 + 1.8, t), 1.6, "#ffffff", SUPPORT_INK, 0.8);
+            }
+            hatch(g, s * 1.2 + 3.6, s);
+            if rotation {
+                g.rect(c.0 - 2.5, c.1 - 2.5, 5.0, 5.0, SUPPORT_INK, "none", 0.0);
+            }
+        }
+        SupportKind::Rotation => g.rect(c.0 - 3.0, c.1 - 3.0, 6.0, 6.0, SUPPORT_INK, "none", 0.0),
+    }
+    let r = 2.0 * s + 4.0;
+    [c.0 - r, c.1 - r, c.0 + r, c.1 + r]
+}
+
+/// Colour of the constant load's arrows.
+const CONSTANT_INK: &str = "#795548";
+/// Colour of the variable load's arrows.
+const VARIABLE_INK: &str = "#c2185b";
+/// The longest nodal load arrow, in pixels.
+const LOAD_ARROW: f64 = 56.0;
+/// The longest arrow of a distributed load, in pixels.
+const LINE_LOAD_ARROW: f64 = 30.0;
+
+/// The loads the picture draws: nodal forces and moments at nodes, distributed loads on
+/// frames and bars (global components), each `(constant?, …)`; and the number of elements
+/// with a body force (not drawn).
+#[derive(Default)]
+struct Loads {
+    nodal: Vec<(bool, usize, [f64; 2], f64)>,
+    lines: Vec<(bool, usize, [f64; 2], [f64; 2])>,
+    body: usize,
+}
+
+/// The loads of the two groups at the load `p`: the constant load as it is, the variable one
+/// multiplied by `p` (the loads acting in the state drawn).
+fn loads_at(model: &Model, p: f64) -> Loads {
+    let cases = model.cases();
+    let mut out = Loads::default();
+    for (case, load) in model.loads() {
+        let (constant, factor) = match cases.get(case.0).map(String::as_str) {
+            Some("constant") => (true, 1.0),
+            Some("variable") => (false, p),
+            _ => continue,
+        };
+        match *load {
+            Load::Nodal { node, fx, fy, m } => {
+                let (f, m) = ([factor * fx, factor * fy], factor * m);
+                match out
+                    .nodal
+                    .iter_mut()
+                    .find(|(c, n, ..)| *c == constant && *n == node.0)
+                {
+                    Some(x) => {
+                        x.2 = [x.2[0] + f[0], x.2[1] + f[1]];
+                        x.3 += m;
+                    }
+                    None => out.nodal.push((constant, node.0, f, m)),
+                }
+            }
+            Load::Distributed {
+                element,
+                start,
+                end,
+                frame,
+            } => {
+                let Some(Element::Frame { nodes, .. } | Element::Bar { nodes, .. }) =
+                    model.elements().get(element.0)
+                else {
+                    continue;
+                };
+                let (a, b) = (model.nodes()[nodes[0].0], model.nodes()[nodes[1].0]);
+                let l = (b[0] - a[0]).hypot(b[1] - a[1]);
+                let global = |w: [f64; 2]| match frame {
+                    LoadFrame::Global => [factor * w[0], factor * w[1]],
+                    LoadFrame::Local if l > 0.0 => {
+                        let (e, n) = (
+                            [(b[0] - a[0]) / l, (b[1] - a[1]) / l],
+                            [-(b[1] - a[1]) / l, (b[0] - a[0]) / l],
+                        );
+                        [
+                            factor * (w[0] * e[0] + w[1] * n[0]),
+                            factor * (w[0] * e[1] + w[1] * n[1]),
+                        ]
+                    }
+                    LoadFrame::Local => [0.0, 0.0],
+                };
+                out.lines
+                    .push((constant, element.0, global(start), global(end)));
+            }
+            Load::BodyForce { .. } => out.body += 1,
+            Load::Settlement { .. } | Load::Temperature { .. } => {}
+        }
+    }
+    out
+}
+
+/// An arrow of `len` pixels along the unit screen direction `u` with its tip `gap` pixels
+/// before the point `c`; returns the points it covers (for the labels' placement).
+fn load_arrow(
+    g: &mut Svg,
+    c: (f64, f64),
+    u: (f64, f64),
+    len: f64,
+    gap: f64,
+    ink: &str,
+) -> Vec<(f64, f64)> {
+    let tip = (c.0 - gap * u.0, c.1 - gap * u.1);
+    let tail = (tip.0 - len * u.0, tip.1 - len * u.1);
+    g.arrow(tail, tip, ink, 1.5, 7.0);
+    samples_along(tail, tip)
+}
+
+/// Points every 5 px along a segment.
+fn samples_along(a: (f64, f64), b: (f64, f64)) -> Vec<(f64, f64)> {
+    let l = (b.0 - a.0).hypot(b.1 - a.1);
+    let n = (l / 5.0).ceil().max(1.0) as usize;
+    (0..=n)
+        .map(|k| {
+            let t = k as f64 / n as f64;
+            (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+        })
+        .collect()
+}
+
+/// A moment at `c` as a ¾ circle with a head, counter-clockwise for `m > 0`.
+fn moment_arrow(g: &mut Svg, c: (f64, f64), m: f64, ink: &str) -> Vec<(f64, f64)> {
+    let r = 12.0;
+    let (a0, a1) = if m > 0.0 {
+        (-60.0f64, 210.0f64)
+    } else {
+        (240.0, -30.0)
+    };
+    let pts: Vec<(f64, f64)> = (0..=18)
+        .map(|k| {
+            let a = (a0 + (a1 - a0) * k as f64 / 18.0).to_radians();
+            (c.0 + r * a.cos(), c.1 - r * a.sin())
+        })
+        .collect();
+    g.polyline(&pts[..17], ink, 1.4, "");
+    g.arrow(pts[15], pts[18], ink, 1.4, 6.0);
+    pts
+}
+
+/// Items by their cell of a grid over the picture.
+type Grid<T> = std::collections::HashMap<(i64, i64), Vec<T>>;
+
+/// Places the labels greedily in pair order: each name next to its symbol (right, left, above
+/// or below), skipped where it would overlap another label, a symbol, an arrow or a support,
+/// or leave the drawing, or where another symbol would be about as near to it as its own
+/// (the name would not say which pair it names). Returns how many were left out.
+fn place_labels(
+    g: &mut Svg,
+    labels: &[(String, (f64, f64))],
+    marks: &[(f64, f64)],
+    boxes: &[[f64; 4]],
+    area: [f64; 4],
+) -> usize {
+    let size = 8.0;
+    let mut placed: Vec<[f64; 4]> = Vec::new();
+    // marks on a grid of 24 px cells, so that a label is tested against the marks near it only
+    let cell = 24.0;
+    let key = |p: (f64, f64)| ((p.0 / cell).floor() as i64, (p.1 / cell).floor() as i64);
+    let mut grid: Grid<(f64, f64)> = Default::default();
+    for &p in marks {
+        grid.entry(key(p)).or_default().push(p);
+    }
+    // the symbols, so that a name is drawn only where its own symbol is the nearest one
+    let mut symbols: Grid<(usize, (f64, f64))> = Default::default();
+    for (i, (_, c)) in labels.iter().enumerate() {
+        symbols.entry(key(*c)).or_default().push((i, *c));
+    }
+    let distance = |p: (f64, f64), b: &[f64; 4]| {
+        let dx = (b[0] - p.0).max(p.0 - b[2]).max(0.0);
+        let dy = (b[1] - p.1).max(p.1 - b[3]).max(0.0);
+        dx.hypot(dy)
+    };
+    // two names at least 3 px apart
+    let overlaps = |a: &[f64; 4], b: &[f64; 4]| {
+        a[0] < b[2] + 3.0 && b[0] < a[2] + 3.0 && a[1] < b[3] + 3.0 && b[1] < a[3] + 3.0
+    };
+    let mut skipped = 0;
+    for (own, (name, c)) in labels.iter().enumerate() {
+        let w = font::width(name, size);
+        let candidates = [
+            (
+                c.0 + 8.0,
+                c.1 + 3.0,
+                Anchor::Start,
+                [c.0 + 7.0, c.1 - 5.0, c.0 + 9.0 + w, c.1 + 5.0],
+            ),
+            (
+                c.0 - 8.0,
+                c.1 + 3.0,
+                Anchor::End,
+                [c.0 - 9.0 - w, c.1 - 5.0, c.0 - 7.0, c.1 + 5.0],
+            ),
+            (
+                c.0,
+                c.1 - 9.0,
+                Anchor::Middle,
+                [
+                    c.0 - w / 2.0 - 1.0,
+                    c.1 - 17.0,
+                    c.0 + w / 2.0 + 1.0,
+                    c.1 - 7.0,
+                ],
+            ),
+            (
+                c.0,
+                c.1 + 16.0,
+                Anchor::Middle,
+                [
+                    c.0 - w / 2.0 - 1.0,
+                    c.1 + 7.0,
+                    c.0 + w / 2.0 + 1.0,
+                    c.1 + 18.0,
+                ],
+            ),
+        ];
+        let free = |b: &[f64; 4]| {
+            if b[0] < area[0] || b[1] < area[1] || b[2] > area[2] || b[3] > area[3] {
+                return false;
+            }
+            if placed.iter().chain(boxes).any(|o| overlaps(o, b)) {
+                return false;
+            }
+            // another symbol nearer than its own, or as near within half a pixel
+            let d = distance(*c, b) + 0.5;
+            let (k0, k1) = (key((b[0] - d, b[1] - d)), key((b[2] + d, b[3] + d)));
+            for i in k0.0..=k1.0 {
+                for j in k0.1..=k1.1 {
+                    let nearer = symbols
+                        .get(&(i, j))
+                        .is_some_and(|ps| ps.iter().any(|&(k, q)| k != own && distance(q, b) < d));
+                    if nearer {
+                        return false;
+                    }
+                }
+            }
+            // A mark is a point: 1.5 px of room around the label (a symbol's own marks lie
+            // 2.5 px outside its candidate boxes).
+            let m = 1.5;
+            let (k0, k1) = (key((b[0] - m, b[1] - m)), key((b[2] + m, b[3] + m)));
+            for i in k0.0..=k1.0 {
+                for j in k0.1..=k1.1 {
+                    let hit = grid.get(&(i, j)).is_some_and(|ps| {
+                        ps.iter().any(|p| {
+                            p.0 > b[0] - m && p.0 < b[2] + m && p.1 > b[1] - m && p.1 < b[3] + m
+                        })
+                    });
+                    if hit {
+                        return false;
+                    }
+                }
+            }
+            true
+        };
+        match candidates.iter().find(|c| free(&c.3)) {
+            Some(&(x, y, anchor, b)) => {
+                // a light box behind the name, so that it reads on a coloured mesh
+                g.raw(&format!(
+                    r##"<rect class="label" x="{}" y="{}" width="{}" height="{}" rx="2" fill="#ffffff" fill-opacity="0.8"/>"##,
+                    svg::n(b[0]),
+                    svg::n(b[1]),
+                    svg::n(b[2] - b[0]),
+                    svg::n(b[3] - b[1])
+                ));
+                g.text(name, x, y, size, anchor, "#263238");
+                placed.push(b);
+            }
+            None => skipped += 1,
+        }
+    }
+    skipped
+}
+
+/// The unit direction (world) pointing away from the elements at node `n`: the opposite of
+/// the mean direction towards their other nodes (down when the node has no element or the
+/// directions cancel).
+fn away_from_elements(model: &Model, n: usize) -> [f64; 2] {
+    let nodes = model.nodes();
+    let mut d = [0.0f64, 0.0f64];
+    for e in model.elements() {
+        let ns: &[NodeId] = match e {
+            Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => nodes,
+            Element::Plane { nodes, .. } => nodes,
+            Element::Triangle { nodes, .. } => nodes,
+        };
+        if ns.iter().any(|x| x.0 == n) {
+            for x in ns.iter().filter(|x| x.0 != n) {
+                let (q, p) = (nodes[x.0], nodes[n]);
+                let l = (q[0] - p[0]).hypot(q[1] - p[1]);
+                if l > 0.0 {
+                    d[0] += (q[0] - p[0]) / l;
+                    d[1] += (q[1] - p[1]) / l;
+                }
+            }
+        }
+    }
+    let l = d[0].hypot(d[1]);
+    if l > 1e-9 {
+        [-d[0] / l, -d[1] / l]
+    } else {
+        [0.0, -1.0]
+    }
 }

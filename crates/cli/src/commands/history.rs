@@ -15,7 +15,10 @@ use crate::failure::{analysis_failure, contact_failure, Failure, ZoneOrigin};
 use crate::output::{report_files, Progress};
 
 /// Writes named text files into `dir` (created if needed); returns their paths.
-fn write_named(dir: &Path, files: Vec<(String, String)>) -> std::io::Result<Vec<PathBuf>> {
+fn write_named<T: AsRef<[u8]>>(
+    dir: &Path,
+    files: Vec<(String, T)>,
+) -> std::io::Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir)?;
     let mut out = Vec::with_capacity(files.len());
     for (name, text) in files {
@@ -260,7 +263,7 @@ pub(crate) fn structural(
                 report_files(write_named(dir, files), dir)?;
             }
             if let Some(dir) = &args.vtk {
-                let files = unilateral_output::history_vtk(&a);
+                let files = unilateral_output::history_vtk_with(&a, args.vtk_format.format());
                 report_files(files.and_then(|f| write_named(dir, f)), dir)?;
             }
             if let Some(dir) = &args.report {

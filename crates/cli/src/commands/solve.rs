@@ -282,7 +282,8 @@ fn structural(
                 )?;
             }
             if let Some(dir) = &args.vtk {
-                report_files(unilateral_output::write_vtk(&a, dir), dir)?;
+                let format = args.vtk_format.format();
+                report_files(unilateral_output::write_vtk_with(&a, dir, format), dir)?;
             }
             if let Some(dir) = &args.report {
                 let options = args

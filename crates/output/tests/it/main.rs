@@ -3,5 +3,7 @@
 
 mod examples;
 mod history;
+mod structure_picture;
 mod units;
 mod vtk;
+mod vtk_binary;
