@@ -1,6 +1,13 @@
-//! A tiny hand-written SVG writer: shapes, stroke-font text, number formatting, nice ticks and
-//! colour maps.
+//! A tiny hand-written SVG writer: shapes, text, number formatting, nice ticks and colour maps.
+//!
+//! Text is written in one of two ways ([`TextMode`]), chosen once for every picture drawn
+//! through [`Svg`]: as strokes of the built-in font ([`font`](crate::font)), so that a
+//! standalone `.svg` renders the same on a machine without any font (PNG conversion), or as
+//! real SVG `<text>`, which a browser shows in any script and which can be searched and
+//! copied (the pictures inside `report.html`). The mode is taken when a picture is started:
+//! [`with_text_mode`] draws a picture in another mode without any change to its drawing code.
 
+use std::cell::Cell;
 use std::fmt::Write as _;
 
 use crate::font::{self, Anchor};
@@ -99,9 +106,48 @@ pub fn nice_range(lo: f64, hi: f64) -> (f64, f64) {
     ((lo / step).floor() * step, (hi / step).ceil() * step)
 }
 
+/// How the text of a picture is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TextMode {
+    /// Strokes of the built-in font, the text itself kept in a `<title>` (the default: the
+    /// standalone `.svg` files, which must render with no fonts).
+    #[default]
+    Strokes,
+    /// Real SVG `<text>` in the browser's sans-serif font: any script, searchable (the
+    /// pictures inline in HTML).
+    Real,
+}
+
+thread_local! {
+    static TEXT_MODE: Cell<TextMode> = const { Cell::new(TextMode::Strokes) };
+}
+
+/// Runs `draw` with every [`Svg`] started inside it writing its text in `mode` (on this
+/// thread; the previous mode is restored afterwards, also when `draw` panics).
+pub fn with_text_mode<T>(mode: TextMode, draw: impl FnOnce() -> T) -> T {
+    struct Restore(TextMode);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            TEXT_MODE.with(|m| m.set(self.0));
+        }
+    }
+    let _restore = Restore(TEXT_MODE.with(|m| m.replace(mode)));
+    draw()
+}
+
+/// The text mode in force on this thread (see [`with_text_mode`]).
+pub fn text_mode() -> TextMode {
+    TEXT_MODE.with(|m| m.get())
+}
+
+/// Ratio of the font size of real text to the cap height the stroke font is sized by (the
+/// cap height of common sans-serif faces is about 0.7 em).
+const EM_PER_CAP: f64 = 1.4;
+
 /// An SVG document being written.
 pub struct Svg {
     body: String,
+    mode: TextMode,
     /// Width in pixels.
     pub width: f64,
     /// Height in pixels.
@@ -113,6 +159,7 @@ impl Svg {
     pub fn new(width: f64, height: f64, title: &str) -> Self {
         let mut s = Svg {
             body: String::new(),
+            mode: text_mode(),
             width,
             height,
         };
@@ -226,7 +273,12 @@ impl Svg {
         );
     }
 
-    /// Text in the stroke font (plain).
+    /// The way this picture writes its text.
+    pub fn mode(&self) -> TextMode {
+        self.mode
+    }
+
+    /// Text (plain).
     pub fn text(&mut self, s: &str, x: f64, y: f64, size: f64, anchor: Anchor, color: &str) {
         self.text_full(s, x, y, size, anchor, 0.0, color, false);
     }
@@ -236,7 +288,8 @@ impl Svg {
         self.text_full(s, x, y, size, anchor, 0.0, color, true);
     }
 
-    /// Text in the stroke font, rotated `angle` degrees counter-clockwise.
+    /// Text rotated `angle` degrees counter-clockwise, with subscripts when `rich`; its
+    /// baseline passes through `(x, y)` and `size` is its cap height in pixels.
     #[allow(clippy::too_many_arguments)]
     pub fn text_full(
         &mut self,
@@ -252,6 +305,10 @@ impl Svg {
         if s.trim().is_empty() {
             return;
         }
+        if self.mode == TextMode::Real {
+            self.real_text(s, x, y, size, anchor, angle, color, rich);
+            return;
+        }
         let d = font::path_data(s, x, y, size, anchor, angle, rich);
         let _ = writeln!(
             self.body,
@@ -259,6 +316,71 @@ impl Svg {
             n((size / 8.0).max(0.8)),
             esc(s)
         );
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn real_text(
+        &mut self,
+        s: &str,
+        x: f64,
+        y: f64,
+        size: f64,
+        anchor: Anchor,
+        angle: f64,
+        color: &str,
+        rich: bool,
+    ) {
+        let anchor = match anchor {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        };
+        let rotate = if angle != 0.0 {
+            format!(r#" transform="rotate({} {} {})""#, n(-angle), n(x), n(y))
+        } else {
+            String::new()
+        };
+        let _ = write!(
+            self.body,
+            r#"<text x="{}" y="{}" font-size="{}" font-family="sans-serif" text-anchor="{anchor}" fill="{color}"{rotate}>"#,
+            n(x),
+            n(y),
+            n(size * EM_PER_CAP)
+        );
+        if rich {
+            // `z_n`, `x_{t+}`: subscripts as the stroke font draws them
+            let mut it = s.chars().peekable();
+            let mut plain = String::new();
+            while let Some(c) = it.next() {
+                if c == '_' && it.peek().is_some() {
+                    let mut sub = String::new();
+                    if it.peek() == Some(&'{') {
+                        it.next();
+                        for d in it.by_ref() {
+                            if d == '}' {
+                                break;
+                            }
+                            sub.push(d);
+                        }
+                    } else if let Some(d) = it.next() {
+                        sub.push(d);
+                    }
+                    self.body.push_str(&esc(&std::mem::take(&mut plain)));
+                    let _ = write!(
+                        self.body,
+                        r#"<tspan baseline-shift="sub" font-size="{}">{}</tspan>"#,
+                        n(0.7 * size * EM_PER_CAP),
+                        esc(&sub),
+                    );
+                } else {
+                    plain.push(c);
+                }
+            }
+            self.body.push_str(&esc(&plain));
+        } else {
+            self.body.push_str(&esc(s));
+        }
+        self.body.push_str("</text>\n");
     }
 
     /// The finished document.
@@ -350,6 +472,32 @@ mod tests {
         assert_eq!(num(1.5626e6), "1.563e6");
         assert_eq!(num(2.0e-5), "2e-5");
         assert_eq!(n(-0.001), "0");
+    }
+
+    // Reference: the two modes' definitions. Strokes: a path with the text only in its
+    // <title>; real: a <text> element whose content is the name itself (any script), escaped.
+    #[test]
+    fn text_is_strokes_or_real_text() {
+        let draw = || {
+            let mut g = Svg::new(100.0, 50.0, "t");
+            g.text("опора.2 <a&b>", 10.0, 20.0, 8.0, Anchor::Start, "#222222");
+            g.math("z_n", 10.0, 40.0, 8.0, Anchor::End, "#222222");
+            g.finish()
+        };
+        let strokes = draw();
+        assert!(strokes.contains("<path d=\"M"));
+        assert!(strokes.contains("<title>опора.2 &lt;a&amp;b&gt;</title>"));
+        assert!(!strokes.contains("<text"));
+        let real = with_text_mode(TextMode::Real, draw);
+        assert!(real.contains(
+            r##"<text x="10" y="20" font-size="11.2" font-family="sans-serif" text-anchor="start" fill="#222222">опора.2 &lt;a&amp;b&gt;</text>"##
+        ));
+        assert!(real.contains(r#"text-anchor="end""#));
+        assert!(real.contains(">z<tspan"));
+        assert!(!real.contains("<path"));
+        // the mode is restored afterwards
+        assert_eq!(text_mode(), TextMode::Strokes);
+        assert_eq!(draw(), strokes);
     }
 
     #[test]
