@@ -14,13 +14,33 @@ use crate::font::{self, Anchor};
 
 /// A coordinate with at most two decimals (`-0` written as `0`).
 pub fn n(v: f64) -> String {
-    let r = (v * 100.0).round() / 100.0;
-    if r == 0.0 {
-        "0".into()
-    } else {
+    let c = (v * 100.0).round();
+    if c == 0.0 || !c.is_finite() || c.abs() >= 9.0e15 {
+        // zero, and (never drawn) the non-finite and the huge: the general formatting
+        let r = c / 100.0;
+        if r == 0.0 {
+            return "0".into();
+        }
         let s = format!("{r:.2}");
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
+        return s.trim_end_matches('0').trim_end_matches('.').to_string();
     }
+    // Hundredths as an integer: the same digits as `{:.2}` of the rounded value, without
+    // the exact float formatting (the drawing's hot spot).
+    let h = c as i64;
+    let (int, frac) = (h.unsigned_abs() / 100, h.unsigned_abs() % 100);
+    let mut s = String::with_capacity(12);
+    if h < 0 {
+        s.push('-');
+    }
+    let _ = write!(s, "{int}");
+    if frac != 0 {
+        if frac % 10 == 0 {
+            let _ = write!(s, ".{}", frac / 10);
+        } else {
+            let _ = write!(s, ".{frac:02}");
+        }
+    }
+    s
 }
 
 /// XML escaping for attribute values and text content.
@@ -472,6 +492,24 @@ mod tests {
         assert_eq!(num(1.5626e6), "1.563e6");
         assert_eq!(num(2.0e-5), "2e-5");
         assert_eq!(n(-0.001), "0");
+        // the same text as the rounded value written with two decimals, trailing zeros cut
+        for v in [
+            0.004,
+            0.005,
+            -0.015,
+            1.0,
+            12.5,
+            -12.5,
+            3.14159,
+            99.999,
+            -0.3,
+            1e6 + 0.25,
+        ] {
+            let r = (v * 100.0f64).round() / 100.0;
+            let want = format!("{r:.2}");
+            let want = want.trim_end_matches('0').trim_end_matches('.');
+            assert_eq!(n(v), if r == 0.0 { "0" } else { want }, "{v}");
+        }
     }
 
     // Reference: the two modes' definitions. Strokes: a path with the text only in its
