@@ -716,6 +716,9 @@ fn reported_column(sol: &ContactSolution, cols: &[SchemeColumn]) -> Option<(usiz
 
 const MAP_W: f64 = 1000.0;
 
+/// Height of the map's legend row and the label of the reported load above the rows.
+const MAP_LEGEND: f64 = 34.0;
+
 /// The working-scheme map as an SVG document: every pair (rows) against the load path
 /// (columns, one per segment between breakpoints: [`scheme_columns`]), coloured by its state
 /// as the structure picture colours its pairs, the reported load marked.
@@ -750,8 +753,8 @@ pub fn scheme_map_svg(sol: &ContactSolution, cols: &[SchemeColumn]) -> String {
     let m = names.len();
     let rh = (600.0 / m.max(1) as f64).clamp(0.6, 18.0);
     let h = rh * m.max(1) as f64;
-    let head = 40.0 + cap.len() as f64 * 14.0 + 30.0;
-    let height = head + 24.0 + h + 60.0;
+    let head = 40.0 + cap.len() as f64 * 14.0 + 6.0;
+    let height = head + MAP_LEGEND + h + 50.0;
     let mut g = Svg::new(MAP_W, height, &title);
     g.text(&title, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
     for (i, l) in cap.iter().enumerate() {
@@ -776,7 +779,7 @@ pub fn scheme_map_svg(sol: &ContactSolution, cols: &[SchemeColumn]) -> String {
         return g.finish();
     }
     let marker = reported_column(sol, cols);
-    state_map(&mut g, cols, &names, head - 24.0, MAP_W, marker, sol.p);
+    state_map(&mut g, cols, &names, head, MAP_W, marker, sol.p);
     g.finish()
 }
 
@@ -805,7 +808,7 @@ fn state_map(
     let w = width - left - right;
     let rh = (600.0 / m.max(1) as f64).clamp(0.6, 18.0);
     let h = rh * m.max(1) as f64;
-    let top = y0 + 24.0;
+    let top = y0 + MAP_LEGEND;
     let mut lx = left;
     for st in [
         PairState::Open,
@@ -905,8 +908,8 @@ fn state_map(
         g.line((x, top - 4.0), (x, top + h + 2.0), "#111111", 1.4, "");
         g.text(
             &format!("reported p = {}", num(p)),
-            x.min(width - 80.0),
-            top - 7.0,
+            x.clamp(left + 40.0, width - 60.0),
+            top - 5.0,
             8.0,
             Anchor::Middle,
             "#111111",

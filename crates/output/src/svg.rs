@@ -14,21 +14,29 @@ use crate::font::{self, Anchor};
 
 /// A coordinate with at most two decimals (`-0` written as `0`).
 pub fn n(v: f64) -> String {
+    let mut s = String::with_capacity(12);
+    push_n(&mut s, v);
+    s
+}
+
+/// [`n`] appended to `s` (no allocation of its own).
+pub fn push_n(s: &mut String, v: f64) {
     let c = (v * 100.0).round();
     if c == 0.0 || !c.is_finite() || c.abs() >= 9.0e15 {
         // zero, and (never drawn) the non-finite and the huge: the general formatting
         let r = c / 100.0;
         if r == 0.0 {
-            return "0".into();
+            s.push('0');
+            return;
         }
-        let s = format!("{r:.2}");
-        return s.trim_end_matches('0').trim_end_matches('.').to_string();
+        let t = format!("{r:.2}");
+        s.push_str(t.trim_end_matches('0').trim_end_matches('.'));
+        return;
     }
     // Hundredths as an integer: the same digits as `{:.2}` of the rounded value, without
     // the exact float formatting (the drawing's hot spot).
     let h = c as i64;
     let (int, frac) = (h.unsigned_abs() / 100, h.unsigned_abs() % 100);
-    let mut s = String::with_capacity(12);
     if h < 0 {
         s.push('-');
     }
@@ -40,7 +48,6 @@ pub fn n(v: f64) -> String {
             let _ = write!(s, ".{frac:02}");
         }
     }
-    s
 }
 
 /// XML escaping for attribute values and text content.
@@ -362,7 +369,7 @@ impl Svg {
         };
         let _ = write!(
             self.body,
-            r#"<text x="{}" y="{}" font-size="{}" font-family="sans-serif" text-anchor="{anchor}" fill="{color}"{rotate}>"#,
+            r#"<text x="{}" y="{}" font-size="{}" font-family="sans-serif" text-anchor="{anchor}" fill="{color}" xml:space="preserve"{rotate}>"#,
             n(x),
             n(y),
             n(size * EM_PER_CAP)
@@ -420,7 +427,9 @@ fn points(pts: &[(f64, f64)]) -> String {
         if i > 0 {
             s.push(' ');
         }
-        let _ = write!(s, "{},{}", n(p.0), n(p.1));
+        push_n(&mut s, p.0);
+        s.push(',');
+        push_n(&mut s, p.1);
     }
     s
 }
@@ -500,7 +509,7 @@ mod tests {
             1.0,
             12.5,
             -12.5,
-            3.14159,
+            3.14259,
             99.999,
             -0.3,
             1e6 + 0.25,
@@ -528,7 +537,7 @@ mod tests {
         assert!(!strokes.contains("<text"));
         let real = with_text_mode(TextMode::Real, draw);
         assert!(real.contains(
-            r##"<text x="10" y="20" font-size="11.2" font-family="sans-serif" text-anchor="start" fill="#222222">опора.2 &lt;a&amp;b&gt;</text>"##
+            r##"<text x="10" y="20" font-size="11.2" font-family="sans-serif" text-anchor="start" fill="#222222" xml:space="preserve">опора.2 &lt;a&amp;b&gt;</text>"##
         ));
         assert!(real.contains(r#"text-anchor="end""#));
         assert!(real.contains(">z<tspan"));
