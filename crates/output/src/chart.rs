@@ -710,8 +710,12 @@ fn reported_column(sol: &ContactSolution, cols: &[SchemeColumn]) -> Option<(usiz
         .path
         .target_segment
         .and_then(|ts| cols.iter().position(|c| c.segment == ts && inside(c)));
-    let j = by_segment.or_else(|| cols.iter().position(inside))?;
-    Some((j, frac(&cols[j])))
+    if let Some(j) = by_segment.or_else(|| cols.iter().position(inside)) {
+        return Some((j, frac(&cols[j])));
+    }
+    // a thinned map: the reported load lies between two drawn columns
+    let j = cols.iter().position(|c| c.p_from.max(c.p_to) >= p)?;
+    Some((j, 0.0))
 }
 
 const MAP_W: f64 = 1000.0;
