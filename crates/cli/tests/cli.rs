@@ -1791,3 +1791,85 @@ fn structure_picture_names_pairs_and_draws_supports_and_loads() {
     let report = std::fs::read_to_string(cmd.path("r/report.html")).unwrap();
     assert!(report.contains("<g class=\"support pinned\">"));
 }
+
+// ---- charts15: the working-scheme map, the traced path in the charts, real text in the report ----
+
+/// Example 1 with pair names outside ASCII.
+fn zone_with_names(cmd: &TestCommand) -> PathBuf {
+    let text = std::fs::read_to_string(example1()).unwrap().replace(
+        r#"names = ["1", "2", "3"]"#,
+        r#"names = ["Stütze.1", "опора.2", "3"]"#,
+    );
+    assert!(text.contains("опора.2"));
+    let path = cmd.path("names.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A pair named `Stütze.1` or `опора.2` appears as such in report.html, as real SVG text
+/// (searchable, any script), while the standalone pictures keep the stroke font (no `<text>`:
+/// they render to PNG with no fonts) with the name in a `<title>`. The working-scheme map is
+/// the report's first picture and a file of its own.
+#[test]
+fn report_has_real_text_and_the_scheme_map_first() {
+    let cmd = TestCommand::new(&["solve"]);
+    let file = zone_with_names(&cmd);
+    let cmd = cmd.arg(&file).args(&["--report", "rep"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let html = std::fs::read_to_string(cmd.path("rep/report.html")).unwrap();
+    for name in ["Stütze.1", "опора.2"] {
+        let in_text = html.split("<text ").skip(1).any(|t| {
+            let content = &t[t.find('>').unwrap() + 1..t.find("</text>").unwrap()];
+            content.starts_with(name)
+        });
+        assert!(in_text, "{name} as <text> in report.html");
+    }
+    let map = std::fs::read_to_string(cmd.path("rep/scheme-map.svg")).unwrap();
+    assert!(!map.contains("<text"), "stroke font in the file");
+    assert!(map.contains("<title>Stütze.1</title>"));
+    assert!(map.contains("<title>опора.2</title>"));
+    for f in ["load-path-forces.svg", "load-path-displacements.svg"] {
+        let svg = std::fs::read_to_string(cmd.path(&format!("rep/{f}"))).unwrap();
+        assert!(!svg.contains("<text"), "{f}: stroke font");
+    }
+    let (scheme, path) = (
+        html.find("id=\"scheme\"").expect("map section"),
+        html.find("id=\"load-path\"").unwrap(),
+    );
+    assert!(scheme < path);
+    assert!(
+        html[..scheme].matches("<svg").count() == 0,
+        "the map is the first picture"
+    );
+    assert!(out.stderr.contains("scheme-map.svg"), "{}", out.stderr);
+}
+
+/// The paper's procedure (Example 1's file has c = 1) is labelled as depending on c, with c's
+/// value, in the HTML and on the charts and the map; without the tightening nothing is.
+#[test]
+fn tightened_report_is_labelled_c_dependent() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(example1())
+        .args(&["--report", "rep"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let html = std::fs::read_to_string(cmd.path("rep/report.html")).unwrap();
+    assert!(html.contains("class=\"c-dependent\""));
+    assert!(html.contains("traced with the tightening c = 1"));
+    for f in ["scheme-map.svg", "load-path-forces.svg"] {
+        let svg = std::fs::read_to_string(cmd.path(&format!("rep/{f}"))).unwrap();
+        assert!(svg.contains("tightening c = 1"), "{f}");
+    }
+    let free = TestCommand::new(&["solve"]).arg(example1()).args(&[
+        "--tightening",
+        "0",
+        "--report",
+        "rep",
+    ]);
+    let out = free.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let html = std::fs::read_to_string(free.path("rep/report.html")).unwrap();
+    assert!(!html.contains("c-dependent"));
+    assert!(!html.contains("traced with the tightening"));
+}

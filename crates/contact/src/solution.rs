@@ -307,6 +307,122 @@ impl ContactSolution {
             .collect()
     }
 
+    /// The traced path itself — with the tightening `c` of the solve still in it, as the
+    /// paper's procedure follows it — at the given points, in the user's units. A point is
+    /// `(k, s)`: the fraction `s ∈ [0, 1]` of the way from breakpoint `k` of
+    /// [`LoadPath::breakpoints`] to breakpoint `k + 1` (`s = 0` is breakpoint `k` itself; the
+    /// last breakpoint is `(last, 0)`). Between breakpoints the path is linear, so
+    /// `z = (1 − s)·z_k + s·z_{k+1}`, `p = (1 − s)·p_k + s·p_{k+1}` and
+    /// `x = q_c + c·t + p·d + M z`, with `t` the tightening direction
+    /// ([`ContactLcp::tightening_direction`]). With `c > 0` these values and their states
+    /// depend on `c`; with `c = 0` they are the solution of the problem. Points off the path
+    /// (an index beyond the breakpoints) are `None`. All `x` are found in one matrix product.
+    /// An error when a value leaves the floating-point range ([`ContactError::OutOfRange`]).
+    #[allow(clippy::type_complexity)]
+    pub fn traced_on_segments(
+        &self,
+        at: &[(usize, f64)],
+    ) -> Result<Vec<Option<(f64, Vec<PairResult>)>>, ContactError> {
+        let bps = &self.path.breakpoints;
+        let n = 3 * self.lcp.pairs;
+        let mut loads = Vec::new();
+        let mut cols: Vec<usize> = Vec::new();
+        let mut zs: Vec<Vec<f64>> = Vec::new();
+        for &(k, s) in at {
+            let Some(a) = bps.get(k) else {
+                cols.push(usize::MAX);
+                continue;
+            };
+            let b = if s > 0.0 { bps.get(k + 1) } else { None };
+            if s > 0.0 && b.is_none() {
+                cols.push(usize::MAX);
+                continue;
+            }
+            let s = if b.is_some() { s.clamp(0.0, 1.0) } else { 0.0 };
+            let mut z = vec![0.0; n];
+            for &(i, v) in &a.z {
+                z[i] += (1.0 - s) * v;
+            }
+            let mut p = a.p;
+            if let Some(b) = b {
+                for &(i, v) in &b.z {
+                    z[i] += s * v;
+                }
+                p = (1.0 - s) * a.p + s * b.p;
+            }
+            cols.push(zs.len());
+            loads.push(p);
+            zs.push(z);
+        }
+        let zmat = faer::Mat::from_fn(n, zs.len(), |i, j| zs[j][i]);
+        let prob = &self.lcp.problem;
+        let mz = &prob.m * &zmat;
+        let c = self.tightening;
+        let t = &self.lcp.tightening_direction;
+        let (fs, ds) = (
+            self.engine.units.user_force(1.0),
+            self.engine.units.user_displacement(1.0),
+        );
+        let mut out = Vec::with_capacity(at.len());
+        for &j in &cols {
+            if j == usize::MAX {
+                out.push(None);
+                continue;
+            }
+            let p = loads[j];
+            let x: Vec<f64> = (0..n)
+                .map(|i| prob.q0[i] + c * t[i] + p * prob.d[i] + mz[(i, j)])
+                .collect();
+            let pairs = pair_results_scaled(&x, &zs[j], &self.engine.names, fs, ds);
+            if let Some(r) = pairs
+                .iter()
+                .find(|r| ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()))
+            {
+                return Err(ContactError::OutOfRange(format!(
+                    "the forces and displacements of pair {} on the traced path at p = {p} \
+                     exceed the floating-point range (about 1.8e308): express the model in \
+                     other units",
+                    r.name
+                )));
+            }
+            out.push(Some((p, pairs)));
+        }
+        Ok(out)
+    }
+
+    /// The traced path (with the tightening, see [`ContactSolution::traced_on_segments`]) at
+    /// many loads: at each load, on the first segment between consecutive breakpoints whose
+    /// loads bracket it (as [`LoadPath::traced_z_at`]); `None` for a load outside the
+    /// breakpoints (beyond the last one, on a ray or before the target).
+    pub fn traced_at_many(
+        &self,
+        loads: &[f64],
+    ) -> Result<Vec<Option<Vec<PairResult>>>, ContactError> {
+        let bps = &self.path.breakpoints;
+        let at: Vec<(usize, f64)> = loads
+            .iter()
+            .map(|&p| {
+                bps.windows(2)
+                    .enumerate()
+                    .find_map(|(k, w)| {
+                        let (a, b) = (w[0].p, w[1].p);
+                        let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+                        (p >= lo && p <= hi && hi > lo).then(|| (k, (p - a) / (b - a)))
+                    })
+                    .or_else(|| {
+                        // a path of one point answers at its own load
+                        (bps.len() == 1 && bps[0].p == p).then_some((0, 0.0))
+                    })
+                    .unwrap_or((usize::MAX, 0.0))
+            })
+            .collect();
+        Ok(self
+            .traced_on_segments(&at)?
+            .into_iter()
+            .map(|v| v.map(|(_, pairs)| pairs))
+            .collect())
+    }
+
     /// The tableaux of the path in the paper's layout and the user's units (at most
     /// `max_steps` steps). They are computed from [`ContactSolution::lcp`], the problem in the
     /// user's units, which is checked on the way ([`ContactError::Engine`] if the engine
@@ -403,5 +519,73 @@ mod tests {
             pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
             PairState::Stick
         );
+    }
+
+    // Reference: brute-force enumeration (unilateral-oracle) of the tightened LCP
+    // x = (q_c + c·t) + p·d + M z of the paper's Example 1 (the doc example of `solve`), at the
+    // middle of every segment of the traced path and at every breakpoint: the traced values
+    // must be one of its solutions (the traced path is a path of solutions of that LCP), and
+    // with c = 1 they differ from the problem's own solution (pair 1 is pressed by c).
+    #[test]
+    fn traced_values_solve_the_tightened_lcp() {
+        use crate::{solve, ContactZone, Follow};
+        use faer::mat;
+        let mut zone = ContactZone::new(
+            mat![
+                [0.1875, -0.375, 0.1875],
+                [-0.375, 0.75, -0.375],
+                [0.1875, -0.375, 0.1875]
+            ],
+            mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
+        );
+        zone.friction = vec![0.6; 3];
+        zone.variable.normal = vec![-0.09375, 0.6875, 0.40625];
+        let c = 1.0;
+        let settings = SolveSettings {
+            tightening: c,
+            follow: Follow::ToEnd,
+            ..Default::default()
+        };
+        let sol = solve(&zone, &settings).unwrap();
+        let lcp = &sol.lcp.problem;
+        let n = lcp.q0.len();
+        let m: Vec<Vec<f64>> = (0..n)
+            .map(|i| (0..n).map(|j| lcp.m[(i, j)]).collect())
+            .collect();
+        let q0c: Vec<f64> = (0..n)
+            .map(|i| lcp.q0[i] + c * sol.lcp.tightening_direction[i])
+            .collect();
+        let k = sol.path.breakpoints.len();
+        assert!(k >= 2, "the example has events");
+        let mut at: Vec<(usize, f64)> = (0..k).map(|j| (j, 0.0)).collect();
+        at.extend((0..k - 1).map(|j| (j, 0.5)));
+        let got = sol.traced_on_segments(&at).unwrap();
+        for ((kk, s), v) in at.iter().zip(&got) {
+            let (p, pairs) = v.as_ref().expect("on the path");
+            let sols = unilateral_oracle::enumerate_parametric(&m, &q0c, &lcp.d, *p);
+            assert!(!sols.is_empty());
+            let scale = 1.0;
+            let hit = sols.iter().any(|e| {
+                let (w, z) = (e.w_f64(), e.z_f64());
+                let want = pair_results(&w, &z, &sol.engine.names);
+                want.iter().zip(pairs).all(|(a, b)| {
+                    [a.x_n - b.x_n, a.x_t - b.x_t, a.z_n - b.z_n, a.z_t - b.z_t]
+                        .iter()
+                        .all(|d| d.abs() <= 1e-9 * scale)
+                })
+            });
+            assert!(
+                hit,
+                "segment {kk} at {s}: p = {p}: {pairs:?} is no solution of the tightened LCP"
+            );
+        }
+        // The tightened start presses every pair with c: x_n = c at p = 0.
+        let (_, start) = got[0].as_ref().unwrap();
+        assert!(start.iter().all(|r| (r.x_n - c).abs() <= 1e-12));
+        // Loads: a load inside the first segment answers, one beyond the path does not.
+        let p1 = sol.path.breakpoints[1].p;
+        let many = sol.traced_at_many(&[0.5 * p1, 1e9 * p1.max(1.0)]).unwrap();
+        assert!(many[0].is_some() && many[1].is_none());
+        assert_eq!(many[0].as_ref().unwrap(), &got[k].as_ref().unwrap().1);
     }
 }

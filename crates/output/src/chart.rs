@@ -34,12 +34,18 @@ pub fn end_load(sol: &ContactSolution) -> Option<f64> {
     }
 }
 
-/// Evaluates the solution without tightening at `p = 0`, at every event load and at the end
-/// (above [`MAX_SAMPLES`] loads, at that many spread evenly over them by their index)
-/// (by the engine kept in the solution: nothing is solved or prepared again). A load off the
-/// traced path is skipped; an error of the solution at a load is returned. The loads are
-/// evaluated in one walk along the path ([`ContactSolution::at_many`]).
+/// The values the charts draw. With a tightening `c > 0` (the paper's procedure), the path
+/// as traced, with `c` in it ([`ContactSolution::traced_on_segments`]), at its breakpoints
+/// (above [`MAX_SAMPLES`], at that many spread evenly over them by their index): exact there,
+/// linear in between, and never mixed with values without the tightening. Without one, the
+/// solution of the problem at `p = 0`, at every event load and at the end (thinned alike),
+/// evaluated in one walk along the path ([`ContactSolution::at_many`]); a load off the traced
+/// path is skipped. An error of the solution at a load is returned. Nothing is solved or
+/// prepared again.
 pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
+    if sol.tightening > 0.0 {
+        return traced_samples(sol);
+    }
     let mut want: Vec<f64> = vec![0.0];
     want.extend(
         sol.steps
@@ -80,13 +86,46 @@ pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
     Ok(out)
 }
 
-/// At most this many loads are evaluated for the charts: a panel is 180 px wide, and each
-/// evaluation removes the tightening by pivots (the cost of the report).
+/// The traced path (with the tightening) at its breakpoints, consecutive breakpoints at the
+/// same load taken once, thinned to [`MAX_SAMPLES`].
+fn traced_samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
+    let bps = &sol.path.breakpoints;
+    let mut idx: Vec<usize> = Vec::with_capacity(bps.len());
+    for (k, b) in bps.iter().enumerate() {
+        if idx
+            .last()
+            .is_some_and(|&j| (bps[j].p - b.p).abs() <= 1e-12 * b.p.abs().max(1.0))
+        {
+            // the later breakpoint at the same load: the scheme settled there
+            *idx.last_mut().unwrap_or(&mut 0) = k;
+            continue;
+        }
+        idx.push(k);
+    }
+    let idx = thin(idx, MAX_SAMPLES);
+    let at: Vec<(usize, f64)> = idx.iter().map(|&k| (k, 0.0)).collect();
+    let mut out = PathSamples {
+        loads: Vec::new(),
+        pairs: Vec::new(),
+    };
+    for (p, pairs) in sol.traced_on_segments(&at)?.into_iter().flatten() {
+        out.loads.push(p);
+        out.pairs.push(pairs);
+    }
+    Ok(out)
+}
+
+/// The load of the last breakpoint of the traced path (where the tightened charts end).
+fn last_breakpoint(sol: &ContactSolution) -> Option<f64> {
+    sol.path.breakpoints.last().map(|b| b.p)
+}
+
+/// At most this many loads are evaluated for the charts: a panel is 180 px wide.
 pub const MAX_SAMPLES: usize = 200;
 
 /// The loads thinned to at most `max` (`max ≥ 2`), evenly by their index along the path, the
 /// first and the last kept.
-fn thin(loads: Vec<f64>, max: usize) -> Vec<f64> {
+fn thin<T: Copy>(loads: Vec<T>, max: usize) -> Vec<T> {
     let k = loads.len();
     if k <= max || max < 2 {
         return loads;
@@ -194,27 +233,28 @@ pub fn chart(
             "mutual displacements",
         ),
     };
-    let mut caption = format!(
-        "The {what} of each pair against the load p, exact at p = 0, at every event and at the end, straight in between. Each panel has its own vertical scale. Red marks: events of the pair (numbers as in the list below); grey lines: events of other pairs."
+    let tightened = sol.tightening > 0.0;
+    let mut caption = if tightened {
+        format!(
+            "The paper's procedure: the {what} of each pair on the path traced with the tightening c = {c}, against the load p; values, states and events all depend on c (the solution without the tightening is the report's table of pairs). Exact at every breakpoint of the traced path up to the last one (p = {last}), straight in between.",
+            c = num(sol.tightening),
+            last = last_breakpoint(sol).map_or_else(|| "0".into(), num),
+        )
+    } else {
+        format!(
+            "The {what} of each pair against the load p, exact at p = 0, at every event and at the end, straight in between."
+        )
+    };
+    caption.push_str(
+        " Each panel has its own vertical scale. Red marks: events of the pair (numbers as in the list below), and red ticks under every p axis: the loads of all events; grey lines: events of other pairs.",
     );
-    if sol.tightening > 0.0 {
-        caption.push_str(&format!(
-            " The values are those of the solution without tightening; the events are those of the path traced with the tightening c = {}, and the scheme without it may change at other loads.",
-            num(sol.tightening)
-        ));
-    }
     let total = s.pairs.first().map_or(0, |p| p.len());
     let many = total > MANY_PAIRS;
     let many_events = sol.steps.len() > MANY_EVENTS;
     if many {
         caption.push_str(&format!(
-            " Of the {total} pairs, {} panels are shown{}.",
+            " Of the {total} pairs, the {} that change most are shown; the working-scheme map shows every pair.",
             selected.len(),
-            if kind == ChartKind::Forces {
-                "; the map below the panels shows the state of every pair at every sampled load"
-            } else {
-                " (the forces chart has a map of the states of all pairs)"
-            }
         ));
     }
     if many_events {
@@ -250,13 +290,17 @@ pub fn chart(
     let ev_cols = (((width - 40.0) / ev_colw).floor() as usize).max(1);
     let ev_rows = labels.len().div_ceil(ev_cols);
     let panels_h = rows as f64 * (ph + gap_y);
-    let map_h = if many && kind == ChartKind::Forces && s.loads.len() >= 2 {
-        map_height(total)
-    } else {
-        0.0
-    };
-    let height = top + panels_h + 30.0 + ev_rows as f64 * 14.0 + 20.0 + map_h;
+    let height = top + panels_h + 30.0 + ev_rows as f64 * 14.0 + 20.0;
 
+    let title = if tightened {
+        format!(
+            "{title} (traced with the tightening c = {})",
+            num(sol.tightening)
+        )
+    } else {
+        title.to_string()
+    };
+    let title = title.as_str();
     let mut g = Svg::new(width, height, title);
     g.text(title, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
     for (i, l) in cap_lines.iter().enumerate() {
@@ -324,6 +368,23 @@ pub fn chart(
     let (p0, p1) = nice_range(pmin, pmax);
     let xt = ticks(p0, p1, 4);
 
+    // The state in each panel's title: of the reported solution; of a tightened run, that of
+    // the traced path at its end (as the working-scheme map's last column).
+    let end_states: Vec<PairState> = if tightened {
+        let mut st: Vec<PairState> = s
+            .pairs
+            .last()
+            .map(|p| p.iter().map(|r| r.state).collect())
+            .unwrap_or_default();
+        if let (Some(last), Some(var), Some(&(_, true, _, _))) =
+            (s.pairs.last(), sol.path.last_entering, segments(sol).last())
+        {
+            growing(&mut st, last, var, sol.lcp.pairs);
+        }
+        st
+    } else {
+        sol.pairs.iter().map(|r| r.state).collect()
+    };
     for (k, &pi) in selected.iter().enumerate() {
         let (r, c) = (k / cols, k % cols);
         let ox = left + c as f64 * (pw + gap_x);
@@ -369,6 +430,31 @@ pub fn chart(
         }
         if lo < 0.0 && hi > 0.0 {
             g.line((ox, fy(0.0)), (ox + pw, fy(0.0)), "#777777", 0.8, "");
+        }
+        // the loads of all events as ticks under the p axis (one path per panel)
+        let mut ticks_d = String::new();
+        let mut last_tick = f64::NEG_INFINITY;
+        for st in sol
+            .steps
+            .iter()
+            .filter(|st| !st.settling && !st.events.is_empty())
+        {
+            if st.p >= p0 && st.p <= p1 {
+                let x = fx(st.p);
+                if (x - last_tick).abs() >= 0.5 {
+                    ticks_d.push_str(&format!(
+                        "M{} {}v5",
+                        crate::svg::n(x),
+                        crate::svg::n(oy + ph)
+                    ));
+                    last_tick = x;
+                }
+            }
+        }
+        if !ticks_d.is_empty() {
+            g.raw(&format!(
+                r#"<path d="{ticks_d}" stroke="{C_EVENT}" stroke-width="0.9" fill="none"/>"#
+            ));
         }
         // events of all pairs: faint lines; of this pair: marks and numbers
         let mut own: Vec<(f64, usize)> = Vec::new();
@@ -430,10 +516,9 @@ pub fn chart(
         }
         // panel title: pair name and final state
         let name = names.get(pi).cloned().unwrap_or_else(|| pi.to_string());
-        let state = sol
-            .pairs
+        let state = end_states
             .get(pi)
-            .map(|r| format!("  ({})", r.state))
+            .map(|st| format!("  ({st})"))
             .unwrap_or_default();
         g.text(
             &format!("{name}{state}"),
@@ -492,38 +577,243 @@ pub fn chart(
             "#333333",
         );
     }
-    if map_h > 0.0 {
-        let my = ey + ev_rows as f64 * 14.0 + 10.0;
-        state_map(&mut g, s, &names, my, width);
-    }
     g.finish()
 }
 
-/// Height of the state map of `m` pairs (title, rows, axis).
-fn map_height(m: usize) -> f64 {
-    MAP_HEAD + (m as f64 * 2.0).clamp(60.0, 600.0) + 40.0
+/// One column of the working-scheme map: a segment of the traced path between two
+/// breakpoints (or the last one, beyond the last breakpoint), with the state of every pair in
+/// it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SchemeColumn {
+    /// The segment: it starts at breakpoint `segment` of [`LoadPath::breakpoints`](unilateral_lcp::LoadPath::breakpoints).
+    pub segment: usize,
+    /// The load at its start.
+    pub p_from: f64,
+    /// The load at its end.
+    pub p_to: f64,
+    /// The state of every pair inside the segment.
+    pub states: Vec<PairState>,
 }
 
-const MAP_HEAD: f64 = 40.0;
+/// At most this many segments are drawn as columns of the working-scheme map (spread evenly
+/// over the path when it has more): about two pixels each on its 1000 px.
+pub const MAP_COLUMNS: usize = 480;
 
-/// The states of all pairs at every sampled load, one row per pair and one column per sample,
-/// drawn as one rectangle per run of a non-open state along a row (open is the background).
-fn state_map(g: &mut Svg, s: &PathSamples, names: &[String], y0: f64, width: f64) {
-    let m = s.pairs.first().map_or(0, |p| p.len());
-    let k = s.loads.len();
-    let (left, right) = (72.0, 20.0);
-    let w = width - left - right;
-    let h = (m as f64 * 2.0).clamp(60.0, 600.0);
-    let top = y0 + MAP_HEAD;
-    g.text(
-        "States of all pairs over the load (one row per pair, one column per sampled load)",
-        20.0,
-        y0 + 12.0,
-        10.0,
-        Anchor::Start,
-        "#111111",
+/// The columns of the working-scheme map: every segment of the traced path along which the
+/// load moves (segments that only settle the scheme at one load are not columns), and the
+/// segment after the last breakpoint when the path goes on beyond it (a ray, or the target on
+/// it). A pair's state in a segment is read at the segment's middle (inside it the basis does
+/// not change, so neither does the state); beyond the last breakpoint it is the state there
+/// with the variable that enters on the last segment taken as growing (the pair it belongs to
+/// opens, closes, slips or sticks). With a tightening the states are those of the traced path,
+/// which depend on `c`.
+pub fn scheme_columns(sol: &ContactSolution) -> Result<Vec<SchemeColumn>, ContactError> {
+    let segs = thin(segments(sol), MAP_COLUMNS);
+    let at: Vec<(usize, f64)> = segs
+        .iter()
+        .map(|&(k, fin, _, _)| (k, if fin { 0.0 } else { 0.5 }))
+        .collect();
+    let m = sol.lcp.pairs;
+    let mut out = Vec::with_capacity(segs.len());
+    for (&(k, fin, p_from, p_to), v) in segs.iter().zip(sol.traced_on_segments(&at)?) {
+        let Some((_, pairs)) = v else { continue };
+        let mut states: Vec<PairState> = pairs.iter().map(|r| r.state).collect();
+        if fin {
+            if let Some(var) = sol.path.last_entering {
+                growing(&mut states, &pairs, var, m);
+            }
+        }
+        out.push(SchemeColumn {
+            segment: k,
+            p_from,
+            p_to,
+            states,
+        });
+    }
+    Ok(out)
+}
+
+/// The segments of the path that are columns of the map: `(breakpoint, beyond the last one,
+/// p_from, p_to)`.
+fn segments(sol: &ContactSolution) -> Vec<(usize, bool, f64, f64)> {
+    let bps = &sol.path.breakpoints;
+    let Some(last) = bps.last() else {
+        return Vec::new();
+    };
+    let scale = bps.iter().fold(1.0f64, |a, b| a.max(b.p.abs()));
+    let tol = 1e-12 * scale;
+    let mut segs: Vec<(usize, bool, f64, f64)> = bps
+        .windows(2)
+        .enumerate()
+        .filter(|(_, w)| (w[1].p - w[0].p).abs() > tol)
+        .map(|(k, w)| (k, false, w[0].p, w[1].p))
+        .collect();
+    let end = end_load(sol).unwrap_or(last.p);
+    if end > last.p + tol || segs.is_empty() {
+        segs.push((bps.len() - 1, true, last.p, end.max(last.p)));
+    }
+    segs
+}
+
+/// The states just after a breakpoint, where `var` (zero at the breakpoint) starts to grow.
+fn growing(states: &mut [PairState], pairs: &[PairResult], var: unilateral_lcp::Var, m: usize) {
+    use unilateral_lcp::Var;
+    let (i, is_z) = match var {
+        Var::X(i) => (i, false),
+        Var::Z(i) => (i, true),
+        Var::Driver => return,
+    };
+    if m == 0 || i >= 3 * m {
+        return;
+    }
+    let (pair, part) = (i % m, i / m);
+    let slip = |r: &PairResult| {
+        if r.z_t > 0.0 {
+            PairState::SlipPlus
+        } else if r.z_t < 0.0 {
+            PairState::SlipMinus
+        } else {
+            PairState::Stick
+        }
+    };
+    let st = &mut states[pair];
+    *st = match (part, is_z) {
+        (0, true) => PairState::Open,
+        (0, false) if *st == PairState::Open => slip(&pairs[pair]),
+        (1, true) if *st != PairState::Open => PairState::SlipPlus,
+        (2, true) if *st != PairState::Open => PairState::SlipMinus,
+        (_, false) if part > 0 && *st != PairState::Open => PairState::Stick,
+        _ => *st,
+    };
+}
+
+/// The column of the reported load and the fraction of the way through it.
+fn reported_column(sol: &ContactSolution, cols: &[SchemeColumn]) -> Option<(usize, f64)> {
+    let p = sol.p?;
+    let frac = |c: &SchemeColumn| {
+        if c.p_to != c.p_from {
+            ((p - c.p_from) / (c.p_to - c.p_from)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        }
+    };
+    let inside = |c: &SchemeColumn| {
+        let (lo, hi) = if c.p_from <= c.p_to {
+            (c.p_from, c.p_to)
+        } else {
+            (c.p_to, c.p_from)
+        };
+        let t = 1e-12 * hi.abs().max(1.0);
+        p >= lo - t && p <= hi + t
+    };
+    let by_segment = sol
+        .path
+        .target_segment
+        .and_then(|ts| cols.iter().position(|c| c.segment == ts && inside(c)));
+    if let Some(j) = by_segment.or_else(|| cols.iter().position(inside)) {
+        return Some((j, frac(&cols[j])));
+    }
+    // a thinned map: the reported load lies between two drawn columns
+    let j = cols.iter().position(|c| c.p_from.max(c.p_to) >= p)?;
+    Some((j, 0.0))
+}
+
+const MAP_W: f64 = 1000.0;
+
+/// Height of the map's legend row and the label of the reported load above the rows.
+const MAP_LEGEND: f64 = 34.0;
+
+/// The working-scheme map as an SVG document: every pair (rows) against the load path
+/// (columns, one per segment between breakpoints: [`scheme_columns`]), coloured by its state
+/// as the structure picture colours its pairs, the reported load marked.
+pub fn scheme_map_svg(sol: &ContactSolution, cols: &[SchemeColumn]) -> String {
+    let names = sol.lcp_names();
+    let tightened = sol.tightening > 0.0;
+    let title = if tightened {
+        format!(
+            "Working scheme along the load path traced with the tightening c = {}",
+            num(sol.tightening)
+        )
+    } else {
+        "Working scheme along the load path".to_string()
+    };
+    let segments = segments(sol).len();
+    let mut caption = String::from(
+        "The state of every pair (rows) in every segment of the load path between two breakpoints (columns). Every segment has the same width whatever its range of loads, so that events close together stay apart: the loads under the map are those at the ends of the segments, not to scale.",
     );
-    let mut lx = 20.0;
+    if tightened {
+        caption.push_str(&format!(
+            " The paper's procedure: the states are those of the path traced with the tightening c = {}, and they and the loads of their changes depend on c.",
+            num(sol.tightening)
+        ));
+    }
+    if cols.len() < segments {
+        caption.push_str(&format!(
+            " Of the {segments} segments, {} spread evenly over the path are drawn.",
+            cols.len()
+        ));
+    }
+    let cap = wrap(&caption, 9.0, MAP_W - 40.0);
+    let m = names.len();
+    let rh = (600.0 / m.max(1) as f64).clamp(0.6, 18.0);
+    let h = rh * m.max(1) as f64;
+    let head = 40.0 + cap.len() as f64 * 14.0 + 6.0;
+    let height = head + MAP_LEGEND + h + 50.0;
+    let mut g = Svg::new(MAP_W, height, &title);
+    g.text(&title, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
+    for (i, l) in cap.iter().enumerate() {
+        g.text(
+            l,
+            20.0,
+            46.0 + 14.0 * i as f64,
+            9.0,
+            Anchor::Start,
+            "#444444",
+        );
+    }
+    if cols.is_empty() {
+        g.text(
+            "no load path to draw (no solution along the path)",
+            20.0,
+            head + 20.0,
+            10.0,
+            Anchor::Start,
+            "#b3261e",
+        );
+        return g.finish();
+    }
+    let marker = reported_column(sol, cols);
+    state_map(&mut g, cols, &names, head, MAP_W, marker, sol.p);
+    g.finish()
+}
+
+/// Draws the map of `cols` (legend at `y0`, then the rows) into `g`: one rectangle per run of
+/// equal non-open state along a row (open is the background).
+#[allow(clippy::too_many_arguments)]
+fn state_map(
+    g: &mut Svg,
+    cols: &[SchemeColumn],
+    names: &[String],
+    y0: f64,
+    width: f64,
+    marker: Option<(usize, f64)>,
+    p_reported: Option<f64>,
+) {
+    let m = cols.first().map_or(0, |c| c.states.len());
+    let k = cols.len();
+    let label_size = 8.0;
+    let left = names
+        .iter()
+        .map(|n| font::width(n, label_size))
+        .fold(30.0f64, f64::max)
+        .min(160.0)
+        + 12.0;
+    let right = 20.0;
+    let w = width - left - right;
+    let rh = (600.0 / m.max(1) as f64).clamp(0.6, 18.0);
+    let h = rh * m.max(1) as f64;
+    let top = y0 + MAP_LEGEND;
+    let mut lx = left;
     for st in [
         PairState::Open,
         PairState::Stick,
@@ -531,11 +821,11 @@ fn state_map(g: &mut Svg, s: &PathSamples, names: &[String], y0: f64, width: f64
         PairState::SlipMinus,
     ] {
         let (fill, word) = state_style(st);
-        g.rect(lx, y0 + 20.0, 9.0, 9.0, fill, "#333333", 0.6);
-        g.text(word, lx + 13.0, y0 + 28.0, 8.5, Anchor::Start, "#222222");
+        g.rect(lx, y0 + 2.0, 9.0, 9.0, fill, "#333333", 0.6);
+        g.text(word, lx + 13.0, y0 + 10.0, 8.5, Anchor::Start, "#222222");
         lx += 13.0 + font::width(word, 8.5) + 18.0;
     }
-    let (cw, rh) = (w / k as f64, h / m.max(1) as f64);
+    let cw = w / k.max(1) as f64;
     g.rect(
         left,
         top,
@@ -546,7 +836,7 @@ fn state_map(g: &mut Svg, s: &PathSamples, names: &[String], y0: f64, width: f64
         0.6,
     );
     for i in 0..m {
-        let state_at = |j: usize| s.pairs[j].get(i).map(|r| r.state);
+        let state_at = |j: usize| cols[j].states.get(i).copied();
         let mut j = 0;
         while j < k {
             let st = state_at(j);
@@ -555,9 +845,8 @@ fn state_map(g: &mut Svg, s: &PathSamples, names: &[String], y0: f64, width: f64
                 e += 1;
             }
             if let Some(st) = st.filter(|&v| v != PairState::Open) {
-                let x = left + j as f64 * cw;
                 g.rect(
-                    x,
+                    left + j as f64 * cw,
                     top + i as f64 * rh,
                     (e - j) as f64 * cw,
                     rh,
@@ -569,35 +858,65 @@ fn state_map(g: &mut Svg, s: &PathSamples, names: &[String], y0: f64, width: f64
             j = e;
         }
     }
-    // pair names at the first and last rows, loads at a few columns
-    for i in [0, m.saturating_sub(1)] {
+    // row labels: every `every`-th pair, where they fit
+    let every = ((label_size + 3.0) / rh).ceil().max(1.0) as usize;
+    for i in (0..m).step_by(every) {
         if let Some(nm) = names.get(i) {
             g.text(
                 nm,
                 left - 4.0,
-                top + (i as f64 + 0.5) * rh + 3.0,
-                8.0,
+                top + (i as f64 + 0.5) * rh + label_size / 2.0,
+                label_size,
                 Anchor::End,
                 "#444444",
             );
         }
     }
-    let marks = 5.min(k);
-    for t in 0..marks {
-        let j = if marks > 1 {
-            t * (k - 1) / (marks - 1)
-        } else {
-            0
-        };
-        let x = left + (j as f64 + 0.5) * cw;
-        g.line((x, top + h), (x, top + h + 4.0), "#444444", 0.6, "");
+    // the loads at the ends of the segments: a readable subset
+    let bounds: Vec<(f64, f64)> = std::iter::once((left, cols[0].p_from))
+        .chain(
+            cols.iter()
+                .enumerate()
+                .map(|(j, c)| (left + (j + 1) as f64 * cw, c.p_to)),
+        )
+        .collect();
+    let mut last_right = f64::NEG_INFINITY;
+    let mut ticks_d = String::new();
+    for (x, p) in &bounds {
+        ticks_d.push_str(&format!(
+            "M{} {}v3",
+            crate::svg::n(*x),
+            crate::svg::n(top + h)
+        ));
+        let lab = num(*p);
+        let lw = font::width(&lab, 8.0);
+        if x - lw / 2.0 > last_right + 8.0 && x + lw / 2.0 <= width {
+            g.line((*x, top + h), (*x, top + h + 6.0), "#444444", 0.7, "");
+            g.text(&lab, *x, top + h + 16.0, 8.0, Anchor::Middle, "#444444");
+            last_right = x + lw / 2.0;
+        }
+    }
+    g.raw(&format!(
+        r##"<path d="{ticks_d}" stroke="#888888" stroke-width="0.5" fill="none"/>"##
+    ));
+    g.text(
+        "load p at the ends of the segments (not to scale)",
+        left + w / 2.0,
+        top + h + 32.0,
+        9.0,
+        Anchor::Middle,
+        "#222222",
+    );
+    if let (Some((j, f)), Some(p)) = (marker, p_reported) {
+        let x = left + (j as f64 + f) * cw;
+        g.line((x, top - 4.0), (x, top + h + 2.0), "#111111", 1.4, "");
         g.text(
-            &format!("p = {}", num(s.loads[j])),
-            x,
-            top + h + 14.0,
+            &format!("reported p = {}", num(p)),
+            x.clamp(left + 40.0, width - 60.0),
+            top - 5.0,
             8.0,
             Anchor::Middle,
-            "#444444",
+            "#111111",
         );
     }
 }
@@ -747,16 +1066,88 @@ mod tests {
             [Open, Open, Open, Open],
             [SlipMinus, SlipMinus, SlipMinus, Stick],
         ];
-        let s = PathSamples {
-            loads: vec![0.0, 1.0, 2.0, 3.0],
-            pairs: (0..4)
-                .map(|j| (0..3).map(|i| pair(i, 1.0, 0.0, rows[i][j])).collect())
-                .collect(),
-        };
+        let cols: Vec<SchemeColumn> = (0..4)
+            .map(|j| SchemeColumn {
+                segment: j,
+                p_from: j as f64,
+                p_to: j as f64 + 1.0,
+                states: (0..3).map(|i| rows[i][j]).collect(),
+            })
+            .collect();
         let names: Vec<String> = (0..3).map(|i| format!("s{i}")).collect();
         let mut g = Svg::new(400.0, 300.0, "map");
-        state_map(&mut g, &s, &names, 0.0, 400.0);
+        state_map(&mut g, &cols, &names, 0.0, 400.0, Some((1, 0.5)), Some(1.5));
         let svg = g.finish();
         assert_eq!(svg.matches("<rect").count(), 10, "{svg}");
+    }
+
+    fn solve_example3() -> ContactSolution {
+        let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/example3-sheet-pile.toml");
+        let unilateral_io::Problem::Structural(pb) = unilateral_io::read_problem(&file).unwrap()
+        else {
+            panic!("a structural model");
+        };
+        unilateral_analysis::analyze(&pb.model, &pb.settings)
+            .unwrap()
+            .solution
+    }
+
+    /// The working-scheme map of Example 3 (c = 1000): one column per segment of the traced path
+    /// along which the load moves, and from one column to the next exactly the pairs named by the
+    /// events of the steps in between change state (opens → open, closes → pressed, slips ± →
+    /// slip ±, sticks → stick). Reference: the path's events, read from its leaving variables
+    /// (`ContactSolution::steps`), not from any value. The last column (the ray beyond the last
+    /// breakpoint) has the last event applied. The reported load p = 1 is marked.
+    #[test]
+    fn scheme_map_changes_exactly_at_the_events() {
+        use unilateral_contact::EventKind;
+        let sol = solve_example3();
+        let cols = scheme_columns(&sol).unwrap();
+        let moving = sol
+            .path
+            .breakpoints
+            .windows(2)
+            .filter(|w| w[1].p != w[0].p)
+            .count();
+        // the ray beyond the last breakpoint is one more column
+        assert_eq!(cols.len(), moving + 1);
+        for w in cols.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            // the steps from the end of column a to the start of column b
+            let events: Vec<_> = sol.steps[a.segment..b.segment]
+                .iter()
+                .flat_map(|st| st.events.iter())
+                .filter(|e| !e.while_open)
+                .collect();
+            for (i, (sa, sb)) in a.states.iter().zip(&b.states).enumerate() {
+                let named: Vec<_> = events.iter().filter(|e| e.pair == i).collect();
+                match named.last() {
+                    None => assert_eq!(
+                        sa, sb,
+                        "pair {i} between segments {} and {}",
+                        a.segment, b.segment
+                    ),
+                    Some(e) => {
+                        let want = match e.kind {
+                            EventKind::Opens => vec![PairState::Open],
+                            EventKind::Closes => {
+                                vec![PairState::Stick, PairState::SlipPlus, PairState::SlipMinus]
+                            }
+                            EventKind::StartsSlippingPlus => vec![PairState::SlipPlus],
+                            EventKind::StartsSlippingMinus => vec![PairState::SlipMinus],
+                            EventKind::Sticks => vec![PairState::Stick],
+                        };
+                        assert!(want.contains(sb), "pair {i} after {e}: {sb}");
+                    }
+                }
+            }
+        }
+        let svg = scheme_map_svg(&sol, &cols);
+        assert!(
+            svg.contains("<title>reported p = 1</title>"),
+            "reported load marked"
+        );
+        assert!(svg.contains("tightening c = 1000"));
     }
 }

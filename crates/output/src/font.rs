@@ -115,7 +115,27 @@ fn glyph(c: char) -> Option<&'static str> {
 /// Width of a space in grid units.
 const SPACE: f64 = 3.5;
 
-fn strokes(c: char) -> (Vec<Vec<(f64, f64)>>, f64) {
+/// A glyph's strokes (grid units, left bearing one unit) and its advance.
+type Glyph = (Vec<Vec<(f64, f64)>>, f64);
+
+thread_local! {
+    /// The glyphs parsed so far: a picture asks for the same few characters many times.
+    static GLYPHS: std::cell::RefCell<std::collections::HashMap<char, std::rc::Rc<Glyph>>> =
+        std::cell::RefCell::new(std::collections::HashMap::new());
+}
+
+fn strokes(c: char) -> std::rc::Rc<Glyph> {
+    GLYPHS.with(|g| {
+        if let Some(v) = g.borrow().get(&c) {
+            return v.clone();
+        }
+        let v = std::rc::Rc::new(parse_strokes(c));
+        g.borrow_mut().insert(c, v.clone());
+        v
+    })
+}
+
+fn parse_strokes(c: char) -> Glyph {
     if c == ' ' {
         return (Vec::new(), SPACE);
     }
@@ -232,7 +252,8 @@ pub fn path_data(
     for (c, sub) in r {
         let k = if sub { SUB_SCALE } else { 1.0 };
         let drop = if sub { 1.2 * u } else { 0.0 };
-        let (glyph, adv) = strokes(c);
+        let g = strokes(c);
+        let (glyph, adv) = (&g.0, g.1);
         for st in glyph {
             for (i, &(gx, gy)) in st.iter().enumerate() {
                 // local coordinates: right and down from the anchor
@@ -241,7 +262,9 @@ pub fn path_data(
                 let px = x + lx * cos + ly * sin;
                 let py = y - lx * sin + ly * cos;
                 d.push(if i == 0 { 'M' } else { 'L' });
-                d.push_str(&format!("{} {}", crate::svg::n(px), crate::svg::n(py)));
+                crate::svg::push_n(&mut d, px);
+                d.push(' ');
+                crate::svg::push_n(&mut d, py);
             }
             if st.len() == 1 {
                 d.push_str("l0 0");

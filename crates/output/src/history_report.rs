@@ -62,9 +62,15 @@ pub fn write_history_report(
     options: &HistoryChartOptions,
     extra: Vec<(String, String, String)>,
 ) -> std::io::Result<Vec<PathBuf>> {
+    // Each picture twice: with the stroke font for its file (renders with no fonts), with
+    // real text inline in the HTML (any script, searchable). The `extra` pictures come drawn.
     let mut pictures = history_pictures(h, options).map_err(std::io::Error::from)?;
+    let mut inline =
+        crate::svg::with_text_mode(crate::svg::TextMode::Real, || history_pictures(h, options))
+            .map_err(std::io::Error::from)?;
     let at = pictures.len().saturating_sub(1);
     for (k, p) in extra.into_iter().enumerate() {
+        inline.insert(at + k, p.clone());
         pictures.insert(at + k, p);
     }
     let summary = history_summary(h, title).map_err(std::io::Error::from)?;
@@ -79,12 +85,12 @@ pub fn write_history_report(
         escape(title),
         escape(&summary)
     );
-    for (name, caption, svg) in &pictures {
+    for ((name, caption, svg), (_, _, shown)) in pictures.iter().zip(&inline) {
         let path = dir.join(name);
         std::fs::write(&path, svg)?;
         files.push(path);
         html.push_str(&format!(
-            "<figure>\n{svg}\n<figcaption>{}</figcaption>\n</figure>\n",
+            "<figure>\n{shown}\n<figcaption>{}</figcaption>\n</figure>\n",
             escape(caption)
         ));
     }

@@ -8,11 +8,22 @@ use unilateral_analysis::Analysis;
 use unilateral_contact::ContactSolution;
 use unilateral_fem::Model;
 
-use crate::svg;
+use crate::chart::{self, ChartKind};
+use crate::svg::{self, TextMode};
 use crate::{
-    check_finite, load_path_svgs, state_style, structure_svg, ReportError, ReportOptions,
-    DISPLACEMENTS_SVG, FORCES_SVG, REPORT_HTML, STRUCTURE_SVG,
+    check_finite, state_style, structure_svg, ReportError, ReportOptions, DISPLACEMENTS_SVG,
+    FORCES_SVG, REPORT_HTML, STRUCTURE_SVG,
 };
+
+/// The working-scheme map in the report directory.
+pub const SCHEME_MAP_SVG: &str = "scheme-map.svg";
+
+struct DrawnPictures {
+    map: String,
+    structure: Option<String>,
+    forces: String,
+    displacements: String,
+}
 
 /// Writes the pictures and `report.html` of an analysis into `dir`; returns the files written.
 ///
@@ -85,31 +96,57 @@ fn write_all(
         written.push(path);
         Ok(())
     };
-    let (forces, displacements) = load_path_svgs(solution, options)?;
-    let structure = match (model, analysis) {
-        (Some(m), Some(a)) => Some(structure_svg(m, a, options)),
-        _ => None,
+    // Everything is evaluated once; each picture is drawn twice: with the stroke font for
+    // its standalone file (renders with no fonts), with real text inline in the HTML.
+    let samples = chart::samples(solution)?;
+    let selected = chart::select(solution, &samples, options.pairs.as_deref());
+    let columns = chart::scheme_columns(solution)?;
+    let draw = |mode: TextMode| {
+        svg::with_text_mode(mode, || {
+            let structure = match (model, analysis) {
+                (Some(m), Some(a)) => Some(structure_svg(m, a, options)),
+                _ => None,
+            };
+            DrawnPictures {
+                map: chart::scheme_map_svg(solution, &columns),
+                structure,
+                forces: chart::chart(solution, &samples, &selected, ChartKind::Forces),
+                displacements: chart::chart(
+                    solution,
+                    &samples,
+                    &selected,
+                    ChartKind::Displacements,
+                ),
+            }
+        })
     };
-    // Every picture is checked before any file is written.
-    check_finite(FORCES_SVG, &forces)?;
-    check_finite(DISPLACEMENTS_SVG, &displacements)?;
-    if let Some(s) = &structure {
+    let files = draw(TextMode::Strokes);
+    // Every picture is checked before any file is written (the inline ones draw the same
+    // numbers).
+    check_finite(SCHEME_MAP_SVG, &files.map)?;
+    check_finite(FORCES_SVG, &files.forces)?;
+    check_finite(DISPLACEMENTS_SVG, &files.displacements)?;
+    if let Some(s) = &files.structure {
         check_finite(STRUCTURE_SVG, s)?;
     }
-    put(FORCES_SVG, &forces)?;
-    put(DISPLACEMENTS_SVG, &displacements)?;
-    if let Some(s) = &structure {
+    put(SCHEME_MAP_SVG, &files.map)?;
+    put(FORCES_SVG, &files.forces)?;
+    put(DISPLACEMENTS_SVG, &files.displacements)?;
+    if let Some(s) = &files.structure {
         put(STRUCTURE_SVG, s)?;
     }
+    drop(files);
+    let inline = draw(TextMode::Real);
     let html = report_html(
         model,
         analysis,
         solution,
         options,
         &Pictures {
-            structure: structure.as_deref(),
-            forces: &forces,
-            displacements: &displacements,
+            structure: inline.structure.as_deref(),
+            forces: &inline.forces,
+            displacements: &inline.displacements,
+            map: Some(&inline.map),
         },
     );
     put(REPORT_HTML, &html)?;
@@ -125,6 +162,8 @@ pub struct Pictures<'a> {
     pub forces: &'a str,
     /// The load-path chart of the mutual displacements.
     pub displacements: &'a str,
+    /// The working-scheme map (the first picture, when given).
+    pub map: Option<&'a str>,
 }
 
 const CSS: &str = "body{font-family:sans-serif;margin:24px auto;max-width:1400px;color:#222;padding:0 16px}\
@@ -247,7 +286,19 @@ pub fn report_html(
         }
         h.push_str("</ul>\n");
     }
-    // pictures
+    // pictures: the working scheme first, the paper's central idea at a glance
+    let tightened = sol.tightening > 0.0;
+    let c_note = format!(
+        "<p class=\"c-dependent\"><b>The paper's procedure, traced with the tightening c = {}:</b> the working-scheme map, the load-path charts and the table of events show the path with the tightening in it; their values, states and event loads depend on c. The table of pairs at the end is the solution without the tightening.</p>\n",
+        esc(&plain(sol.tightening))
+    );
+    if let Some(map) = pics.map {
+        h.push_str("<h2 id=\"scheme\">Working scheme</h2>\n");
+        if tightened {
+            h.push_str(&c_note);
+        }
+        let _ = writeln!(h, "<div class=\"pic\">{}</div>", strip_decl(map));
+    }
     if let Some(s) = pics.structure {
         let _ = writeln!(
             h,
@@ -257,14 +308,26 @@ pub fn report_html(
     } else if analysis.is_some() {
         h.push_str("<h2 id=\"structure\">Structure</h2>\n<p>The structure picture needs the model (written by <code>write_report_for</code>).</p>\n");
     }
+    h.push_str("<h2 id=\"load-path\">Load path</h2>\n");
+    if tightened {
+        h.push_str(&c_note);
+    }
     let _ = writeln!(
         h,
-        "<h2 id=\"load-path\">Load path</h2>\n<div class=\"pic\">{}</div>\n<div class=\"pic\">{}</div>",
+        "<div class=\"pic\">{}</div>\n<div class=\"pic\">{}</div>",
         strip_decl(pics.forces),
         strip_decl(pics.displacements)
     );
     // events
-    h.push_str("<h2 id=\"events\">Events</h2>\n<table class=\"events\">\n<tr><th>step</th><th>p</th><th>entering</th><th>leaving</th><th>events</th></tr>\n");
+    h.push_str("<h2 id=\"events\">Events</h2>\n");
+    if tightened {
+        let _ = writeln!(
+            h,
+            "<p>Events of the path traced with the tightening c = {}: their loads depend on c.</p>",
+            esc(&plain(sol.tightening))
+        );
+    }
+    h.push_str("<table class=\"events\">\n<tr><th>step</th><th>p</th><th>entering</th><th>leaving</th><th>events</th></tr>\n");
     for st in &sol.steps {
         let ev = if st.events.is_empty() {
             "—".to_string()

@@ -1,18 +1,52 @@
-//! A tiny hand-written SVG writer: shapes, stroke-font text, number formatting, nice ticks and
-//! colour maps.
+//! A tiny hand-written SVG writer: shapes, text, number formatting, nice ticks and colour maps.
+//!
+//! Text is written in one of two ways ([`TextMode`]), chosen once for every picture drawn
+//! through [`Svg`]: as strokes of the built-in font ([`font`](crate::font)), so that a
+//! standalone `.svg` renders the same on a machine without any font (PNG conversion), or as
+//! real SVG `<text>`, which a browser shows in any script and which can be searched and
+//! copied (the pictures inside `report.html`). The mode is taken when a picture is started:
+//! [`with_text_mode`] draws a picture in another mode without any change to its drawing code.
 
+use std::cell::Cell;
 use std::fmt::Write as _;
 
 use crate::font::{self, Anchor};
 
 /// A coordinate with at most two decimals (`-0` written as `0`).
 pub fn n(v: f64) -> String {
-    let r = (v * 100.0).round() / 100.0;
-    if r == 0.0 {
-        "0".into()
-    } else {
-        let s = format!("{r:.2}");
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    let mut s = String::with_capacity(12);
+    push_n(&mut s, v);
+    s
+}
+
+/// [`n`] appended to `s` (no allocation of its own).
+pub fn push_n(s: &mut String, v: f64) {
+    let c = (v * 100.0).round();
+    if c == 0.0 || !c.is_finite() || c.abs() >= 9.0e15 {
+        // zero, and (never drawn) the non-finite and the huge: the general formatting
+        let r = c / 100.0;
+        if r == 0.0 {
+            s.push('0');
+            return;
+        }
+        let t = format!("{r:.2}");
+        s.push_str(t.trim_end_matches('0').trim_end_matches('.'));
+        return;
+    }
+    // Hundredths as an integer: the same digits as `{:.2}` of the rounded value, without
+    // the exact float formatting (the drawing's hot spot).
+    let h = c as i64;
+    let (int, frac) = (h.unsigned_abs() / 100, h.unsigned_abs() % 100);
+    if h < 0 {
+        s.push('-');
+    }
+    let _ = write!(s, "{int}");
+    if frac != 0 {
+        if frac % 10 == 0 {
+            let _ = write!(s, ".{}", frac / 10);
+        } else {
+            let _ = write!(s, ".{frac:02}");
+        }
     }
 }
 
@@ -99,9 +133,48 @@ pub fn nice_range(lo: f64, hi: f64) -> (f64, f64) {
     ((lo / step).floor() * step, (hi / step).ceil() * step)
 }
 
+/// How the text of a picture is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TextMode {
+    /// Strokes of the built-in font, the text itself kept in a `<title>` (the default: the
+    /// standalone `.svg` files, which must render with no fonts).
+    #[default]
+    Strokes,
+    /// Real SVG `<text>` in the browser's sans-serif font: any script, searchable (the
+    /// pictures inline in HTML).
+    Real,
+}
+
+thread_local! {
+    static TEXT_MODE: Cell<TextMode> = const { Cell::new(TextMode::Strokes) };
+}
+
+/// Runs `draw` with every [`Svg`] started inside it writing its text in `mode` (on this
+/// thread; the previous mode is restored afterwards, also when `draw` panics).
+pub fn with_text_mode<T>(mode: TextMode, draw: impl FnOnce() -> T) -> T {
+    struct Restore(TextMode);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            TEXT_MODE.with(|m| m.set(self.0));
+        }
+    }
+    let _restore = Restore(TEXT_MODE.with(|m| m.replace(mode)));
+    draw()
+}
+
+/// The text mode in force on this thread (see [`with_text_mode`]).
+pub fn text_mode() -> TextMode {
+    TEXT_MODE.with(|m| m.get())
+}
+
+/// Ratio of the font size of real text to the cap height the stroke font is sized by (the
+/// cap height of common sans-serif faces is about 0.7 em).
+const EM_PER_CAP: f64 = 1.4;
+
 /// An SVG document being written.
 pub struct Svg {
     body: String,
+    mode: TextMode,
     /// Width in pixels.
     pub width: f64,
     /// Height in pixels.
@@ -113,6 +186,7 @@ impl Svg {
     pub fn new(width: f64, height: f64, title: &str) -> Self {
         let mut s = Svg {
             body: String::new(),
+            mode: text_mode(),
             width,
             height,
         };
@@ -226,7 +300,12 @@ impl Svg {
         );
     }
 
-    /// Text in the stroke font (plain).
+    /// The way this picture writes its text.
+    pub fn mode(&self) -> TextMode {
+        self.mode
+    }
+
+    /// Text (plain).
     pub fn text(&mut self, s: &str, x: f64, y: f64, size: f64, anchor: Anchor, color: &str) {
         self.text_full(s, x, y, size, anchor, 0.0, color, false);
     }
@@ -236,7 +315,8 @@ impl Svg {
         self.text_full(s, x, y, size, anchor, 0.0, color, true);
     }
 
-    /// Text in the stroke font, rotated `angle` degrees counter-clockwise.
+    /// Text rotated `angle` degrees counter-clockwise, with subscripts when `rich`; its
+    /// baseline passes through `(x, y)` and `size` is its cap height in pixels.
     #[allow(clippy::too_many_arguments)]
     pub fn text_full(
         &mut self,
@@ -252,6 +332,10 @@ impl Svg {
         if s.trim().is_empty() {
             return;
         }
+        if self.mode == TextMode::Real {
+            self.real_text(s, x, y, size, anchor, angle, color, rich);
+            return;
+        }
         let d = font::path_data(s, x, y, size, anchor, angle, rich);
         let _ = writeln!(
             self.body,
@@ -259,6 +343,71 @@ impl Svg {
             n((size / 8.0).max(0.8)),
             esc(s)
         );
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn real_text(
+        &mut self,
+        s: &str,
+        x: f64,
+        y: f64,
+        size: f64,
+        anchor: Anchor,
+        angle: f64,
+        color: &str,
+        rich: bool,
+    ) {
+        let anchor = match anchor {
+            Anchor::Start => "start",
+            Anchor::Middle => "middle",
+            Anchor::End => "end",
+        };
+        let rotate = if angle != 0.0 {
+            format!(r#" transform="rotate({} {} {})""#, n(-angle), n(x), n(y))
+        } else {
+            String::new()
+        };
+        let _ = write!(
+            self.body,
+            r#"<text x="{}" y="{}" font-size="{}" font-family="sans-serif" text-anchor="{anchor}" fill="{color}" xml:space="preserve"{rotate}>"#,
+            n(x),
+            n(y),
+            n(size * EM_PER_CAP)
+        );
+        if rich {
+            // `z_n`, `x_{t+}`: subscripts as the stroke font draws them
+            let mut it = s.chars().peekable();
+            let mut plain = String::new();
+            while let Some(c) = it.next() {
+                if c == '_' && it.peek().is_some() {
+                    let mut sub = String::new();
+                    if it.peek() == Some(&'{') {
+                        it.next();
+                        for d in it.by_ref() {
+                            if d == '}' {
+                                break;
+                            }
+                            sub.push(d);
+                        }
+                    } else if let Some(d) = it.next() {
+                        sub.push(d);
+                    }
+                    self.body.push_str(&esc(&std::mem::take(&mut plain)));
+                    let _ = write!(
+                        self.body,
+                        r#"<tspan baseline-shift="sub" font-size="{}">{}</tspan>"#,
+                        n(0.7 * size * EM_PER_CAP),
+                        esc(&sub),
+                    );
+                } else {
+                    plain.push(c);
+                }
+            }
+            self.body.push_str(&esc(&plain));
+        } else {
+            self.body.push_str(&esc(s));
+        }
+        self.body.push_str("</text>\n");
     }
 
     /// The finished document.
@@ -278,7 +427,9 @@ fn points(pts: &[(f64, f64)]) -> String {
         if i > 0 {
             s.push(' ');
         }
-        let _ = write!(s, "{},{}", n(p.0), n(p.1));
+        push_n(&mut s, p.0);
+        s.push(',');
+        push_n(&mut s, p.1);
     }
     s
 }
@@ -350,6 +501,50 @@ mod tests {
         assert_eq!(num(1.5626e6), "1.563e6");
         assert_eq!(num(2.0e-5), "2e-5");
         assert_eq!(n(-0.001), "0");
+        // the same text as the rounded value written with two decimals, trailing zeros cut
+        for v in [
+            0.004,
+            0.005,
+            -0.015,
+            1.0,
+            12.5,
+            -12.5,
+            3.14259,
+            99.999,
+            -0.3,
+            1e6 + 0.25,
+        ] {
+            let r = (v * 100.0f64).round() / 100.0;
+            let want = format!("{r:.2}");
+            let want = want.trim_end_matches('0').trim_end_matches('.');
+            assert_eq!(n(v), if r == 0.0 { "0" } else { want }, "{v}");
+        }
+    }
+
+    // Reference: the two modes' definitions. Strokes: a path with the text only in its
+    // <title>; real: a <text> element whose content is the name itself (any script), escaped.
+    #[test]
+    fn text_is_strokes_or_real_text() {
+        let draw = || {
+            let mut g = Svg::new(100.0, 50.0, "t");
+            g.text("опора.2 <a&b>", 10.0, 20.0, 8.0, Anchor::Start, "#222222");
+            g.math("z_n", 10.0, 40.0, 8.0, Anchor::End, "#222222");
+            g.finish()
+        };
+        let strokes = draw();
+        assert!(strokes.contains("<path d=\"M"));
+        assert!(strokes.contains("<title>опора.2 &lt;a&amp;b&gt;</title>"));
+        assert!(!strokes.contains("<text"));
+        let real = with_text_mode(TextMode::Real, draw);
+        assert!(real.contains(
+            r##"<text x="10" y="20" font-size="11.2" font-family="sans-serif" text-anchor="start" fill="#222222" xml:space="preserve">опора.2 &lt;a&amp;b&gt;</text>"##
+        ));
+        assert!(real.contains(r#"text-anchor="end""#));
+        assert!(real.contains(">z<tspan"));
+        assert!(!real.contains("<path"));
+        // the mode is restored afterwards
+        assert_eq!(text_mode(), TextMode::Strokes);
+        assert_eq!(draw(), strokes);
     }
 
     #[test]

@@ -157,7 +157,8 @@ fn check_report(files: &[PathBuf], with_structure: bool, pairs: &[String]) {
             svgs += 1;
         }
     }
-    assert_eq!(svgs, if with_structure { 3 } else { 2 });
+    // the working-scheme map, the two load-path charts and the structure
+    assert_eq!(svgs, if with_structure { 4 } else { 3 });
     let html = files
         .iter()
         .find(|f| f.ends_with("report.html"))

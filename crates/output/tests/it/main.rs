@@ -1,6 +1,7 @@
 //! The integration tests of `unilateral-output`, as modules of one test binary: one build and
 //! one link for all of them.
 
+mod charts;
 mod examples;
 mod history;
 mod structure_picture;

@@ -1,0 +1,129 @@
+//! The load-path charts and the working-scheme map: a tightened run draws the path as traced
+//! (with its tightening), a run without one the solution itself; the map's states change
+//! exactly where the path's events say.
+
+use std::path::{Path, PathBuf};
+
+use unilateral_contact::{ContactSolution, PairResult};
+use unilateral_io::Problem;
+use unilateral_lcp::{solve_lcp, Lcp, Settings};
+
+fn examples() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
+}
+
+fn solve(file: &str, tightening: Option<f64>) -> ContactSolution {
+    match unilateral_io::read_problem(&examples().join(file)).unwrap() {
+        Problem::Structural(pb) => {
+            let mut settings = pb.settings.clone();
+            if let Some(c) = tightening {
+                settings.tightening = c;
+            }
+            unilateral_analysis::analyze(&pb.model, &settings)
+                .unwrap()
+                .solution
+        }
+        Problem::ContactZone(pb) => {
+            let mut settings = pb.settings.clone();
+            if let Some(c) = tightening {
+                settings.tightening = c;
+            }
+            unilateral_contact::solve(&pb.zone, &settings).unwrap()
+        }
+    }
+}
+
+fn largest(pairs: &[PairResult]) -> (f64, f64) {
+    pairs.iter().fold((0.0f64, 0.0f64), |(f, d), r| {
+        (
+            f.max(r.x_n.abs()).max(r.x_t.abs()),
+            d.max(r.z_n.abs()).max(r.z_t.abs()),
+        )
+    })
+}
+
+/// The paper's Example 3 (the sheet pile, c = 1000 N): every charted sample is the traced path
+/// at one of its breakpoints, and it solves the tightened LCP there. Reference: an independent
+/// standard Lemke solve (`unilateral_lcp::solve_lcp`, not the path) of
+/// `x = (q_c + c·t + p·d) + M z` at the sample's load, in the user's units, compared pair by
+/// pair relative to the largest force and displacement. The charted values are not those of
+/// the problem without the tightening (which the report's table of pairs shows).
+#[test]
+fn tightened_charts_are_the_traced_path() {
+    let sol = solve("example3-sheet-pile.toml", None);
+    let c = sol.tightening;
+    assert_eq!(c, 1000.0);
+    let s = unilateral_output::samples(&sol).unwrap();
+    let bp_loads: Vec<f64> = sol.path.breakpoints.iter().map(|b| b.p).collect();
+    assert!(s.loads.len() >= 30, "{} samples", s.loads.len());
+    assert!(
+        s.loads.iter().all(|p| bp_loads.contains(p)),
+        "breakpoint loads only"
+    );
+    let lcp = &sol.lcp.problem;
+    let n = lcp.q0.len();
+    let names: Vec<String> = sol.pairs.iter().map(|r| r.name.clone()).collect();
+    let mut differs = false;
+    for (p, pairs) in s.loads.iter().zip(&s.pairs).step_by(4) {
+        let q: Vec<f64> = (0..n)
+            .map(|i| lcp.q0[i] + c * sol.lcp.tightening_direction[i] + p * lcp.d[i])
+            .collect();
+        let std = solve_lcp(
+            &Lcp {
+                m: lcp.m.clone(),
+                q,
+            },
+            &Settings::default(),
+        )
+        .unwrap();
+        let pt = std.point.expect("the tightened LCP is solved");
+        let want = unilateral_contact::pair_results(&pt.w, &pt.z, &names);
+        let (fmax, dmax) = largest(&want);
+        for (a, b) in want.iter().zip(pairs) {
+            assert!(
+                (a.x_n - b.x_n).abs() <= 1e-7 * fmax
+                    && (a.x_t - b.x_t).abs() <= 1e-7 * fmax
+                    && (a.z_n - b.z_n).abs() <= 1e-7 * dmax
+                    && (a.z_t - b.z_t).abs() <= 1e-7 * dmax,
+                "p = {p}, pair {}: charted {b:?}, tightened LCP {a:?}",
+                a.name
+            );
+        }
+        // the tightening presses the pairs: x_n + ... differs from the untightened answer
+        if let Some((free, _)) = sol.at(*p).unwrap() {
+            if free
+                .iter()
+                .zip(pairs)
+                .any(|(a, b)| (a.x_n - b.x_n).abs() > 1e-3 * fmax)
+            {
+                differs = true;
+            }
+        }
+    }
+    assert!(
+        differs,
+        "the traced values are not those without the tightening"
+    );
+    // the captions say so, with c's value
+    let (forces, _) = unilateral_output::load_path_svgs(&sol, &Default::default()).unwrap();
+    assert!(forces.contains("traced with the tightening c = 1000"));
+    assert!(!forces.contains("solution without tightening"));
+}
+
+/// Without a tightening the charts draw the solution of the problem itself: the samples are
+/// the solution at each load ([`ContactSolution::at`], evaluated afresh per load, a
+/// reference independent of the one-walk sweep the charts use).
+#[test]
+fn untightened_charts_are_the_solution() {
+    let sol = solve("example1-contact-zone.toml", Some(0.0));
+    let s = unilateral_output::samples(&sol).unwrap();
+    assert!(s.loads.len() >= 2);
+    for (p, pairs) in s.loads.iter().zip(&s.pairs) {
+        let (want, _) = sol.at(*p).unwrap().expect("on the path");
+        let (fmax, dmax) = largest(&want);
+        for (a, b) in want.iter().zip(pairs) {
+            assert!((a.x_n - b.x_n).abs() <= 1e-9 * fmax.max(1e-300));
+            assert!((a.z_n - b.z_n).abs() <= 1e-9 * dmax.max(1e-300));
+        }
+    }
+}
