@@ -122,7 +122,7 @@ fn draw(h: &unilateral_lcp::Progress, stop: &AtomicBool, delay: Duration, termin
                     if !shown {
                         let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
                         bar.set_style(
-                            ProgressStyle::with_template("{spinner} {elapsed:>4} {wide_msg}")
+                            ProgressStyle::with_template("{spinner} {wide_msg}")
                                 .unwrap_or_else(|_| ProgressStyle::default_spinner()),
                         );
                         if let Ok(mut b) = BAR.lock() {
@@ -131,7 +131,11 @@ fn draw(h: &unilateral_lcp::Progress, stop: &AtomicBool, delay: Duration, termin
                         shown = true;
                     }
                     if let Some(bar) = BAR.lock().ok().and_then(|b| b.clone()) {
-                        bar.set_message(text);
+                        bar.set_message(format!(
+                            "{:.1} s  {}: {text}",
+                            elapsed.as_secs_f64(),
+                            snap.phase.as_str()
+                        ));
                         bar.tick();
                     }
                 } else if done || last_line.is_none_or(|t| t.elapsed() >= line_every) {
