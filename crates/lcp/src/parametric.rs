@@ -114,7 +114,6 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         &mut crossed,
     );
 
-    progress.pivots(records.len());
     progress.steps_to(records.len(), records.last().map_or(0.0, |r| r.driver));
     let mut steps = Vec::with_capacity(records.len());
     let mut breakpoints = Vec::with_capacity(records.len() + 1);

@@ -99,7 +99,7 @@ pub struct Progress(Option<Arc<Counters>>);
 pub struct Snapshot {
     /// What the run is doing.
     pub phase: Phase,
-    /// Pivots made so far (every phase).
+    /// Pivots made so far (every phase: the steps and the other pivots).
     pub pivots: u64,
     /// The last load parameter reached on the path (`None` before any).
     pub load: Option<f64>,
@@ -129,23 +129,24 @@ impl Progress {
         }
     }
 
-    /// Adds `k` pivots.
+    /// Adds `k` pivots that are not steps of the path (the start, the removal of the
+    /// tightening, Lemke's method).
     pub fn pivots(&self, k: usize) {
         if let Some(c) = &self.0 {
             c.pivots.fetch_add(k as u64, Ordering::Relaxed);
         }
     }
 
-    /// One step of the load path reached at load `p` (one pivot).
+    /// One step of the load path (one pivot) reached at load `p`.
     pub fn step(&self, p: f64) {
         if let Some(c) = &self.0 {
-            c.pivots.fetch_add(1, Ordering::Relaxed);
             c.steps.fetch_add(1, Ordering::Relaxed);
             c.load.store(p.to_bits(), Ordering::Relaxed);
         }
     }
 
     /// The path has `steps` steps and reached load `p`: for loops that report when they end.
+    /// Never counts back, so it may follow [`Progress::step`] calls for the same steps.
     pub fn steps_to(&self, steps: usize, p: f64) {
         if let Some(c) = &self.0 {
             c.steps.fetch_max(steps as u64, Ordering::Relaxed);
@@ -167,7 +168,7 @@ impl Progress {
         let load = f64::from_bits(c.load.load(Ordering::Relaxed));
         Some(Snapshot {
             phase: Phase::of(c.phase.load(Ordering::Relaxed)),
-            pivots: c.pivots.load(Ordering::Relaxed),
+            pivots: c.pivots.load(Ordering::Relaxed) + c.steps.load(Ordering::Relaxed),
             load: load.is_finite().then_some(load),
             steps: c.steps.load(Ordering::Relaxed),
             stage: c.stage.load(Ordering::Relaxed),
@@ -215,6 +216,9 @@ mod tests {
         );
         p.steps_to(1, 3.0);
         assert_eq!(p.snapshot().unwrap().steps, 2, "never counts back");
+        p.steps_to(4, 3.0);
+        let s = p.snapshot().unwrap();
+        assert_eq!((s.pivots, s.steps, s.load), (7, 4, Some(3.0)));
         p.next_stage();
         p.next_stage();
         let s = p.snapshot().unwrap();
