@@ -35,6 +35,7 @@ pub fn analyze_history(
     stages: &[Stage],
     settings: &unilateral_lcp::Settings,
 ) -> Result<HistoryAnalysis, AnalysisError> {
+    settings.progress.phase(unilateral_lcp::Phase::Condensing);
     let (condensed, zone, condense) = condensed_zone(model)?;
     let started = Instant::now();
     let history = History {
@@ -43,6 +44,7 @@ pub fn analyze_history(
     };
     let solution = follow_history(&zone, &history, settings).map_err(contact_error)?;
     let solve = started.elapsed();
+    settings.progress.phase(unilateral_lcp::Phase::Recovering);
     let started = Instant::now();
     let mut stage_results = Vec::with_capacity(solution.stages.len());
     for st in &solution.stages {

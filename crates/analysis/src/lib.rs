@@ -313,6 +313,8 @@ pub struct Analysis {
 /// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
     settings.validate()?;
+    let progress = &settings.engine.progress;
+    progress.phase(unilateral_lcp::Phase::Condensing);
     let (condensed, zone, condense) = condensed_zone(model)?;
     let started = Instant::now();
     let solution = unilateral_contact::solve(&zone, settings).map_err(contact_error)?;
@@ -334,6 +336,7 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
         },
     };
     if let Some(p) = a.solution.p {
+        progress.phase(unilateral_lcp::Phase::Recovering);
         let started = Instant::now();
         let r = a.recover(p, &a.solution.pairs)?;
         a.results = Some(r);

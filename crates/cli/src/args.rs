@@ -55,6 +55,18 @@ impl VtkFormatArg {
     }
 }
 
+/// When progress is drawn on stderr (`--progress`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub(crate) enum ProgressArg {
+    /// A bar on stderr when it is a terminal and the run lasts more than a second.
+    #[default]
+    Auto,
+    /// Also when stderr is not a terminal: plain lines, at most four a second.
+    Always,
+    /// Never.
+    Never,
+}
+
 /// Options of `--report`.
 #[derive(clap::Args, Debug, Clone)]
 pub(crate) struct ReportArgs {
@@ -172,6 +184,9 @@ pub(crate) struct SolveArgs {
     /// the largest forces and slips).
     #[arg(long)]
     pub(crate) verbose: bool,
+    /// Progress on stderr (pivots, load, steps, elapsed time) for a run longer than a second.
+    #[arg(long, value_enum, value_name = "WHEN", default_value = "auto")]
+    pub(crate) progress: ProgressArg,
     #[command(flatten)]
     pub(crate) report_args: ReportArgs,
 }
@@ -197,6 +212,9 @@ pub(crate) struct LcpArgs {
     /// Write the result as JSON to this file (`-` for stdout).
     #[arg(long, value_name = "OUT.json")]
     pub(crate) json: Option<PathBuf>,
+    /// Progress on stderr (pivots, elapsed time) for a run longer than a second.
+    #[arg(long, value_enum, value_name = "WHEN", default_value = "auto")]
+    pub(crate) progress: ProgressArg,
 }
 
 /// The arguments of `unilateral example`.

@@ -2,32 +2,205 @@
 //! the list of files written.
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
 
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::args::ProgressArg;
 use crate::failure::Failure;
 
-/// Progress messages on stderr, only when it is a terminal (never in pipes, files or tests).
-pub(crate) struct Progress {
-    start: std::time::Instant,
-    on: bool,
+/// How long a run goes before its progress is shown; `UNILATERAL_PROGRESS_AFTER_MS` changes it
+/// (for the tests, which cannot wait for long runs).
+fn progress_delay() -> Duration {
+    std::env::var("UNILATERAL_PROGRESS_AFTER_MS")
+        .ok()
+        .and_then(|v| v.trim().parse::<u64>().ok())
+        .map_or(Duration::from_secs(1), Duration::from_millis)
 }
 
-impl Progress {
-    pub(crate) fn new() -> Self {
+/// The bar being drawn, if any: whatever the program writes to the terminal while it is shown
+/// goes through [`ProgressBar::suspend`] so that no line is torn.
+static BAR: Mutex<Option<ProgressBar>> = Mutex::new(None);
+
+/// Runs `f` with the progress bar (if one is drawn) taken off the terminal.
+fn suspended<R>(f: impl FnOnce() -> R) -> R {
+    let bar = BAR.lock().ok().and_then(|b| b.clone());
+    match bar {
+        Some(bar) => bar.suspend(f),
+        None => f(),
+    }
+}
+
+/// Writes a line on stderr (with the progress bar, if any, out of the way).
+pub(crate) fn note(line: &str) {
+    suspended(|| eprintln!("{line}"));
+}
+
+/// Progress of a run on stderr: the engine's [`unilateral_lcp::Progress`] counters read by a
+/// drawing thread every 100 ms and shown, once the run has lasted [`progress_delay`], as an
+/// `indicatif` spinner on a terminal or as plain lines (`--progress always` elsewhere). Dropping
+/// it stops the thread and clears the bar; in plain lines it ends with one line of totals.
+pub(crate) struct Drawer {
+    handle: unilateral_lcp::Progress,
+    stop: Arc<AtomicBool>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drawer {
+    /// Starts drawing (or not, by `mode` and whether stderr is a terminal).
+    pub(crate) fn start(mode: ProgressArg) -> Self {
         use std::io::IsTerminal;
+        let terminal = std::io::stderr().is_terminal();
+        let on = match mode {
+            ProgressArg::Never => false,
+            ProgressArg::Auto => terminal,
+            ProgressArg::Always => true,
+        };
+        let stop = Arc::new(AtomicBool::new(false));
+        if !on {
+            return Self {
+                handle: unilateral_lcp::Progress::default(),
+                stop,
+                thread: None,
+            };
+        }
+        let handle = unilateral_lcp::Progress::new();
+        let (h, s) = (handle.clone(), stop.clone());
+        let delay = progress_delay();
+        let thread = std::thread::Builder::new()
+            .name("progress".into())
+            .spawn(move || draw(&h, &s, delay, terminal))
+            .ok();
         Self {
-            start: std::time::Instant::now(),
-            on: std::io::stderr().is_terminal(),
+            handle,
+            stop,
+            thread,
         }
     }
 
-    pub(crate) fn say(&self, msg: &str) {
-        if self.on {
-            eprintln!("unilateral: {msg}");
-        }
+    /// The handle to put into the engine's settings (inert when nothing is drawn).
+    pub(crate) fn handle(&self) -> unilateral_lcp::Progress {
+        self.handle.clone()
     }
 
-    pub(crate) fn elapsed(&self) -> f64 {
-        self.start.elapsed().as_secs_f64()
+    /// Tells what the program does now.
+    pub(crate) fn phase(&self, phase: unilateral_lcp::Phase) {
+        self.handle.phase(phase);
+    }
+}
+
+impl Drop for Drawer {
+    fn drop(&mut self) {
+        self.stop.store(true, Ordering::Relaxed);
+        if let Some(t) = self.thread.take() {
+            t.thread().unpark();
+            let _ = t.join();
+        }
+    }
+}
+
+/// The drawing thread's loop.
+fn draw(h: &unilateral_lcp::Progress, stop: &AtomicBool, delay: Duration, terminal: bool) {
+    let started = Instant::now();
+    let tick = Duration::from_millis(100);
+    let line_every = Duration::from_millis(250);
+    let mut last_line: Option<Instant> = None;
+    let mut shown = false;
+    loop {
+        // A tick first: nothing is drawn in the first 100 ms whatever the delay.
+        if !stop.load(Ordering::Relaxed) {
+            std::thread::park_timeout(tick);
+        }
+        let done = stop.load(Ordering::Relaxed);
+        let elapsed = started.elapsed();
+        if elapsed >= delay {
+            if let Some(snap) = h.snapshot() {
+                let text = progress_text(&snap);
+                if terminal {
+                    if !shown {
+                        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+                        bar.set_style(
+                            ProgressStyle::with_template("{spinner} {wide_msg}")
+                                .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+                        );
+                        if let Ok(mut b) = BAR.lock() {
+                            *b = Some(bar);
+                        }
+                        shown = true;
+                    }
+                    if let Some(bar) = BAR.lock().ok().and_then(|b| b.clone()) {
+                        bar.set_message(format!(
+                            "{:.1} s  {}: {text}",
+                            elapsed.as_secs_f64(),
+                            snap.phase.as_str()
+                        ));
+                        bar.tick();
+                    }
+                } else if done || last_line.is_none_or(|t| t.elapsed() >= line_every) {
+                    let secs = elapsed.as_secs_f64();
+                    if done {
+                        eprintln!("unilateral: done in {secs:.1} s: {text}");
+                    } else {
+                        eprintln!("unilateral: {secs:.1} s, {}: {text}", snap.phase.as_str());
+                    }
+                    last_line = Some(Instant::now());
+                }
+            }
+        }
+        if done {
+            break;
+        }
+    }
+    if let Some(bar) = BAR.lock().ok().and_then(|mut b| b.take()) {
+        bar.finish_and_clear();
+    }
+}
+
+/// `following the load path: 1021 steps, 3120 pivots, p = 0.734` (the phase is left out of
+/// the final line, where it would be stale).
+fn progress_text(s: &unilateral_lcp::Snapshot) -> String {
+    let mut parts = Vec::new();
+    if s.stage > 0 {
+        parts.push(format!("stage {}", s.stage));
+    }
+    parts.push(format!(
+        "{} step{}",
+        s.steps,
+        if s.steps == 1 { "" } else { "s" }
+    ));
+    parts.push(format!(
+        "{} pivot{}",
+        s.pivots,
+        if s.pivots == 1 { "" } else { "s" }
+    ));
+    if let Some(p) = s.load {
+        parts.push(format!(
+            "{} = {}",
+            if s.stage > 0 { "s" } else { "p" },
+            short(p)
+        ));
+    }
+    parts.join(", ")
+}
+
+/// Six significant digits, plainly.
+fn short(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let a = v.abs();
+    if (1e-4..1e6).contains(&a) {
+        let decimals = (5 - a.log10().floor() as i32).max(0) as usize;
+        let t = format!("{v:.decimals$}");
+        if t.contains('.') {
+            t.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            t
+        }
+    } else {
+        format!("{v:.5e}")
     }
 }
 
@@ -62,7 +235,7 @@ pub(crate) fn report_files(
         }
     })?;
     if let Some(line) = files_line(&files, dir) {
-        eprintln!("{line}");
+        note(&line);
     }
     Ok(())
 }
@@ -124,8 +297,10 @@ pub(crate) fn write_json(out: &Path, value: &serde_json::Value) -> Result<(), Fa
 /// is no failure: the rest is dropped quietly (the `print!` macros would panic there).
 pub(crate) fn out(text: &str) {
     use std::io::Write;
-    let mut o = std::io::stdout().lock();
-    let _ = o.write_all(text.as_bytes()).and_then(|()| o.flush());
+    suspended(|| {
+        let mut o = std::io::stdout().lock();
+        let _ = o.write_all(text.as_bytes()).and_then(|()| o.flush());
+    });
 }
 
 /// `println!` through [`out`]: no panic on a closed pipe.

@@ -1873,3 +1873,241 @@ fn tightened_report_is_labelled_c_dependent() {
     assert!(!html.contains("c-dependent"));
     assert!(!html.contains("traced with the tightening"));
 }
+
+// Issue 14 (progress15): progress on stderr, the tightened path's events labelled as depending
+// on c in the tables, units in the history's CSV column names.
+
+/// A run of the binary in `cmd`'s directory with the progress delay set (the test-only knob
+/// `UNILATERAL_PROGRESS_AFTER_MS`).
+fn run_with_progress_delay(cmd: &TestCommand, after_ms: &str) -> Output {
+    let out = Command::new(env!("CARGO_BIN_EXE_unilateral"))
+        .args(&cmd.args)
+        .env("UNILATERAL_PROGRESS_AFTER_MS", after_ms)
+        .current_dir(cmd.dir.path())
+        .output()
+        .expect("run unilateral");
+    Output {
+        code: out.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// The totals of the last progress line (`unilateral: done in 0.1 s: [stage 8, ]52 steps,
+/// 60 pivots, p = 15.6261`): (stage, steps, pivots, load).
+fn progress_totals(stderr: &str) -> (Option<u64>, u64, u64, Option<f64>) {
+    let line = stderr
+        .lines()
+        .rev()
+        .find(|l| l.starts_with("unilateral: done in "))
+        .unwrap_or_else(|| panic!("no final progress line in:\n{stderr}"));
+    let (_, totals) = line["unilateral: done in ".len()..]
+        .split_once(": ")
+        .expect("the totals after the time");
+    let (mut stage, mut steps, mut pivots, mut load) = (None, None, None, None);
+    for part in totals.split(", ") {
+        let num = |s: &str| s.split(' ').next().unwrap().parse::<u64>().unwrap();
+        if let Some(v) = part.strip_prefix("stage ") {
+            stage = Some(v.parse().unwrap());
+        } else if part.ends_with("steps") || part.ends_with("step") {
+            steps = Some(num(part));
+        } else if part.ends_with("pivots") || part.ends_with("pivot") {
+            pivots = Some(num(part));
+        } else if let Some(v) = part
+            .strip_prefix("p = ")
+            .or_else(|| part.strip_prefix("s = "))
+        {
+            load = Some(v.parse().unwrap());
+        } else {
+            panic!("unexpected part '{part}' in '{line}'");
+        }
+    }
+    (stage, steps.unwrap(), pivots.unwrap(), load)
+}
+
+/// `--progress always` draws on a stderr that is not a terminal: plain lines, ending with the
+/// totals. Reference: the result document of the same run — the steps of the path are its
+/// `pivots` (every step listed), the pivots at least those plus the pivots that removed the
+/// tightening, the load that of the last step (to the six digits shown). The answer is the same
+/// as without progress (stdout byte for byte, minus the timings line), and `--progress never`
+/// and the default (stderr not a terminal) leave stderr as it was: only the files line.
+#[test]
+fn progress_always_reports_the_steps_pivots_and_load_of_the_run() {
+    let cmd = TestCommand::new(&["solve"]);
+    let (file, _) = beam_zone_file(cmd.dir.path(), 60, 11);
+    let cmd = cmd
+        .arg(&file)
+        .args(&["--json", "r.json", "--csv", "out", "--progress", "always"]);
+    let out = run_with_progress_delay(&cmd, "0");
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("r.json");
+    let steps = j["steps"].as_array().unwrap();
+    assert!(
+        steps.len() >= 100,
+        "a run of some hundred pivots: {}",
+        steps.len()
+    );
+    let (stage, n_steps, pivots, load) = progress_totals(&out.stderr);
+    assert_eq!(stage, None);
+    assert_eq!(n_steps, j["pivots"].as_u64().unwrap(), "{}", out.stderr);
+    assert!(n_steps + j["tightening_pivots"].as_u64().unwrap() <= pivots);
+    let last_p = steps.last().unwrap()["p"].as_f64().unwrap();
+    let shown = load.expect("the load reached");
+    assert!(
+        (shown - last_p).abs() <= 1e-5 * last_p.abs(),
+        "{shown} vs {last_p}"
+    );
+    // Every progress line is one of ours; the files line is still there, once.
+    for l in out.stderr.lines() {
+        assert!(
+            l.starts_with("unilateral: ") || l.starts_with("wrote 3 files in out"),
+            "{l}"
+        );
+    }
+    let without_timings = |s: &str| -> String {
+        s.lines()
+            .filter(|l| !l.starts_with("time: "))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    for mode in [None, Some("never"), Some("auto")] {
+        let mut args: Vec<&str> = vec!["--json", "q.json", "--csv", "out2"];
+        if let Some(m) = mode {
+            args.extend(["--progress", m]);
+        }
+        let quiet = TestCommand::new(&["solve"]).arg(&file).args(&args);
+        let q = run_with_progress_delay(&quiet, "0");
+        assert_eq!(q.code, 0, "{}", q.stderr);
+        assert_eq!(
+            q.stderr, "wrote 3 files in out2: pairs.csv, steps.csv, path.csv\n",
+            "{mode:?}: stderr as before"
+        );
+        assert_eq!(without_timings(&q.stdout), without_timings(&out.stdout));
+        assert_eq!(quiet.json("q.json")["steps"], j["steps"]);
+    }
+    // With the default delay of a second a run this short shows nothing, even when asked.
+    let short = run_with_progress_delay(&cmd, "60000");
+    assert!(
+        !short.stderr.contains("unilateral:"),
+        "nothing before the delay: {}",
+        short.stderr
+    );
+}
+
+/// A load history reports its stages and steps. Reference: the history's document — the stage
+/// reached is the last stage, the steps the sum of every stage's steps (and its `pivots`).
+#[test]
+fn progress_of_a_history_counts_its_stages_and_steps() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/deck-bearings-temperature.toml"))
+        .args(&["--json", "h.json", "--progress", "always"]);
+    let out = run_with_progress_delay(&cmd, "0");
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("h.json");
+    let stages = j["history"].as_array().unwrap();
+    let steps: u64 = stages
+        .iter()
+        .map(|s| s["steps"].as_array().unwrap().len() as u64)
+        .sum();
+    let (stage, n_steps, pivots, _) = progress_totals(&out.stderr);
+    assert_eq!(stage, Some(stages.len() as u64), "{}", out.stderr);
+    assert_eq!(n_steps, steps, "{}", out.stderr);
+    assert_eq!(pivots, j["pivots"].as_u64().unwrap());
+}
+
+/// `unilateral lcp` reports its pivots. Reference: the result document's `pivots`.
+#[test]
+fn progress_of_a_plain_lcp_counts_its_pivots() {
+    let file = siconos("lcp").join("lcp_exp_murty.dat");
+    let cmd =
+        TestCommand::new(&["lcp"])
+            .arg(&file)
+            .args(&["--json", "l.json", "--progress", "always"]);
+    let out = run_with_progress_delay(&cmd, "0");
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("l.json");
+    let (_, _, pivots, _) = progress_totals(&out.stderr);
+    assert_eq!(pivots, j["pivots"].as_u64().unwrap(), "{}", out.stderr);
+    assert!(pivots > 0);
+}
+
+/// Example 3 is traced with the paper's tightening c = 1000: the summary says its events are
+/// the paper's procedure's and depend on c, the JSON says so with c, and `steps.csv` carries c
+/// in a last column `tightening_c [N]` on every row (a rectangular table, as pandas reads it).
+/// The sheet pile wall (c = 0, physical events) has no such label. Reference: the files'
+/// `[solve] tightening` (1000 and 0).
+#[test]
+fn tightened_events_are_labelled_as_depending_on_c() {
+    let run = |name: &str| {
+        let cmd = TestCommand::new(&["solve"])
+            .arg(root().join("examples").join(name))
+            .args(&["--json", "r.json", "--csv", "csv"]);
+        let out = cmd.run();
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        let steps = std::fs::read_to_string(cmd.path("csv/steps.csv")).unwrap();
+        (out.stdout, cmd.json("r.json"), steps)
+    };
+    let (summary, j, steps) = run("example3-sheet-pile.toml");
+    assert!(
+        summary.contains(
+            "these are the events of the paper's procedure: their loads depend on c (the \
+             solution at p = 1 is free of c)"
+        ),
+        "{summary}"
+    );
+    assert_eq!(j["events_depend_on_tightening"], true);
+    assert_eq!(j["tightening"], 1000.0);
+    let mut lines = steps.lines();
+    let head = lines.next().unwrap();
+    assert!(head.ends_with(",beyond_target,tightening_c [N]"), "{head}");
+    let columns = head.split(',').count();
+    let mut rows = 0;
+    for l in lines {
+        // Fields are quoted only when they hold a comma: count outside quotes.
+        let mut quoted = false;
+        let fields = 1 + l
+            .chars()
+            .filter(|&c| {
+                if c == '"' {
+                    quoted = !quoted;
+                }
+                c == ',' && !quoted
+            })
+            .count();
+        assert_eq!(fields, columns, "{l}");
+        assert_eq!(
+            l.rsplit(',').next().unwrap().parse::<f64>().unwrap(),
+            1000.0
+        );
+        rows += 1;
+    }
+    assert_eq!(rows, j["steps"].as_array().unwrap().len());
+
+    let (summary, j, steps) = run("sheet-pile-wall.toml");
+    assert!(!summary.contains("depend on c"), "{summary}");
+    assert_eq!(j["events_depend_on_tightening"], false);
+    assert!(!steps.lines().next().unwrap().contains("tightening"));
+}
+
+/// The history's CSV tables name their columns with the file's units, as the paper's path
+/// does. Reference: the deck's `units = "N, m, K"` (forces in N, lengths in m).
+#[test]
+fn history_csv_columns_carry_the_units() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/deck-bearings-temperature.toml"))
+        .args(&["--csv", "csv"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let head = |name: &str| {
+        std::fs::read_to_string(cmd.path(&format!("csv/{name}")))
+            .unwrap()
+            .lines()
+            .next()
+            .unwrap()
+            .to_string()
+    };
+    let values = "pair,name,x_n [N],x_t [N],z_n [m],z_t [m],state";
+    assert!(head("history_breakpoints.csv").ends_with(values));
+    assert_eq!(head("history_stage_01.csv"), values);
+    assert!(head("history_events.csv").ends_with("direction,slip_kept [m],description"));
+}

@@ -250,6 +250,8 @@ impl EvolutionSolver {
         if d.len() != n {
             return failed(StageEnding::Singular);
         }
+        let progress = &self.settings.progress;
+        progress.next_stage();
         let h = self.rhs_at(from);
         let cols = self.prep.columns(&h, d);
         let tol = self.tolerances();
@@ -369,6 +371,7 @@ impl EvolutionSolver {
             } else {
                 s_now
             };
+            progress.step(s);
             let (x, z) = point(&piv, &acc);
             points.push(EvolutionPoint {
                 s,

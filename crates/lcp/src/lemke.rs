@@ -70,8 +70,10 @@ pub fn solve_lcp(lcp: &Lcp, settings: &Settings) -> Result<LcpSolution, LcpError
     let mut last_status = LcpStatus::Ray;
     let mut last_strategy = Strategy::Lemke { covering: "ones" };
     let mut unverified = false;
+    settings.progress.phase(crate::Phase::Lemke);
     for (name, cov) in &coverings {
         let run = lemke_run(&prep, &lcp.q, cov, settings);
+        settings.progress.pivots(run.pivots);
         pivots += run.pivots;
         last_strategy = Strategy::Lemke { covering: name };
         match run.outcome {

@@ -46,6 +46,7 @@ mod parametric;
 mod path;
 mod pivoting;
 mod problem;
+mod progress;
 mod residual;
 mod settings;
 mod solution;
@@ -64,6 +65,7 @@ pub use path::{
     Tightening,
 };
 pub use problem::{Lcp, ParametricLcp};
+pub use progress::{Phase, Progress, Snapshot};
 pub use residual::Residual;
 pub use settings::{Settings, ACCEPT_RESIDUAL};
 pub use solution::{LcpPoint, LcpSolution, LcpStatus, Strategy};

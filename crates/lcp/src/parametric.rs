@@ -68,6 +68,8 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         (None, Some(c)) => c.clone(),
         (None, None) => vec![1.0; n],
     };
+    let progress = &settings.progress;
+    progress.phase(crate::Phase::Start);
     let (start_basis, start_pivots) = match start_basis(prep, &problem.d, &h, &phase1_dir, settings)
     {
         (Some(b), pivots) => (b, pivots),
@@ -102,6 +104,8 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     let mut records: Vec<PivotRecord> = Vec::new();
     let mut crossed = None;
     let stop = options.follow == Follow::ToTarget;
+    progress.pivots(start_pivots);
+    progress.phase(crate::Phase::Path);
     let (ending, last_entering) = piv.run(
         driver,
         Some((options.target, stop)),
@@ -110,6 +114,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         &mut crossed,
     );
 
+    progress.steps_to(records.len(), records.last().map_or(0.0, |r| r.driver));
     let mut steps = Vec::with_capacity(records.len());
     let mut breakpoints = Vec::with_capacity(records.len() + 1);
     breakpoints.push(Breakpoint { p: 0.0, z: start_z });
@@ -214,7 +219,9 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     if let Some((seg, p)) = report {
         // Only verified, finite points are reported (`solution_on_segment`); none at all when
         // the real problem (without tightening) has no solution there.
+        progress.phase(crate::Phase::Tightening);
         path.solution = solution_on_segment(problem, prep, &path, seg, p, c0, cov, settings);
+        progress.pivots(path.solution.as_ref().map_or(0, |s| s.tightening_pivots));
     }
     path
 }

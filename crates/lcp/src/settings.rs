@@ -24,6 +24,10 @@ pub struct Settings {
     pub lexicographic_order: Option<Vec<usize>>,
     /// Covering vector of the standard Lemke method (all entries `> 0`); default all ones.
     pub covering: Option<Vec<f64>>,
+    /// Where the methods report what they are doing (default: nowhere). Not a setting of the
+    /// computation: it is never validated, two handles compare equal, and the answer is the
+    /// same with or without one.
+    pub progress: crate::Progress,
 }
 
 impl Default for Settings {
@@ -34,6 +38,7 @@ impl Default for Settings {
             refactor_interval: 50,
             lexicographic_order: None,
             covering: None,
+            progress: crate::Progress::default(),
         }
     }
 }

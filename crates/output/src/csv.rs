@@ -64,10 +64,18 @@ pub fn write_contact_csv_with(
             p.state
         );
     }
-    let mut steps = String::from("step,p,entering,leaving,events,turning,beyond_target\n");
+    // Traced with the paper's tightening, the steps' loads depend on `c`: a last column says
+    // so on every row, and carries `c` (a force).
+    let tightened = sol.tightening > 0.0;
+    let mut steps = String::from("step,p,entering,leaving,events,turning,beyond_target");
+    if tightened {
+        steps.push(',');
+        steps.push_str(&about.column("tightening_c", |f, _| f.into()));
+    }
+    steps.push('\n');
     for st in &sol.steps {
         let ev: Vec<String> = st.events.iter().map(|e| e.to_string()).collect();
-        let _ = writeln!(
+        let _ = write!(
             steps,
             "{},{},{},{},{},{},{}",
             st.index,
@@ -78,6 +86,10 @@ pub fn write_contact_csv_with(
             st.turning,
             st.index > sol.steps_before_target
         );
+        if tightened {
+            let _ = write!(steps, ",{}", n(sol.tightening));
+        }
+        steps.push('\n');
     }
     let mut path = format!("step,p,pair,name,{columns},state\n");
     for (st, ps) in sol.steps.iter().zip(&at) {

@@ -12,7 +12,7 @@ use unilateral_contact::{
 };
 
 use crate::finite::{finite, NonFiniteOutput};
-use crate::json::pairs_json;
+use crate::json::{pairs_json, About};
 
 /// The pseudo-time of a point of a history: `stage − 1 + s` (stage 1-based), so that stage
 /// `K` runs from `K − 1` to `K`.
@@ -345,12 +345,41 @@ pub const HISTORY_BREAKPOINTS_CSV: &str = "history_breakpoints.csv";
 ///   order of the history: `stage,stage_name,point,s,time,factor_<case>…,pair,name,x_n,x_t,`
 ///   `z_n,z_t,state` (`point` the step number, or `end`) — the data of load–displacement
 ///   curves.
+///
+/// The column names carry no units ([`About::history_csv`] gives them the file's).
 pub fn history_csv(h: &HistorySolution) -> Result<Vec<(String, String)>, NonFiniteOutput> {
+    history_tables(h, &About::default())
+}
+
+impl About {
+    /// The CSV tables of [`history_csv`] with these units in the column names, as the paper's
+    /// path has them: `x_n [N]`, `x_t [N]`, `z_n [m]`, `z_t [m]`, `slip_kept [m]` (factors, `s`
+    /// and `time` are pure numbers).
+    pub fn history_csv(
+        &self,
+        h: &HistorySolution,
+    ) -> Result<Vec<(String, String)>, NonFiniteOutput> {
+        history_tables(h, self)
+    }
+}
+
+fn history_tables(
+    h: &HistorySolution,
+    about: &About,
+) -> Result<Vec<(String, String)>, NonFiniteOutput> {
     check(h)?;
     let n = h.stages.len();
     let mut files = Vec::with_capacity(n + 2);
+    let values = [
+        about.column("x_n", |f, _| f.into()),
+        about.column("x_t", |f, _| f.into()),
+        about.column("z_n", |_, l| l.into()),
+        about.column("z_t", |_, l| l.into()),
+    ]
+    .join(",");
+    let kept_column = about.column("slip_kept", |_, l| l.into());
     for st in &h.stages {
-        let mut t = String::from("pair,name,x_n,x_t,z_n,z_t,state\n");
+        let mut t = format!("pair,name,{values},state\n");
         for (i, p) in st.pairs.iter().enumerate() {
             let _ = writeln!(
                 t,
@@ -369,10 +398,9 @@ pub fn history_csv(h: &HistorySolution) -> Result<Vec<(String, String)>, NonFini
     let fh = factor_header(h);
     let sep = if fh.is_empty() { "" } else { "," };
     let mut ev = format!(
-        "stage,stage_name,step,s,time{sep}{fh},pair,name,event,direction,slip_kept,description\n"
+        "stage,stage_name,step,s,time{sep}{fh},pair,name,event,direction,{kept_column},description\n"
     );
-    let mut bp =
-        format!("stage,stage_name,point,s,time{sep}{fh},pair,name,x_n,x_t,z_n,z_t,state\n");
+    let mut bp = format!("stage,stage_name,point,s,time{sep}{fh},pair,name,{values},state\n");
     let pair_rows = |bp: &mut String, head: &str, ps: &[PairResult]| {
         for (i, p) in ps.iter().enumerate() {
             let _ = writeln!(

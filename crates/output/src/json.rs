@@ -236,6 +236,7 @@ fn path_document(
             unilateral_contact::Follow::ToEnd => "end",
         },
         "tightening": sol.tightening,
+        "events_depend_on_tightening": sol.tightening > 0.0,
         "tightening_pivots": sol.tightening_pivots,
         "pivots": sol.steps.len(),
         "steps": steps,

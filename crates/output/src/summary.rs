@@ -139,6 +139,16 @@ pub fn contact_summary_detail(
                 String::new()
             }
         );
+        if sol.tightening > 0.0 {
+            let _ = writeln!(
+                s,
+                "  these are the events of the paper's procedure: their loads depend on c{}",
+                match sol.p {
+                    Some(p) => format!(" (the solution at p = {} is free of c)", fmt_num(p)),
+                    None => String::new(),
+                }
+            );
+        }
         let _ = writeln!(
             s,
             "  {:>5}  {:>14}  {:<9} {:<9} events",

@@ -12,7 +12,8 @@ use unilateral_output::HistoryChartOptions;
 use crate::args::SolveArgs;
 use crate::commands::solve::write_outputs;
 use crate::failure::{analysis_failure, contact_failure, Failure, ZoneOrigin};
-use crate::output::{report_files, Progress};
+use crate::output::{report_files, Drawer};
+use unilateral_lcp::Phase;
 
 /// Writes named text files into `dir` (created if needed); returns their paths.
 fn write_named<T: AsRef<[u8]>>(
@@ -60,6 +61,14 @@ fn with_about(
         }
     }
     doc
+}
+
+/// The file's title and units for the writers that label columns with them.
+fn about(title: &Option<String>, units: &Option<String>) -> unilateral_output::About {
+    unilateral_output::About {
+        title: title.clone(),
+        units: units.clone(),
+    }
 }
 
 /// Exit status of a history: every status is an answer except a numerical failure (exit 1).
@@ -119,6 +128,7 @@ fn node_pictures(
 /// A contact-zone problem with a history.
 pub(crate) fn zone(
     args: &SolveArgs,
+    drawer: &Drawer,
     problem: unilateral_io::ContactZoneProblem,
     stages: Vec<Stage>,
     read: Duration,
@@ -140,6 +150,7 @@ pub(crate) fn zone(
     };
     let h = unilateral_contact::follow_history(&problem.zone, &history, &problem.settings.engine)
         .map_err(|e| contact_failure(file, &e, ZoneOrigin::File))?;
+    drawer.phase(Phase::Writing);
     let timings = Timings {
         read: Some(read),
         solve: Some(started.elapsed()),
@@ -166,7 +177,9 @@ pub(crate) fn zone(
         },
         || {
             if let Some(dir) = &args.csv {
-                let files = unilateral_output::history_csv(&h).map_err(Failure::from)?;
+                let files = about(&problem.title, &problem.units)
+                    .history_csv(&h)
+                    .map_err(Failure::from)?;
                 report_files(write_named(dir, files), dir)?;
             }
             if let Some(dir) = &args.report {
@@ -188,6 +201,7 @@ pub(crate) fn zone(
 /// A structural model with a history.
 pub(crate) fn structural(
     args: &SolveArgs,
+    drawer: &Drawer,
     problem: unilateral_io::StructuralProblem,
     stages: Vec<Stage>,
     read: Duration,
@@ -215,26 +229,9 @@ pub(crate) fn structural(
             .collect::<Result<_, _>>()?,
         None => Vec::new(),
     };
-    let progress = Progress::new();
-    progress.say(&format!(
-        "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
-         the load history of {} stages, recovering the results…",
-        problem.model.names().nodes.len(),
-        problem.model.names().elements.len(),
-        problem.model.names().pairs.len(),
-        stages.len()
-    ));
     let a = unilateral_analysis::analyze_history(&problem.model, &stages, &problem.settings.engine)
         .map_err(|e| analysis_failure(file, &e))?;
-    progress.say(&format!(
-        "done: {} changes of the working scheme, {:.2} s",
-        a.history
-            .stages
-            .iter()
-            .map(|s| s.steps.len())
-            .sum::<usize>(),
-        progress.elapsed()
-    ));
+    drawer.phase(Phase::Writing);
     let timings = Timings {
         read: Some(read),
         ..a.timings
@@ -259,7 +256,9 @@ pub(crate) fn structural(
         },
         || {
             if let Some(dir) = &args.csv {
-                let files = unilateral_output::history_csv(&a.history).map_err(Failure::from)?;
+                let files = about(&problem.title, &problem.units)
+                    .history_csv(&a.history)
+                    .map_err(Failure::from)?;
                 report_files(write_named(dir, files), dir)?;
             }
             if let Some(dir) = &args.vtk {

@@ -7,11 +7,17 @@ use unilateral_analysis::Timings;
 
 use crate::args::LcpArgs;
 use crate::failure::{input_failure, lcp_failure, lcp_status_failure, Failure};
-use crate::output::write_json;
+use crate::output::{write_json, Drawer};
 use unilateral_output::{timings_summary, with_timings};
 
 pub(crate) fn run(args: LcpArgs) -> Result<(), Failure> {
-    let LcpArgs { file, json } = args;
+    let LcpArgs {
+        file,
+        json,
+        progress,
+    } = args;
+    let drawer = Drawer::start(progress);
+    drawer.phase(unilateral_lcp::Phase::Reading);
     let started = Instant::now();
     let lcp = unilateral_io::read_lcp(&file).map_err(input_failure)?;
     let mut timings = Timings {
@@ -19,9 +25,13 @@ pub(crate) fn run(args: LcpArgs) -> Result<(), Failure> {
         ..Timings::default()
     };
     let started = Instant::now();
-    let sol = unilateral_lcp::solve_lcp(&lcp, &unilateral_lcp::Settings::default())
-        .map_err(|e| lcp_failure(&file, &e))?;
+    let settings = unilateral_lcp::Settings {
+        progress: drawer.handle(),
+        ..unilateral_lcp::Settings::default()
+    };
+    let sol = unilateral_lcp::solve_lcp(&lcp, &settings).map_err(|e| lcp_failure(&file, &e))?;
     timings.solve = Some(started.elapsed());
+    drawer.phase(unilateral_lcp::Phase::Writing);
     if json.as_deref() != Some(Path::new("-")) {
         // The summary with the timings so far, then the JSON with `write` = printing it.
         let started = Instant::now();

@@ -17,7 +17,8 @@ use crate::failure::{
     analysis_failure, contact_failure, input_failure, outcome_failure, report_failure, Failure,
     ZoneOrigin,
 };
-use crate::output::{path_output_failure, report_files, write_json, Progress};
+use crate::output::{path_output_failure, report_files, write_json, Drawer};
+use unilateral_lcp::Phase;
 use unilateral_output::{timings_summary, with_timings};
 
 pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
@@ -26,6 +27,8 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
         trace: args.trace,
         tightening: args.tightening,
     };
+    let drawer = Drawer::start(args.progress);
+    drawer.phase(Phase::Reading);
     let started = Instant::now();
     let problem = unilateral_io::read_problem(&args.file).map_err(input_failure)?;
     let read = started.elapsed();
@@ -33,21 +36,25 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
         unilateral_io::Problem::ContactZone(mut problem) => match problem.history.take() {
             Some(stages) => {
                 no_path_options(&overrides)?;
-                crate::commands::history::zone(&args, problem, stages, read)
+                problem.settings.engine.progress = drawer.handle();
+                crate::commands::history::zone(&args, &drawer, problem, stages, read)
             }
             None => {
                 nodes_need_a_structural_history(&args)?;
-                contact_zone(&args, &overrides, problem, read)
+                problem.settings.engine.progress = drawer.handle();
+                contact_zone(&args, &drawer, &overrides, problem, read)
             }
         },
         unilateral_io::Problem::Structural(mut problem) => match problem.history.take() {
             Some(stages) => {
                 no_path_options(&overrides)?;
-                crate::commands::history::structural(&args, problem, stages, read)
+                problem.settings.engine.progress = drawer.handle();
+                crate::commands::history::structural(&args, &drawer, problem, stages, read)
             }
             None => {
                 nodes_need_a_structural_history(&args)?;
-                structural(&args, &overrides, problem, read)
+                problem.settings.engine.progress = drawer.handle();
+                structural(&args, &drawer, &overrides, problem, read)
             }
         },
     }
@@ -177,6 +184,7 @@ pub(crate) fn write_outputs(
 
 fn contact_zone(
     args: &SolveArgs,
+    drawer: &Drawer,
     overrides: &Overrides,
     mut problem: unilateral_io::ContactZoneProblem,
     read: Duration,
@@ -194,6 +202,7 @@ fn contact_zone(
     let started = Instant::now();
     let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
         .map_err(|e| contact_failure(file, &e, ZoneOrigin::File))?;
+    drawer.phase(Phase::Writing);
     let timings = Timings {
         read: Some(read),
         solve: Some(started.elapsed()),
@@ -235,6 +244,7 @@ fn contact_zone(
 
 fn structural(
     args: &SolveArgs,
+    drawer: &Drawer,
     overrides: &Overrides,
     mut problem: unilateral_io::StructuralProblem,
     read: Duration,
@@ -247,21 +257,9 @@ fn structural(
             .collect();
         args.report_args.check(&pairs)?;
     }
-    let progress = Progress::new();
-    progress.say(&format!(
-        "{} nodes, {} elements, {} contact pairs: condensing to the contact zone, following \
-         the load path, recovering the results…",
-        problem.model.names().nodes.len(),
-        problem.model.names().elements.len(),
-        problem.model.names().pairs.len()
-    ));
     let a = unilateral_analysis::analyze(&problem.model, &problem.settings)
         .map_err(|e| analysis_failure(file, &e))?;
-    progress.say(&format!(
-        "done: {} steps of the load path, {:.2} s",
-        a.solution.steps.len(),
-        progress.elapsed()
-    ));
+    drawer.phase(Phase::Writing);
     let timings = Timings {
         read: Some(read),
         ..a.timings
