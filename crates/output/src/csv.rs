@@ -31,8 +31,10 @@ pub fn write_contact_csv(
 /// [`write_contact_csv`] with the file's units in the column names (`x_n [N]`, `z_n [m]`).
 ///
 /// `path.csv` has one row per pair and breakpoint: `step,p,pair,name,x_n,x_t,z_n,z_t,state`,
-/// the solution without the tightening at each step's `p` (the same values as the JSON's
-/// `steps[k].pairs`), all of them computed in one walk along the path.
+/// the same values as the JSON's `steps[k].pairs`: the solution at each step's `p` (one walk
+/// along the path), or, for a path traced with the paper's tightening `c > 0`, the traced path
+/// at its breakpoints, with `c` in its values as in its events, and a last column
+/// `tightening_c` holding `c` on every row.
 pub fn write_contact_csv_with(
     sol: &ContactSolution,
     dir: &Path,
@@ -91,12 +93,22 @@ pub fn write_contact_csv_with(
         }
         steps.push('\n');
     }
-    let mut path = format!("step,p,pair,name,{columns},state\n");
+    // Traced with the tightening, the values are those of the traced path (they depend on c,
+    // as the events do): the same last column as steps.csv says so on every row.
+    let mut path = format!("step,p,pair,name,{columns},state");
+    let c_column = if tightened {
+        path.push(',');
+        path.push_str(&about.column("tightening_c", |f, _| f.into()));
+        format!(",{}", n(sol.tightening))
+    } else {
+        String::new()
+    };
+    path.push('\n');
     for (st, ps) in sol.steps.iter().zip(&at) {
         for (i, p) in ps.iter().flatten().enumerate() {
             let _ = writeln!(
                 path,
-                "{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{}{c_column}",
                 st.index,
                 n(st.p),
                 i + 1,

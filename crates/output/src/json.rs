@@ -112,16 +112,35 @@ pub(crate) fn pairs_json(ps: &[PairResult]) -> Value {
     )
 }
 
-/// The solutions without the tightening at every breakpoint of the path (`None` where a load
-/// is not on it), in one walk along the path, each number checked finite.
+/// The values of every pair at every breakpoint of the path (`None` where a load is not on
+/// it), each number checked finite. Without tightening they are the solution at each step's
+/// `p`, found in one walk along the path. Traced with the paper's tightening `c > 0` they are
+/// the traced path itself at its breakpoints (with `c` in them, as the steps' events are):
+/// never tightening-free values beside `c`-dependent events, and no removal of `c` at every
+/// breakpoint (which cost far more than the path). They are formed in blocks of
+/// [`BREAKPOINT_BLOCK`] breakpoints so that the memory stays that of a few columns of `M`.
 pub(crate) fn breakpoint_pairs(
     sol: &ContactSolution,
 ) -> Result<Vec<Option<Vec<PairResult>>>, PathOutputError> {
-    let loads: Vec<f64> = sol.steps.iter().map(|s| s.p).collect();
-    let at = sol.at_many(&loads)?;
+    let at: Vec<Option<(f64, Vec<PairResult>)>> = if sol.tightening > 0.0 {
+        // Breakpoint `k` of the traced path is the point after step `k`.
+        let mut out = Vec::with_capacity(sol.steps.len());
+        for block in sol.steps.chunks(BREAKPOINT_BLOCK) {
+            let points: Vec<(usize, f64)> = block.iter().map(|st| (st.index, 0.0)).collect();
+            out.extend(sol.traced_on_segments(&points)?);
+        }
+        out
+    } else {
+        let loads: Vec<f64> = sol.steps.iter().map(|s| s.p).collect();
+        sol.at_many(&loads)?
+            .into_iter()
+            .zip(loads)
+            .map(|(point, p)| point.map(|(pairs, _)| (p, pairs)))
+            .collect()
+    };
     let mut out = Vec::with_capacity(at.len());
     for (st, point) in sol.steps.iter().zip(at) {
-        let pairs = point.map(|(pairs, _)| pairs);
+        let pairs = point.map(|(_, pairs)| pairs);
         for (i, p) in pairs.iter().flatten().enumerate() {
             let at = |what: &str| format!("steps[{}].pairs[{}].{what}", st.index, i + 1);
             finite::finite(p.x_n, || at("x_n"))?;
@@ -133,6 +152,10 @@ pub(crate) fn breakpoint_pairs(
     }
     Ok(out)
 }
+
+/// Breakpoints of a tightened path formed at once by [`breakpoint_pairs`] (one product of `M`
+/// with as many columns).
+pub(crate) const BREAKPOINT_BLOCK: usize = 256;
 
 /// The JSON value of a residual.
 pub fn residual_json(r: Option<&Residual>) -> Result<Value, NonFiniteOutput> {
@@ -252,10 +275,19 @@ fn path_document(
         }
     }
     if at.is_some() {
-        doc["step_pairs"] = json!(
-            "steps[k].pairs: every pair at the step's p, without the tightening (the \
-             tightening-free solution on the traced path's basis); null where p is not on it"
-        );
+        doc["step_pairs"] = if sol.tightening > 0.0 {
+            json!(format!(
+                "steps[k].pairs: every pair at the step's breakpoint of the path traced with the \
+                 tightening c = {}: these values, like the steps' events, depend on c (the \
+                 solution at the reported load, `pairs`, is free of it)",
+                sol.tightening
+            ))
+        } else {
+            json!(
+                "steps[k].pairs: every pair at the step's p (the solution on the traced path's \
+                 basis); null where p is not on it"
+            )
+        };
     }
     Ok(with_provenance(doc))
 }
