@@ -162,8 +162,8 @@ pub(crate) struct SolveArgs {
     /// Write the result document as JSON to this file (`-` for stdout).
     #[arg(long, value_name = "OUT.json")]
     pub(crate) json: Option<PathBuf>,
-    /// In the JSON document, every pair at every step of the load path (`steps[k].pairs`,
-    /// without the tightening).
+    /// In the JSON document, every pair at every step of the load path (`steps[k].pairs`;
+    /// traced with the tightening, the traced path's values, which depend on c).
     #[arg(long)]
     pub(crate) json_breakpoints: bool,
     /// Write CSV tables (pairs.csv, steps.csv) into this directory.

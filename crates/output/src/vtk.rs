@@ -243,13 +243,26 @@ struct Snapshot<'a> {
     reported: bool,
 }
 
-/// The start, every event of the path (where recoverable) and the reported solution, sorted
-/// by load without repeats.
+/// The start, every step of the path that changes a pair's state (where recoverable; none for
+/// a path traced with the tightening) and the reported solution, sorted by load without
+/// repeats.
 fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
     let same = |x: f64, y: f64| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0);
     let reported = a.p().zip(a.results.as_ref());
+    // Frames where the working scheme changes: steps with events, not the pivots that only
+    // settle the starting scheme or trade an open pair's friction parts. A path traced with
+    // the paper's tightening has its events at loads that depend on c, where the structure
+    // without c (the only one recovered) may show no change at all: its animation is the
+    // start and the reported state; the physical path is animated by a run with c = 0.
+    let tightened = a.solution.tightening > 0.0;
+    let events = a
+        .solution
+        .steps
+        .iter()
+        .filter(|s| !tightened && !s.settling && !s.events.is_empty())
+        .map(|s| s.p);
     let mut loads: Vec<f64> = std::iter::once(0.0)
-        .chain(a.event_loads())
+        .chain(events)
         .filter(|p| p.is_finite())
         .filter(|&p| reported.is_none_or(|(end, _)| !same(p, end)))
         .collect();

@@ -74,6 +74,7 @@ fn the_values_at_the_breakpoints_of_a_tightened_path_are_the_traced_ones() {
             assert!(p[key].as_f64().unwrap().abs() <= tol, "{p}");
         }
     }
+    assert_eq!(pairs[0]["state"], "open", "the event: pair 1 opens");
     assert_eq!(pairs[1]["state"], "stick");
     assert_eq!(pairs[2]["state"], "stick");
     // Without the request the document has no values at the breakpoints.
