@@ -101,6 +101,8 @@ impl Basis {
         }
         let kmat = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
         let lu = kmat.partial_piv_lu();
+        // The factors are a copy: free K before the inverse is formed.
+        drop(kmat);
         let u = lu.U();
         let umax = (0..k).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
         let umin = (0..k)
