@@ -162,7 +162,15 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
             let ds = piv.driver_slot();
             let amax = max_abs(&alpha);
             let rate = ds.map(|s| alpha[s]).unwrap_or(-1.0);
-            if last_entering == driver || rate < -tol.pivot * amax {
+            // The direction was checked against the data before the ray was believed
+            // (`Pivoter::verify_ray`): a mechanism needs the driver fixed within round-off of
+            // the rows it meets, not only below the pivot tolerance of the column.
+            let check = piv.ray_check;
+            let fixed = check.is_none_or(|c| c.driver_fixed());
+            if check.is_some_and(|c| !c.verified()) {
+                path.status = PathStatus::NumericalFailure;
+                None
+            } else if last_entering == driver || rate < -tol.pivot * amax || !fixed {
                 path.status = PathStatus::Ray;
                 match crossed {
                     Some(j) => Some((j, options.target)),

@@ -177,6 +177,28 @@ impl Basis {
         (self.scatter(&ys, &tmp, n), rel)
     }
 
+    /// `|K⁻¹| |A[R, col]|` by position in `S`: the size of the terms whose sums form the kernel
+    /// part of `B⁻¹ A[:, col]`, against which its entries are round-off or not (`O(k²)`).
+    pub fn kernel_terms(&self, cols: &Columns, col: usize) -> Vec<f64> {
+        let k = self.s_cols.len();
+        let mut out = vec![0.0; k];
+        for (b, &r) in self.r_rows.iter().enumerate() {
+            let u = cols.entry(r, col).abs();
+            if u != 0.0 {
+                for (o, g) in out.iter_mut().zip(self.kinv.col(b)) {
+                    *o += u * g.abs();
+                }
+            }
+        }
+        out
+    }
+
+    /// Position of a basic non-slack column in `S` (`None` for a slack or a non-basic column).
+    pub fn kernel_pos(&self, col: usize) -> Option<usize> {
+        let a = self.s_pos[col];
+        (a != NONE).then_some(a)
+    }
+
     fn kernel_solve(&self, vr: &[f64]) -> Vec<f64> {
         self.kinv.solve(vr)
     }
