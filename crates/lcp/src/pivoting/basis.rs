@@ -212,7 +212,9 @@ impl Basis {
                 continue;
             }
             if c >= n && c < 2 * n {
-                zcols.push((c - n, y));
+                // A negated stored column: (−y)·b is y·(−b) exactly.
+                let (s, neg) = cols.m.col_index(c - n);
+                zcols.push((s, if neg { -y } else { y }));
             } else {
                 cols.axpy_col(tmp, -y, c);
             }
@@ -353,10 +355,11 @@ impl Basis {
     }
 }
 
-/// `out += Σ y_j M[offset.., j]` over `(j, y_j)`, four columns per pass over `out`.
+/// `out += Σ y_s S[offset.., s]` over `(s, y_s)` with `S` the stored columns of `M`, four
+/// columns per pass over `out`.
 fn add_columns(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64], offset: usize) {
     let len = out.len();
-    let part = |j: usize| &cols.m_col(j)[offset..offset + len];
+    let part = |s: usize| &cols.m.stored(s)[offset..offset + len];
     let mut chunks = zcols.chunks_exact(4);
     for ch in &mut chunks {
         let (c0, c1, c2, c3) = (part(ch[0].0), part(ch[1].0), part(ch[2].0), part(ch[3].0));

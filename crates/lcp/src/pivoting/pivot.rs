@@ -395,7 +395,12 @@ impl<'a> Pivoter<'a> {
             .iter()
             .enumerate()
             .filter(|&(_, &v)| v >= n && v < 2 * n)
-            .map(|(s, &v)| (v - n, self.cols.values(&[self.beta[s].max(0.0)])[0]))
+            .map(|(s, &v)| {
+                (
+                    v - n,
+                    crate::binary::ldexp(self.beta[s].max(0.0), self.cols.eh),
+                )
+            })
             .collect();
         PivotRecord {
             entering,
@@ -579,8 +584,14 @@ impl<'a> Pivoter<'a> {
             let cols = self.cols.to_mut();
             let m = cols.m.clone();
             for &(s, j, b) in &moves {
-                for (h, mj) in cols.h.iter_mut().zip(&m[j * n..(j + 1) * n]) {
-                    *h += b * mj;
+                // h + b·(−c) is h − b·c exactly (a negated stored column).
+                let (c, neg) = m.col(j);
+                for (h, mj) in cols.h.iter_mut().zip(c) {
+                    if neg {
+                        *h -= b * mj;
+                    } else {
+                        *h += b * mj;
+                    }
                 }
                 acc[j] += b;
                 self.beta[s] = 0.0;

@@ -2,7 +2,7 @@
 
 use faer::Mat;
 
-use crate::pivoting::columns::Columns;
+use crate::pivoting::columns::{ColumnStore, Columns};
 use crate::pivoting::scaling::Scaling;
 use crate::LcpError;
 
@@ -56,7 +56,7 @@ pub(crate) fn check_vector(what: &'static str, v: &[f64], n: usize) -> Result<()
 pub(crate) struct Prepared {
     pub n: usize,
     pub scaling: Scaling,
-    pub m_scaled: std::sync::Arc<Vec<f64>>,
+    pub m_scaled: std::sync::Arc<ColumnStore>,
     /// Every original entry is recovered exactly from `m_scaled`.
     exact: bool,
     /// The original `M`, kept only when it is not recovered exactly.
@@ -71,7 +71,7 @@ impl Prepared {
         Self {
             n: m.nrows(),
             scaling,
-            m_scaled: std::sync::Arc::new(scaled),
+            m_scaled: std::sync::Arc::new(ColumnStore::new(m.nrows(), scaled)),
             exact,
             original: None,
         }
@@ -94,8 +94,7 @@ impl Prepared {
             Some(m) => m[(i, j)],
             None => {
                 debug_assert!(self.exact, "the original is recovered exactly");
-                self.scaling
-                    .original_entry(self.m_scaled[j * self.n + i], i, j)
+                self.scaling.original_entry(self.m_scaled.get(i, j), i, j)
             }
         }
     }
@@ -116,7 +115,7 @@ impl Prepared {
         Self {
             n: m.nrows(),
             scaling,
-            m_scaled: std::sync::Arc::new(scaled),
+            m_scaled: std::sync::Arc::new(ColumnStore::new(m.nrows(), scaled)),
             exact,
             original: None,
         }
@@ -125,7 +124,7 @@ impl Prepared {
     /// `E M D` as a matrix.
     pub fn matrix(&self) -> Mat<f64> {
         let n = self.n;
-        Mat::from_fn(n, n, |i, j| self.m_scaled[j * n + i])
+        Mat::from_fn(n, n, |i, j| self.m_scaled.get(i, j))
     }
 
     /// Tableau columns for `x = h + g t + M z` given in original units.
