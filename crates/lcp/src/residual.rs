@@ -184,10 +184,10 @@ impl Residual {
                 }
                 let mut met = false;
                 let mut best = 0.0f64;
-                for i in 0..rows {
+                for (i, &si) in s.iter().enumerate() {
                     if m(i, j) != 0.0 {
                         met = true;
-                        best = best.max(rel(term(i, j).abs(), s[i]));
+                        best = best.max(rel(term(i, j).abs(), si));
                     }
                 }
                 if met {

@@ -452,7 +452,7 @@ impl<'a> Pivoter<'a> {
     /// sums), the ratio test is redone with those entries as candidates. The check of the last ray is left
     /// in [`Pivoter::ray_check`] for the caller to judge (an unverified ray or mechanism is a
     /// numerical failure).
-    fn verify_ray(&mut self, entering: usize, alpha: &mut Vec<f64>) -> Option<Choice> {
+    fn verify_ray(&mut self, entering: usize, alpha: &mut [f64]) -> Option<Choice> {
         let (mut check, mut decreasing) = self.check_ray(entering, alpha);
         if check.equation > crate::ACCEPT_RESIDUAL {
             let zero = vec![0.0; alpha.len()];
