@@ -449,25 +449,28 @@ impl<'a> Pivoter<'a> {
     }
 
     /// A ray (no positive entry in `alpha`, on a fresh factorisation) is believed only if its
-    /// direction is verified from the data ([`Pivoter::check_ray`]): `alpha` is first refined
-    /// once from the data (`α += B⁻¹(A_e − B α)`) and the ratio test redone; if some basic
-    /// variable decreases by more than round-off of the terms that formed
+    /// direction is verified from the data ([`Pivoter::check_ray`]). If the equations are not
+    /// met, `alpha` is refined once from the data (`α += B⁻¹(A_e − B α)`) and the ratio test
+    /// redone; if some basic variable decreases by more than round-off of the terms that formed
     /// its rate (an entry below the pivot tolerance of the column but not round-off of its own
     /// sums), the ratio test is redone with those entries as candidates. The check of the last ray is left
     /// in [`Pivoter::ray_check`] for the caller to judge (an unverified ray or mechanism is a
     /// numerical failure).
     fn verify_ray(&mut self, entering: usize, alpha: &mut [f64]) -> Option<Choice> {
-        // The column refined once from the data: its round-off (up to cond(K)·ε of the sums)
-        // shrinks to the square of that, so what is judged below is the data, not the inverse.
-        let zero = vec![0.0; alpha.len()];
-        let r = self.direction_residual(entering, alpha, &zero).0;
-        let corr = self.basis.solve(&self.cols, &r);
-        alpha.iter_mut().zip(&corr).for_each(|(a, c)| *a += c);
-        if let Some(step) = self.ratio_test(alpha) {
-            self.ray_check = None;
-            return Some(step);
+        let (mut check, mut decreasing) = self.check_ray(entering, alpha);
+        if check.equation > crate::ACCEPT_RESIDUAL {
+            // Refined once from the data: the round-off of the inverse (up to cond(K)·ε of the
+            // sums) shrinks to its square.
+            let zero = vec![0.0; alpha.len()];
+            let r = self.direction_residual(entering, alpha, &zero).0;
+            let corr = self.basis.solve(&self.cols, &r);
+            alpha.iter_mut().zip(&corr).for_each(|(a, c)| *a += c);
+            if let Some(step) = self.ratio_test(alpha) {
+                self.ray_check = None;
+                return Some(step);
+            }
+            (check, decreasing) = self.check_ray(entering, alpha);
         }
-        let (check, decreasing) = self.check_ray(entering, alpha);
         self.ray_check = Some(check);
         if check.equation <= crate::ACCEPT_RESIDUAL && !decreasing.is_empty() {
             let step = self.ratio_test_over(alpha, decreasing);
