@@ -51,8 +51,6 @@ pub fn solve(
 ) -> Result<ContactSolution, ContactError> {
     zone.validate()?;
     settings.validate()?;
-    // The LCP in the user's units: shown in tableaux and labels.
-    let lcp = ContactLcp::build(zone);
     // The LCP that is solved: normalised by powers of two (module `units`), so that neither the
     // states nor the events depend on the units of the data.
     let units = Units::of(zone, settings.tightening);
@@ -83,8 +81,12 @@ pub fn solve(
         tightening: normalised.tightening(units.normalised_force(settings.tightening)),
     };
     let engine = engine_settings(&normalised, settings);
+    // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
+    // user's units, shown in tableaux and labels, is built only after the path, so that the
+    // pivoting's kernel matrices never meet a second `n × n` matrix.
     let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
     let mut path = solver.follow();
+    let lcp = ContactLcp::build(zone);
     let m = lcp.pairs;
     let names = zone.pair_names.clone();
     // Which pairs are open, followed along the path, to read friction events of open pairs.

@@ -10,7 +10,7 @@ use crate::pivoting::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
 use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
 use crate::{
     Breakpoint, Follow, Lcp, LcpError, LcpStatus, LoadPath, MechanismMode, ParametricLcp,
-    PathOptions, PathPoint, PathSolver, PathStatus, Residual, Settings, SettingsError, Step, Var,
+    PathOptions, PathPoint, PathSolver, PathStatus, Settings, SettingsError, Step, Var,
 };
 
 /// Checks the problem, the settings and the options; returns the order `n`.
@@ -44,17 +44,17 @@ pub(crate) fn tightening_of(options: &PathOptions, n: usize) -> (f64, Vec<f64>) 
 
 /// The load path from `p = 0` (see [`PathSolver::follow`]).
 pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
-    let (problem, options, settings) = (solver.problem(), solver.options(), solver.settings());
+    let (options, settings) = (solver.options(), solver.settings());
     let n = solver.order();
     let prep = &solver.prep;
     let (c0, cov) = (solver.c0, &solver.cov);
-    let h: Vec<f64> = problem
-        .q0
+    let h: Vec<f64> = solver
+        .q0()
         .iter()
         .zip(cov)
         .map(|(q, c)| q + c0 * c)
         .collect();
-    let cols = prep.columns(&h, &problem.d);
+    let cols = prep.columns(&h, solver.d());
     let tol = Tolerances {
         pivot: settings.pivot_tol(),
         value: 1e-13,
@@ -70,7 +70,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     };
     let progress = &settings.progress;
     progress.phase(crate::Phase::Start);
-    let (start_basis, start_pivots) = match start_basis(prep, &problem.d, &h, &phase1_dir, settings)
+    let (start_basis, start_pivots) = match start_basis(prep, solver.d(), &h, &phase1_dir, settings)
     {
         (Some(b), pivots) => (b, pivots),
         (None, start_pivots) => {
@@ -100,6 +100,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         priority,
         settings.refactor_interval,
     );
+    piv.progress = settings.progress.clone();
     let start_z = basic_z(prep, &piv.basis.slot_var, &cols.values(&piv.beta));
     let mut records: Vec<PivotRecord> = Vec::new();
     let mut crossed = None;
@@ -115,12 +116,15 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     );
 
     progress.steps_to(records.len(), records.last().map_or(0.0, |r| r.driver));
+    let kseg = records.len();
+    let pivots: Vec<(usize, usize)> = records.iter().map(|r| (r.entering, r.leaving)).collect();
     let mut steps = Vec::with_capacity(records.len());
     let mut breakpoints = Vec::with_capacity(records.len() + 1);
     breakpoints.push(Breakpoint { p: 0.0, z: start_z });
     let mut p_prev = 0.0f64;
     let mut p_max = 0.0f64;
-    for (k, r) in records.iter().enumerate() {
+    // The records' values move into the breakpoints (`O(k)` a step: not held twice).
+    for (k, mut r) in records.into_iter().enumerate() {
         let zero = 1e-9 * p_prev.abs().max(1.0);
         steps.push(Step {
             index: k + 1,
@@ -129,12 +133,10 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
             leaving: Var::from_col(r.leaving, n),
             turning: r.driver < p_prev - zero,
         });
+        r.z.iter_mut().for_each(|(i, v)| *v *= prep.scaling.col[*i]);
         breakpoints.push(Breakpoint {
             p: r.driver,
-            z: r.z
-                .iter()
-                .map(|&(i, v)| (i, v * prep.scaling.col[i]))
-                .collect(),
+            z: r.z,
         });
         p_prev = r.driver;
         p_max = p_max.max(r.driver);
@@ -152,10 +154,9 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         refactorizations: piv.refactorizations,
         artificial_mechanism: None,
         start_slots,
-        records: records.iter().map(|r| (r.entering, r.leaving)).collect(),
+        records: pivots,
         target_segment: crossed,
     };
-    let kseg = records.len();
     // (segment, p) at which to report the solution.
     let report: Option<(usize, f64)> = match ending {
         Ending::TargetReached => {
@@ -167,7 +168,15 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
             let ds = piv.driver_slot();
             let amax = max_abs(&alpha);
             let rate = ds.map(|s| alpha[s]).unwrap_or(-1.0);
-            if last_entering == driver || rate < -tol.pivot * amax {
+            // The direction was checked against the data before the ray was believed
+            // (`Pivoter::verify_ray`): a mechanism needs the driver fixed within round-off of
+            // the rows it meets, not only below the pivot tolerance of the column.
+            let check = piv.ray_check;
+            let fixed = check.is_none_or(|c| c.driver_fixed());
+            if check.is_some_and(|c| !c.verified()) {
+                path.status = PathStatus::NumericalFailure;
+                None
+            } else if last_entering == driver || rate < -tol.pivot * amax || !fixed {
                 path.status = PathStatus::Ray;
                 match crossed {
                     Some(j) => Some((j, options.target)),
@@ -208,7 +217,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     };
     if let (PathStatus::Mechanism, Some(p_lim)) = (path.status, path.p_limit) {
         if c0 > 0.0 && p_lim < options.target {
-            if let Some(pt) = fresh_solution(problem, options.target, settings) {
+            if let Some(pt) = fresh_solution(solver, options.target) {
                 path.status = PathStatus::TargetReached;
                 path.artificial_mechanism = Some(p_lim);
                 path.solution = Some(pt);
@@ -220,7 +229,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         // Only verified, finite points are reported (`solution_on_segment`); none at all when
         // the real problem (without tightening) has no solution there.
         progress.phase(crate::Phase::Tightening);
-        path.solution = solution_on_segment(problem, prep, &path, seg, p, c0, cov, settings);
+        path.solution = solution_on_segment(solver, &path, seg, p);
         progress.pivots(path.solution.as_ref().map_or(0, |s| s.tightening_pivots));
     }
     path
@@ -351,17 +360,14 @@ pub(crate) fn mechanism_mode(
 }
 
 /// The solution at `p` on segment `seg` without the tightening.
-#[allow(clippy::too_many_arguments)]
 pub(crate) fn solution_on_segment(
-    problem: &ParametricLcp,
-    prep: &Prepared,
+    solver: &PathSolver,
     path: &LoadPath,
     seg: usize,
     p: f64,
-    c0: f64,
-    cov: &[f64],
-    settings: &Settings,
 ) -> Option<PathPoint> {
+    let (prep, settings) = (&solver.prep, solver.settings());
+    let (c0, cov) = (solver.c0, &solver.cov[..]);
     let n = prep.n;
     let driver = 2 * n;
     let mut slots = path.slots_after(seg);
@@ -369,12 +375,12 @@ pub(crate) fn solution_on_segment(
         let e = path.segment_entering(seg, n)?;
         slots[ds] = e;
     }
-    let q_real: Vec<f64> = problem.q_at(p);
+    let q_real: Vec<f64> = solver.q_at(p);
     match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
         Some((x, z, pivots)) => {
-            let residual = Residual::of_parametric(&problem.m, &problem.q0, &problem.d, p, &x, &z);
+            let residual = solver.residual(p, &x, &z);
             if !residual.accepts(&x, &z) {
-                return fresh_solution(problem, p, settings);
+                return fresh_solution(solver, p);
             }
             Some(PathPoint {
                 p,
@@ -385,18 +391,17 @@ pub(crate) fn solution_on_segment(
                 fallback: false,
             })
         }
-        None => fresh_solution(problem, p, settings),
+        None => fresh_solution(solver, p),
     }
 }
 
 /// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified.
-fn fresh_solution(problem: &ParametricLcp, p: f64, settings: &Settings) -> Option<PathPoint> {
-    let q: Vec<f64> = problem.q_at(p);
+fn fresh_solution(solver: &PathSolver, p: f64) -> Option<PathPoint> {
     let lcp = Lcp {
-        m: problem.m.clone(),
-        q,
+        m: solver.prep.original_matrix(),
+        q: solver.q_at(p),
     };
-    let sol = solve_lcp(&lcp, settings).ok()?;
+    let sol = solve_lcp(&lcp, solver.settings()).ok()?;
     if sol.status != LcpStatus::Solved {
         return None;
     }
@@ -521,16 +526,5 @@ pub(crate) fn point_at(solver: &PathSolver, path: &LoadPath, p: f64) -> Option<P
         (path.status == PathStatus::Ray && p >= path.breakpoints.last().map_or(0.0, |b| b.p))
             .then_some(path.records.len())
     });
-    seg.and_then(|j| {
-        solution_on_segment(
-            solver.problem(),
-            &solver.prep,
-            path,
-            j,
-            p,
-            solver.c0,
-            &solver.cov,
-            solver.settings(),
-        )
-    })
+    seg.and_then(|j| solution_on_segment(solver, path, j, p))
 }

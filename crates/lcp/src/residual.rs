@@ -58,7 +58,7 @@ impl Residual {
     /// Residuals of `(w, z)` for `w = q + M z` (`M` is `q.len() × z.len()`).
     pub fn of(m: &Mat<f64>, q: &[f64], w: &[f64], z: &[f64]) -> Self {
         let size: Vec<f64> = q.iter().map(|v| v.abs()).collect();
-        Self::of_terms(m, q, &size, w, z)
+        Self::of_terms(&|i, j| m[(i, j)], (m.nrows(), m.ncols()), q, &size, w, z)
     }
 
     /// Residuals of `(x, z)` for the parametric `x = q0 + p·d + M z` at load `p`. Each row is
@@ -67,6 +67,19 @@ impl Residual {
     /// zero in exact arithmetic) its round-off is that of the terms, not of the difference.
     pub fn of_parametric(
         m: &Mat<f64>,
+        q0: &[f64],
+        d: &[f64],
+        p: f64,
+        x: &[f64],
+        z: &[f64],
+    ) -> Self {
+        Self::of_parametric_with(&|i, j| m[(i, j)], (m.nrows(), m.ncols()), q0, d, p, x, z)
+    }
+
+    /// [`Residual::of_parametric`] with `M` given entry by entry (`shape` = rows, columns).
+    pub(crate) fn of_parametric_with(
+        m: &impl Fn(usize, usize) -> f64,
+        shape: (usize, usize),
         q0: &[f64],
         d: &[f64],
         p: f64,
@@ -82,11 +95,18 @@ impl Residual {
             .zip(d)
             .map(|(a, b)| a.abs() + (p * b).abs())
             .collect();
-        Self::of_terms(m, &q, &size, x, z)
+        Self::of_terms(m, shape, &q, &size, x, z)
     }
 
     /// [`Residual::of`] with `size[i] ≥ |q_i|` the magnitude of the terms that formed `q_i`.
-    fn of_terms(m: &Mat<f64>, q: &[f64], size: &[f64], w: &[f64], z: &[f64]) -> Self {
+    fn of_terms(
+        m: &impl Fn(usize, usize) -> f64,
+        shape: (usize, usize),
+        q: &[f64],
+        size: &[f64],
+        w: &[f64],
+        z: &[f64],
+    ) -> Self {
         let (rows, cols) = (q.len(), z.len());
         if w.iter()
             .chain(z)
@@ -94,13 +114,13 @@ impl Residual {
             .chain(size)
             .any(|v| !v.is_finite())
             || size.len() != rows
-            || m.nrows() != rows
-            || m.ncols() != cols
+            || shape.0 != rows
+            || shape.1 != cols
             || w.len() != rows
         {
             return Self::unverifiable();
         }
-        if (0..cols).any(|j| (0..rows).any(|i| !m[(i, j)].is_finite())) {
+        if (0..cols).any(|j| (0..rows).any(|i| !m(i, j).is_finite())) {
             return Self::unverifiable();
         }
         // Row i is formed times 2^(−e[i]), with e[i] above the exponent of every term of the row.
@@ -114,7 +134,7 @@ impl Residual {
         for (j, &ezj) in ez.iter().enumerate() {
             let Some(ezj) = ezj else { continue };
             for (i, ei) in e.iter_mut().enumerate() {
-                if let Some(emij) = exponent(m[(i, j)]) {
+                if let Some(emij) = exponent(m(i, j)) {
                     *ei = (*ei).max(emij + ezj + 1);
                 }
             }
@@ -130,10 +150,10 @@ impl Residual {
             .map(|(&v, &x)| x.map_or(0.0, |x| ldexp(v, -x)))
             .collect();
         let term = |i: usize, j: usize| -> f64 {
-            let (Some(ezj), Some(emij)) = (ez[j], exponent(m[(i, j)])) else {
+            let (Some(ezj), Some(emij)) = (ez[j], exponent(m(i, j))) else {
                 return 0.0;
             };
-            ldexp(ldexp(m[(i, j)], -emij) * zmant[j], emij + ezj - e[i])
+            ldexp(ldexp(m(i, j), -emij) * zmant[j], emij + ezj - e[i])
         };
         let ws: Vec<f64> = w.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
         let mut r: Vec<f64> = q.iter().zip(&e).map(|(&v, &k)| ldexp(v, -k)).collect();
@@ -164,10 +184,10 @@ impl Residual {
                 }
                 let mut met = false;
                 let mut best = 0.0f64;
-                for i in 0..rows {
-                    if m[(i, j)] != 0.0 {
+                for (i, &si) in s.iter().enumerate() {
+                    if m(i, j) != 0.0 {
                         met = true;
-                        best = best.max(rel(term(i, j).abs(), s[i]));
+                        best = best.max(rel(term(i, j).abs(), si));
                     }
                 }
                 if met {

@@ -46,11 +46,13 @@ use crate::{LcpError, LoadPath, ParametricLcp, PathOptions, PathPoint, Settings,
 /// assert!((half.z[0] - 0.25).abs() < 1e-12 && (half.x[1] - 0.25).abs() < 1e-12);
 /// ```
 pub struct PathSolver {
-    problem: ParametricLcp,
+    /// `q0` and `d` as given (`M` is held once, equilibrated, in `prep`).
+    q0: Vec<f64>,
+    d: Vec<f64>,
     options: PathOptions,
     settings: Settings,
     n: usize,
-    /// The equilibrated `M` and its scalings.
+    /// The equilibrated `M` and its scalings; the original `M` is recovered from it exactly.
     pub(crate) prep: Prepared,
     /// The tightening's amount (`0` without one).
     pub(crate) c0: f64,
@@ -70,16 +72,22 @@ impl fmt::Debug for PathSolver {
 
 impl PathSolver {
     /// Validates the problem, the options and the settings, and equilibrates `M`.
+    ///
+    /// The solver holds one `n × n` matrix: the equilibrated `M`, from which the original is
+    /// recovered bit for bit where verification needs it (the scalings are powers of two); a
+    /// copy of the original is kept as well only when some scaled entry left the normal range.
     pub fn new(
         problem: ParametricLcp,
         options: PathOptions,
         settings: Settings,
     ) -> Result<Self, LcpError> {
         let n = validate(&problem, &options, &settings)?;
-        let prep = Prepared::new(&problem.m);
+        let ParametricLcp { m, q0, d } = problem;
+        let prep = Prepared::from_owned(m);
         let (c0, cov) = tightening_of(&options, n);
         Ok(Self {
-            problem,
+            q0,
+            d,
             options,
             settings,
             n,
@@ -89,9 +97,47 @@ impl PathSolver {
         })
     }
 
-    /// The problem, as given.
-    pub fn problem(&self) -> &ParametricLcp {
-        &self.problem
+    /// The problem, as given: `M` rebuilt bit for bit from the equilibrated copy the solver
+    /// holds (an `O(n²)` copy).
+    pub fn problem(&self) -> ParametricLcp {
+        ParametricLcp {
+            m: self.prep.original_matrix(),
+            q0: self.q0.clone(),
+            d: self.d.clone(),
+        }
+    }
+
+    /// The constant part `q0`, as given.
+    pub fn q0(&self) -> &[f64] {
+        &self.q0
+    }
+
+    /// The load direction `d`, as given.
+    pub fn d(&self) -> &[f64] {
+        &self.d
+    }
+
+    /// `q0 + p·d`.
+    pub(crate) fn q_at(&self, p: f64) -> Vec<f64> {
+        self.q0
+            .iter()
+            .zip(&self.d)
+            .map(|(q, d)| q + p * d)
+            .collect()
+    }
+
+    /// Residuals of `(x, z)` at load `p` against the original data.
+    pub(crate) fn residual(&self, p: f64, x: &[f64], z: &[f64]) -> crate::Residual {
+        let n = self.n;
+        crate::Residual::of_parametric_with(
+            &|i, j| self.prep.original_entry(i, j),
+            (n, n),
+            &self.q0,
+            &self.d,
+            p,
+            x,
+            z,
+        )
     }
 
     /// The path options, as given.

@@ -18,7 +18,7 @@ use crate::parametric::{clamp, solution_on_segment};
 use crate::pivoting::basis::Basis;
 use crate::pivoting::columns::Columns;
 use crate::pivoting::pivot::{max_abs, Ending, Pivoter, Tolerances};
-use crate::{LoadPath, PathPoint, PathSolver, PathStatus, Residual};
+use crate::{LoadPath, PathPoint, PathSolver, PathStatus};
 
 /// The least number of pivots allowed for removing the tightening at one load within the
 /// sweep. The bound grows with the basis (see [`removal_cap`]); a point that needs more is
@@ -55,9 +55,8 @@ pub(crate) fn points_at(
         return out;
     }
     let prep = &solver.prep;
-    let problem = solver.problem();
     // The path's own columns: the basis depends on `M` and the driver's direction `d` only.
-    let cols_path = prep.columns(&problem.q0, &problem.d);
+    let cols_path = prep.columns(solver.q0(), solver.d());
     let mut walk = Basis::from_slots(&cols_path, path.start_slots.clone()).ok();
     let mut at = 0usize; // pivots applied to `walk`
     let mut since_refactor = 0usize;
@@ -95,16 +94,7 @@ pub(crate) fn points_at(
             .and_then(|b| evaluate(solver, path, b, seg, p));
         out[i] = match quick {
             Some(pt) => Some(pt),
-            None => solution_on_segment(
-                problem,
-                prep,
-                path,
-                seg,
-                p,
-                solver.c0,
-                &solver.cov,
-                solver.settings(),
-            ),
+            None => solution_on_segment(solver, path, seg, p),
         };
     }
     out
@@ -133,12 +123,11 @@ fn evaluate(
     p: f64,
 ) -> Option<PathPoint> {
     let prep = &solver.prep;
-    let problem = solver.problem();
     let n = prep.n;
     let driver = 2 * n;
-    let q_real: Vec<f64> = problem.q_at(p);
+    let q_real: Vec<f64> = solver.q_at(p);
     // Same `M` and driver direction as the path's columns, so the walk's basis serves.
-    let cols = prep.columns(&q_real, &problem.d);
+    let cols = prep.columns(&q_real, solver.d());
     let mut slots = b.slot_var.clone();
     let mut beta = b.solve(&cols, &cols.h);
     let mut replaced: Option<(usize, usize, Vec<f64>)> = None;
@@ -233,8 +222,7 @@ fn verified(
     if x.iter().chain(&z).any(|&v| !v.is_finite() || v < 0.0) {
         return None;
     }
-    let problem = solver.problem();
-    let residual = Residual::of_parametric(&problem.m, &problem.q0, &problem.d, p, &x, &z);
+    let residual = solver.residual(p, &x, &z);
     if !residual.accepts(&x, &z) {
         return None;
     }

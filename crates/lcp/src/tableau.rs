@@ -38,7 +38,6 @@ pub(crate) fn tableaux_of(
     path: &LoadPath,
     max_steps: Option<usize>,
 ) -> Vec<Tableau> {
-    let problem = solver.problem();
     let n = solver.order();
     let (c0, cov) = (solver.c0, &solver.cov);
     let ncol = 2 * n + 1;
@@ -50,12 +49,12 @@ pub(crate) fn tableaux_of(
                 0.0
             }
         } else if j < 2 * n {
-            -problem.m[(i, j - n)]
+            -solver.prep.original_entry(i, j - n)
         } else {
-            -problem.d[i]
+            -solver.d()[i]
         }
     });
-    let h: Vec<f64> = (0..n).map(|i| problem.q0[i] + c0 * cov[i]).collect();
+    let h: Vec<f64> = (0..n).map(|i| solver.q0()[i] + c0 * cov[i]).collect();
     let columns: Vec<Var> = (0..ncol).map(|j| Var::from_col(j, n)).collect();
     let k_total = path.records.len();
     let last = max_steps.map_or(k_total, |m| m.min(k_total));

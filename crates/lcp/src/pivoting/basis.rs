@@ -101,6 +101,8 @@ impl Basis {
         }
         let kmat = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
         let lu = kmat.partial_piv_lu();
+        // The factors are a copy: free K before the inverse is formed.
+        drop(kmat);
         let u = lu.U();
         let umax = (0..k).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
         let umin = (0..k)
@@ -175,6 +177,28 @@ impl Basis {
         (self.scatter(&ys, &tmp, n), rel)
     }
 
+    /// `|K⁻¹| |A[R, col]|` by position in `S`: the size of the terms whose sums form the kernel
+    /// part of `B⁻¹ A[:, col]`, against which its entries are round-off or not (`O(k²)`).
+    pub fn kernel_terms(&self, cols: &Columns, col: usize) -> Vec<f64> {
+        let k = self.s_cols.len();
+        let mut out = vec![0.0; k];
+        for (b, &r) in self.r_rows.iter().enumerate() {
+            let u = cols.entry(r, col).abs();
+            if u != 0.0 {
+                for (o, g) in out.iter_mut().zip(self.kinv.col(b)) {
+                    *o += u * g.abs();
+                }
+            }
+        }
+        out
+    }
+
+    /// Position of a basic non-slack column in `S` (`None` for a slack or a non-basic column).
+    pub fn kernel_pos(&self, col: usize) -> Option<usize> {
+        let a = self.s_pos[col];
+        (a != NONE).then_some(a)
+    }
+
     fn kernel_solve(&self, vr: &[f64]) -> Vec<f64> {
         self.kinv.solve(vr)
     }
@@ -188,7 +212,9 @@ impl Basis {
                 continue;
             }
             if c >= n && c < 2 * n {
-                zcols.push((c - n, y));
+                // A negated stored column: (−y)·b is y·(−b) exactly.
+                let (s, neg) = cols.m.col_index(c - n);
+                zcols.push((s, if neg { -y } else { y }));
             } else {
                 cols.axpy_col(tmp, -y, c);
             }
@@ -329,10 +355,11 @@ impl Basis {
     }
 }
 
-/// `out += Σ y_j M[offset.., j]` over `(j, y_j)`, four columns per pass over `out`.
+/// `out += Σ y_s S[offset.., s]` over `(s, y_s)` with `S` the stored columns of `M`, four
+/// columns per pass over `out`.
 fn add_columns(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64], offset: usize) {
     let len = out.len();
-    let part = |j: usize| &cols.m_col(j)[offset..offset + len];
+    let part = |s: usize| &cols.m.stored(s)[offset..offset + len];
     let mut chunks = zcols.chunks_exact(4);
     for ch in &mut chunks {
         let (c0, c1, c2, c3) = (part(ch[0].0), part(ch[1].0), part(ch[2].0), part(ch[3].0));

@@ -62,6 +62,8 @@ impl KernelInverse {
         self.ld = k.max(self.ld).max(8);
         // Entries beyond `k` are never read: keep the buffer when it is large enough.
         if self.data.len() < self.ld * self.ld {
+            // Freed before the larger one is taken: never both at once.
+            self.data = Vec::new();
             self.data = vec![0.0; self.ld * self.ld];
         }
         let mut gmax = 0.0f64;
@@ -124,7 +126,10 @@ impl KernelInverse {
         if k <= self.ld {
             return;
         }
-        let ld = (2 * self.ld).max(k).max(8);
+        // Room for k/8 more borders: a copy (O(k²)) every k/8 pivots is O(k) a pivot, and the
+        // buffer stays within 1.27 k² (doubling could hold up to 4 k², at k = 1300 and n = 3000
+        // more than the 3000 × 3000 M itself).
+        let ld = (self.ld + self.ld / 8 + 8).max(k);
         let mut data = vec![0.0; ld * ld];
         for b in 0..self.k {
             data[b * ld..b * ld + self.k].copy_from_slice(self.col(b));

@@ -46,6 +46,10 @@ pub(crate) type Choice = (usize, f64);
 /// Relative size of a tie in the ratio test.
 const TIE: f64 = 1e-9;
 
+/// Entries of an entering column within this fraction of its largest are round-off of the
+/// column, however small their own terms (used where a ray's direction is verified).
+const ROUNDOFF: f64 = 1e-14;
+
 /// Relative kernel residual above which the basis is refactorised at once.
 const DRIFT: f64 = 1e-9;
 
@@ -74,6 +78,38 @@ pub(crate) struct Pivoter<'a> {
     drift: f64,
     /// Pivots since the basic values were last recomputed from the data.
     since_values: usize,
+    /// The last ray's direction, checked against the data ([`Pivoter::check_ray`]).
+    pub ray_check: Option<RayCheck>,
+    /// Bumped after every recorded pivot (inert unless a caller sets one: the load path does).
+    pub progress: crate::Progress,
+}
+
+/// A ray's direction checked against the data: the entering variable at rate 1, every basic
+/// variable at rate `−α_s`, each row of `x − M z − g·t = h` measured against the terms that form
+/// it, and each rate against the terms whose sums formed it (`|K⁻¹| |u|` for the kernel's): the
+/// round-off of a row or a rate is that of its own terms, not of the other rows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct RayCheck {
+    /// `max_i |A_e − A_B α|_i` over the size of the terms that form row `i`.
+    pub equation: f64,
+    /// The largest decrease of a basic variable that the ratio test counted as zero, relative
+    /// to the terms that formed its rate.
+    pub decrease: f64,
+    /// The driver's rate relative to the terms that formed it.
+    pub driver_rate: f64,
+}
+
+impl RayCheck {
+    /// The direction satisfies the equations and keeps every variable non-negative, within
+    /// round-off of the data ([`crate::ACCEPT_RESIDUAL`]).
+    pub fn verified(&self) -> bool {
+        self.equation <= crate::ACCEPT_RESIDUAL && self.decrease <= crate::ACCEPT_RESIDUAL
+    }
+
+    /// The driver does not move along the direction, within round-off of the data (2b).
+    pub fn driver_fixed(&self) -> bool {
+        self.driver_rate <= crate::ACCEPT_RESIDUAL
+    }
 }
 
 impl<'a> Pivoter<'a> {
@@ -121,6 +157,8 @@ impl<'a> Pivoter<'a> {
             value_scale,
             drift: 0.0,
             since_values: 0,
+            ray_check: None,
+            progress: crate::Progress::default(),
         }
     }
 
@@ -214,7 +252,11 @@ impl<'a> Pivoter<'a> {
     /// Minimum-ratio test over the positive entries of `alpha`, ties broken lexicographically
     /// (the driver's row wins a tie). Returns the leaving slot and the step length.
     pub fn ratio_test(&self, alpha: &[f64]) -> Option<(usize, f64)> {
-        let cand = self.positive_slots(alpha);
+        self.ratio_test_over(alpha, self.positive_slots(alpha))
+    }
+
+    /// [`Pivoter::ratio_test`] over the given candidate slots (positive entries of `alpha`).
+    fn ratio_test_over(&self, alpha: &[f64], cand: Vec<usize>) -> Option<(usize, f64)> {
         if cand.is_empty() {
             return None;
         }
@@ -360,7 +402,12 @@ impl<'a> Pivoter<'a> {
             .iter()
             .enumerate()
             .filter(|&(_, &v)| v >= n && v < 2 * n)
-            .map(|(s, &v)| (v - n, self.cols.values(&[self.beta[s].max(0.0)])[0]))
+            .map(|(s, &v)| {
+                (
+                    v - n,
+                    crate::binary::ldexp(self.beta[s].max(0.0), self.cols.eh),
+                )
+            })
             .collect();
         PivotRecord {
             entering,
@@ -384,6 +431,9 @@ impl<'a> Pivoter<'a> {
             self.refactor()?;
             alpha = self.basis.ftran(&self.cols, entering);
             step = self.ratio_test(&alpha);
+        }
+        if step.is_none() {
+            step = self.verify_ray(entering, &mut alpha);
         } else if let Some((slot, _)) = step {
             if self.since_values > 0 {
                 if alpha[slot] < 1e-6 * max_abs(&alpha) {
@@ -399,6 +449,135 @@ impl<'a> Pivoter<'a> {
             }
         }
         Ok((alpha, step))
+    }
+
+    /// A ray (no positive entry in `alpha`, on a fresh factorisation) is believed only if its
+    /// direction is verified from the data ([`Pivoter::check_ray`]). If the equations are not
+    /// met, `alpha` is refined once from the data (`α += B⁻¹(A_e − B α)`) and the ratio test
+    /// redone; if some basic variable decreases by more than round-off of the terms that formed
+    /// its rate (an entry below the pivot tolerance of the column but not round-off of its own
+    /// sums), the ratio test is redone with those entries as candidates. The check of the last ray is left
+    /// in [`Pivoter::ray_check`] for the caller to judge (an unverified ray or mechanism is a
+    /// numerical failure).
+    fn verify_ray(&mut self, entering: usize, alpha: &mut [f64]) -> Option<Choice> {
+        let (mut check, mut decreasing) = self.check_ray(entering, alpha);
+        if check.equation > crate::ACCEPT_RESIDUAL {
+            // Refined once from the data: the round-off of the inverse (up to cond(K)·ε of the
+            // sums) shrinks to its square.
+            let zero = vec![0.0; alpha.len()];
+            let r = self.direction_residual(entering, alpha, &zero).0;
+            let corr = self.basis.solve(&self.cols, &r);
+            alpha.iter_mut().zip(&corr).for_each(|(a, c)| *a += c);
+            if let Some(step) = self.ratio_test(alpha) {
+                self.ray_check = None;
+                return Some(step);
+            }
+            (check, decreasing) = self.check_ray(entering, alpha);
+        }
+        self.ray_check = Some(check);
+        if check.equation <= crate::ACCEPT_RESIDUAL && !decreasing.is_empty() {
+            let step = self.ratio_test_over(alpha, decreasing);
+            if step.is_some() {
+                self.ray_check = None;
+            }
+            return step;
+        }
+        None
+    }
+
+    /// `A_e − Σ_s A[:, B_s] α_s` by row and the size of the terms that form it,
+    /// `|A_e| + Σ_s |A[:, B_s]| (|α_s| + τ_s)`, from the data (`O(n·k)`); `τ` is
+    /// [`Basis::kernel_terms`] by slot (zero for slack slots), the size of the sums that formed
+    /// each `α_s`, so a row is measured against the round-off its rates carry.
+    fn direction_residual(
+        &self,
+        entering: usize,
+        alpha: &[f64],
+        tau: &[f64],
+    ) -> (Vec<f64>, Vec<f64>) {
+        let n = self.cols.n;
+        let mut r = vec![0.0; n];
+        let mut t = vec![0.0; n];
+        let mut col = vec![0.0; n];
+        let mut add = |c: usize, s: f64, size: f64, r: &mut [f64], t: &mut [f64]| {
+            if c < n {
+                r[c] += s;
+                t[c] += size;
+            } else {
+                self.cols.col_into(c, &mut col);
+                for ((ri, ti), a) in r.iter_mut().zip(t.iter_mut()).zip(&col) {
+                    *ri += s * a;
+                    *ti += size * a.abs();
+                }
+            }
+        };
+        add(entering, 1.0, 1.0, &mut r, &mut t);
+        for (slot, &c) in self.basis.slot_var.iter().enumerate() {
+            let size = alpha[slot].abs() + tau[slot];
+            if size != 0.0 {
+                add(c, -alpha[slot], size, &mut r, &mut t);
+            }
+        }
+        (r, t)
+    }
+
+    /// The direction of a ray checked against the data (see [`RayCheck`]), and the slots whose
+    /// variable decreases by more than round-off of the terms that formed its rate.
+    fn check_ray(&self, entering: usize, alpha: &[f64]) -> (RayCheck, Vec<usize>) {
+        let n = self.cols.n;
+        let kt = self.basis.kernel_terms(&self.cols, entering);
+        let tau: Vec<f64> = self
+            .basis
+            .slot_var
+            .iter()
+            .map(|&c| self.basis.kernel_pos(c).map_or(0.0, |a| kt[a]))
+            .collect();
+        let (r, t) = self.direction_residual(entering, alpha, &tau);
+        let rel = |v: f64, s: f64| {
+            if v == 0.0 {
+                0.0
+            } else if s > 0.0 {
+                v / s
+            } else {
+                f64::INFINITY
+            }
+        };
+        let equation = r
+            .iter()
+            .zip(&t)
+            .fold(0.0f64, |a, (&ri, &ti)| a.max(rel(ri.abs(), ti)));
+        // A rate against the terms that formed it: for a slack `x_i` its own row, for a basic
+        // column of `M` or the driver the kernel's sums `τ`.
+        let size = |slot: usize, c: usize| if c < n { t[c] } else { tau[slot] };
+        let driver = self.cols.driver();
+        let mut decrease = 0.0f64;
+        let mut decreasing = Vec::new();
+        let mut driver_rate = 0.0;
+        // Entries within ROUNDOFF of the column's largest are round-off of the column whatever
+        // their own terms (a slack row with no other terms would make any of them significant).
+        let floor = ROUNDOFF * max_abs(alpha);
+        for (slot, &c) in self.basis.slot_var.iter().enumerate() {
+            let a = alpha[slot];
+            if a.abs() <= floor {
+                continue;
+            }
+            if c == driver {
+                driver_rate = rel(a.abs(), size(slot, c));
+            }
+            if a > 0.0 {
+                let e = rel(a, size(slot, c));
+                decrease = decrease.max(e);
+                if e > crate::ACCEPT_RESIDUAL {
+                    decreasing.push(slot);
+                }
+            }
+        }
+        let check = RayCheck {
+            equation,
+            decrease,
+            driver_rate,
+        };
+        (check, decreasing)
     }
 
     /// Moves the right-hand side so that the basic `z` columns marked in `reset` read zero:
@@ -420,8 +599,14 @@ impl<'a> Pivoter<'a> {
             let cols = self.cols.to_mut();
             let m = cols.m.clone();
             for &(s, j, b) in &moves {
-                for (h, mj) in cols.h.iter_mut().zip(&m[j * n..(j + 1) * n]) {
-                    *h += b * mj;
+                // h + b·(−c) is h − b·c exactly (a negated stored column).
+                let (c, neg) = m.col(j);
+                for (h, mj) in cols.h.iter_mut().zip(c) {
+                    if neg {
+                        *h -= b * mj;
+                    } else {
+                        *h += b * mj;
+                    }
                 }
                 acc[j] += b;
                 self.beta[s] = 0.0;
@@ -527,6 +712,7 @@ impl<'a> Pivoter<'a> {
                 Err(SingularBasis) => return (Ending::Singular, entering),
             };
             records.push(self.record(entering, leaving));
+            self.progress.step(self.driver_value());
             if leaving == driver {
                 return (Ending::DriverLeft, entering);
             }

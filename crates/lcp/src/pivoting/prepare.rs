@@ -2,7 +2,7 @@
 
 use faer::Mat;
 
-use crate::pivoting::columns::Columns;
+use crate::pivoting::columns::{ColumnStore, Columns};
 use crate::pivoting::scaling::Scaling;
 use crate::LcpError;
 
@@ -48,20 +48,62 @@ pub(crate) fn check_vector(what: &'static str, v: &[f64], n: usize) -> Result<()
 }
 
 /// The equilibrated problem: scaled `M` and the scalings.
+///
+/// The equilibrated copy is the one the pivoting reads. The original `M`, which verification
+/// needs, is recovered from it entry by entry ([`Prepared::original_entry`]): the scalings are
+/// powers of two, so this is exact unless a scaled entry left the normal range, and only then
+/// is a copy of the original kept ([`Prepared::from_owned`]).
 pub(crate) struct Prepared {
     pub n: usize,
     pub scaling: Scaling,
-    pub m_scaled: std::sync::Arc<Vec<f64>>,
+    pub m_scaled: std::sync::Arc<ColumnStore>,
+    /// Every original entry is recovered exactly from `m_scaled`.
+    exact: bool,
+    /// The original `M`, kept only when it is not recovered exactly.
+    original: Option<Mat<f64>>,
 }
 
 impl Prepared {
+    /// The equilibration of `m`, which the caller keeps (nothing of it is held here).
     pub fn new(m: &Mat<f64>) -> Self {
         let scaling = Scaling::equilibrate(m, &[]);
-        let m_scaled = std::sync::Arc::new(scaling.scale_matrix(m));
+        let (scaled, exact) = scaling.scale_matrix(m);
         Self {
             n: m.nrows(),
             scaling,
-            m_scaled,
+            m_scaled: std::sync::Arc::new(ColumnStore::new(m.nrows(), scaled)),
+            exact,
+            original: None,
+        }
+    }
+
+    /// The equilibration of `m`, which it takes: one copy of the matrix is held (the
+    /// equilibrated one), and the original as well only if it cannot be recovered exactly.
+    pub fn from_owned(m: Mat<f64>) -> Self {
+        let mut prep = Self::new(&m);
+        if !prep.exact {
+            prep.original = Some(m);
+        }
+        prep
+    }
+
+    /// Entry `(i, j)` of the original `M`, bit for bit (for a [`Prepared::from_owned`]).
+    #[inline]
+    pub fn original_entry(&self, i: usize, j: usize) -> f64 {
+        match &self.original {
+            Some(m) => m[(i, j)],
+            None => {
+                debug_assert!(self.exact, "the original is recovered exactly");
+                self.scaling.original_entry(self.m_scaled.get(i, j), i, j)
+            }
+        }
+    }
+
+    /// The original `M` as a matrix (an `O(n²)` copy; for a [`Prepared::from_owned`]).
+    pub fn original_matrix(&self) -> Mat<f64> {
+        match &self.original {
+            Some(m) => m.clone(),
+            None => Mat::from_fn(self.n, self.n, |i, j| self.original_entry(i, j)),
         }
     }
 
@@ -69,18 +111,20 @@ impl Prepared {
     /// brought to the size of its `q` (see [`Scaling::equilibrate_lcp`]).
     pub fn for_lcp(m: &Mat<f64>, q: &[f64]) -> Self {
         let scaling = Scaling::equilibrate_lcp(m, Some(q));
-        let m_scaled = std::sync::Arc::new(scaling.scale_matrix(m));
+        let (scaled, exact) = scaling.scale_matrix(m);
         Self {
             n: m.nrows(),
             scaling,
-            m_scaled,
+            m_scaled: std::sync::Arc::new(ColumnStore::new(m.nrows(), scaled)),
+            exact,
+            original: None,
         }
     }
 
     /// `E M D` as a matrix.
     pub fn matrix(&self) -> Mat<f64> {
         let n = self.n;
-        Mat::from_fn(n, n, |i, j| self.m_scaled[j * n + i])
+        Mat::from_fn(n, n, |i, j| self.m_scaled.get(i, j))
     }
 
     /// Tableau columns for `x = h + g t + M z` given in original units.

@@ -226,17 +226,28 @@ impl Scaling {
         (a, b)
     }
 
-    /// `E M D` in column-major order.
-    pub fn scale_matrix(&self, m: &Mat<f64>) -> Vec<f64> {
+    /// `E M D` in column-major order, and whether every entry of `M` is recovered from it
+    /// exactly by [`Scaling::original_entry`] (no scaled entry underflowed or overflowed).
+    pub fn scale_matrix(&self, m: &Mat<f64>) -> (Vec<f64>, bool) {
         let n = m.nrows();
         let mut out = vec![0.0; n * n];
+        let mut exact = true;
         for j in 0..n {
             let c = self.col_exp[j];
             for i in 0..n {
-                out[j * n + i] = ldexp(m[(i, j)], self.row_exp[i] + c);
+                let (v, e) = (m[(i, j)], self.row_exp[i] + c);
+                let s = ldexp(v, e);
+                exact &= ldexp(s, -e) == v;
+                out[j * n + i] = s;
             }
         }
-        out
+        (out, exact)
+    }
+
+    /// `M_ij` from the scaled entry `(E M D)_ij` (exact when [`Scaling::scale_matrix`] said so).
+    #[inline]
+    pub fn original_entry(&self, scaled: f64, i: usize, j: usize) -> f64 {
+        ldexp(scaled, -(self.row_exp[i] + self.col_exp[j]))
     }
 
     pub fn scale_rows(&self, v: &[f64]) -> Vec<f64> {

@@ -7,6 +7,7 @@ mod contact_path;
 mod degenerate;
 mod hostile;
 mod paper_example1;
+mod ray_verification;
 mod solver;
 mod sweep;
 mod units;
