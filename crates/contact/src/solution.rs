@@ -354,11 +354,40 @@ impl ContactSolution {
             loads.push(p);
             zs.push(z);
         }
-        let zmat = faer::Mat::from_fn(n, zs.len(), |i, j| zs[j][i]);
         let prob = &self.lcp.problem;
-        let mz = &prob.m * &zmat;
         let c = self.tightening;
         let t = &self.lcp.tightening_direction;
+        // The rows `x_t± = f·x_n ± x_t` of a pair with a huge friction coefficient can leave
+        // the floating-point range (or their partial sums can) although the pair's forces do
+        // not. Everything is then formed times an exact power of two `2^-e` small enough for
+        // every sum, and `x_t` is taken from the scaled rows before scaling back: the values
+        // are the same, and an overflow left is one of the forces themselves.
+        let p_big = loads.iter().fold(0.0f64, |a, p| a.max(p.abs()));
+        let m_big = (0..n)
+            .flat_map(|j| (0..n).map(move |i| (i, j)))
+            .fold(0.0f64, |a, (i, j)| a.max(prob.m[(i, j)].abs()));
+        let z_big = zs
+            .iter()
+            .flat_map(|z| z.iter())
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        // log2 of a bound of every term and partial sum (each factor finite, as read).
+        let log2 = |v: f64| if v > 0.0 { v.log2() } else { f64::NEG_INFINITY };
+        let terms = (0..n).fold(f64::NEG_INFINITY, |a, i| {
+            a.max(
+                log2(prob.q0[i].abs() / 4.0 + c / 4.0 * t[i].abs() + p_big / 4.0 * prob.d[i].abs())
+                    + 2.0,
+            )
+        });
+        let bound = terms.max(log2(m_big) + log2(z_big) + 2.0) + log2(n as f64).max(0.0);
+        // At most 2^-1000, a normal number: a bound beyond that is an overflow of the forces.
+        let e = if bound <= 1000.0 {
+            0
+        } else {
+            (bound - 1000.0).ceil().min(1000.0) as i32
+        };
+        let down = 2f64.powi(-e);
+        let zmat = faer::Mat::from_fn(n, zs.len(), |i, j| zs[j][i] * down);
+        let mz = &prob.m * &zmat;
         let (fs, ds) = (
             self.engine.units.user_force(1.0),
             self.engine.units.user_displacement(1.0),
@@ -370,9 +399,18 @@ impl ContactSolution {
                 continue;
             }
             let p = loads[j];
-            let x: Vec<f64> = (0..n)
-                .map(|i| prob.q0[i] + c * t[i] + p * prob.d[i] + mz[(i, j)])
+            let mut x: Vec<f64> = (0..n)
+                .map(|i| prob.q0[i] * down + c * down * t[i] + p * down * prob.d[i] + mz[(i, j)])
                 .collect();
+            if e > 0 {
+                let m = n / 3;
+                for i in 0..m {
+                    let x_t = (x[m + i] - x[2 * m + i]) / 2.0 / down;
+                    x[i] /= down;
+                    x[m + i] = x_t;
+                    x[2 * m + i] = -x_t;
+                }
+            }
             let pairs = pair_results_scaled(&x, &zs[j], &self.engine.names, fs, ds);
             if let Some(r) = pairs
                 .iter()
@@ -526,6 +564,40 @@ mod tests {
     // middle of every segment of the traced path and at every breakpoint: the traced values
     // must be one of its solutions (the traced path is a path of solutions of that LCP), and
     // with c = 1 they differ from the problem's own solution (pair 1 is pressed by c).
+    #[test]
+    fn traced_values_of_a_pair_with_a_huge_friction_coefficient_stay_finite() {
+        // Example 1 with f = 1.797e308 at pair 3 (the corpus's mutant), c = 1: before its one
+        // event (p = 32/3, pair 1 opens) every pair is closed and sticks with z = 0, so by
+        // hand x_n = c + p·d_n = (0, 25/3, 16/3) there and x_t = 0, although the LCP's rows
+        // x_t± = f·x_n ± x_t of pair 3 are beyond the floating-point range.
+        use crate::{solve, ContactZone, Follow};
+        use faer::mat;
+        let mut zone = ContactZone::new(
+            mat![
+                [0.1875, -0.375, 0.1875],
+                [-0.375, 0.75, -0.375],
+                [0.1875, -0.375, 0.1875]
+            ],
+            mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
+        );
+        zone.friction = vec![0.6, 0.6, f64::MAX];
+        zone.variable.normal = vec![-0.09375, 0.6875, 0.40625];
+        let settings = SolveSettings {
+            tightening: 1.0,
+            follow: Follow::ToEnd,
+            ..Default::default()
+        };
+        let sol = solve(&zone, &settings).unwrap();
+        assert_eq!(sol.path.breakpoints[1].p, 32.0 / 3.0);
+        let got = sol.traced_on_segments(&[(1, 0.0)]).unwrap();
+        let (_, pairs) = got[0].as_ref().unwrap();
+        for (r, want) in pairs.iter().zip([0.0, 25.0 / 3.0, 16.0 / 3.0]) {
+            assert!((r.x_n - want).abs() <= 1e-12 * 25.0 / 3.0, "{r:?}");
+            assert_eq!(r.x_t, 0.0, "{r:?}");
+            assert_eq!((r.z_n, r.z_t), (0.0, 0.0), "{r:?}");
+        }
+    }
+
     #[test]
     fn traced_values_solve_the_tightened_lcp() {
         use crate::{solve, ContactZone, Follow};
