@@ -43,6 +43,7 @@ use std::time::Instant;
 use faer::Mat;
 use unilateral_contact::{ContactLcp, ContactZone};
 use unilateral_oracle::fixtures::beam;
+use unilateral_oracle::fixtures::bearings::beam_model;
 
 const BIN: &str = env!("CARGO_BIN_EXE_unilateral");
 
@@ -220,74 +221,6 @@ fn write_beam(dir: &Path, m: usize) -> PathBuf {
     let path = dir.join(format!("beam{m}.toml"));
     std::fs::write(&path, s).unwrap();
     path
-}
-
-/// The text of [`write_beam`]'s model (the same model as
-/// `crates/analysis/tests/it/beam_bearings.rs` checks at m = 3).
-fn beam_model(m: usize) -> String {
-    let l = m - 1;
-    format!(
-        r#"title = "Continuous beam on {m} frictional elastic bearings (benchmark)"
-units = "N, m"
-
-[[sections]]
-name = "beam"
-E = 3.0e10
-A = 0.5
-I = 0.04
-
-[[sections]]
-name = "tie"
-E = 2.0e11
-A = 1.0e-7
-I = 1.0e-9
-
-[[members]]
-name = "beam"
-start = [0.0, 0.0]
-end = [{l}.0, 0.0]
-divisions = {l}
-section = "beam"
-
-[[members]]
-name = "soles"
-type = "bar"
-start = [0.0, 0.0]
-end = [{l}.0, 0.0]
-divisions = {l}
-section = "tie"
-
-[[springs]]
-nodes = "soles.nodes"
-direction = [0.0, 1.0]
-stiffness = 1.0e9
-
-[[springs]]
-nodes = "soles.nodes"
-direction = [1.0, 0.0]
-stiffness = 2.0e6
-
-[[contact]]
-name = "bearing"
-from = "soles.nodes"
-to = "beam.nodes"
-normal = [0.0, 1.0]
-friction = 0.3
-
-[[loads.constant.distributed]]
-elements = "beam"
-q = [0.0, -1.0e4]
-
-[[loads.variable.distributed]]
-elements = "beam"
-start = [1.0e3, -4.0e4]
-end = [1.0e3, 1.0e4]
-
-[solve]
-target = 1.0
-trace = "end"
-"#
-    )
 }
 
 struct Run {
