@@ -2111,3 +2111,39 @@ fn history_csv_columns_carry_the_units() {
     assert_eq!(head("history_stage_01.csv"), values);
     assert!(head("history_events.csv").ends_with("direction,slip_kept [m],description"));
 }
+
+// ---- the file's units in the pictures (issue 14: "units … in the pictures") ----
+
+/// The sheet pile wall says `units = "N, m"`: the structure picture's header gives the largest
+/// displacement in m and the longest contact arrow in N, the stress bar N/(m·m), and the
+/// charts' quantities `x_n [N]`, `z_n [m]`; the test data's Example 1 zone gives no units,
+/// and no picture names one. Reference: the files' `units` keys.
+#[test]
+fn pictures_carry_the_files_units() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/sheet-pile-wall.toml"))
+        .args(&["--report", "r"]);
+    assert_eq!(cmd.run().code, 0);
+    let svg = std::fs::read_to_string(cmd.path("r/structure.svg")).unwrap();
+    let header = svg
+        .lines()
+        .find(|l| l.contains("largest displacement"))
+        .expect("the header line");
+    assert!(
+        header.contains(" m).") && header.contains(" N."),
+        "{header}"
+    );
+    assert!(svg.contains("[N/(m·m)]"));
+    assert!(svg.contains("longest load arrow") && svg.contains(" N;"));
+    let forces = std::fs::read_to_string(cmd.path("r/load-path-forces.svg")).unwrap();
+    assert!(forces.contains("x_n [N]") && forces.contains("x_t [N]"));
+    let disp = std::fs::read_to_string(cmd.path("r/load-path-displacements.svg")).unwrap();
+    assert!(disp.contains("z_n [m]") && disp.contains("z_t [m]"));
+
+    let plain = TestCommand::new(&["solve"])
+        .arg(root().join("tests/data/good/example1.json"))
+        .args(&["--report", "r"]);
+    assert_eq!(plain.run().code, 0);
+    let forces = std::fs::read_to_string(plain.path("r/load-path-forces.svg")).unwrap();
+    assert!(forces.contains("x_n (normal force") && !forces.contains("x_n ["));
+}

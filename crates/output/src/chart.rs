@@ -203,11 +203,15 @@ pub fn wrap(s: &str, size: f64, w: f64) -> Vec<String> {
 }
 
 /// The SVG of one chart (small multiples, one panel per selected pair).
+///
+/// `units` is the file's `units` text (`"N, m"`): its force and length units label the
+/// panels' quantities (`x_n [N]`), as the tables' columns are labelled.
 pub fn chart(
     sol: &ContactSolution,
     s: &PathSamples,
     selected: &[usize],
     kind: ChartKind,
+    units: Option<&str>,
 ) -> String {
     let names: Vec<String> = sol.lcp_names();
     let m = selected.len().max(1);
@@ -219,17 +223,25 @@ pub fn chart(
     let width = left + cols as f64 * (pw + gap_x) + 20.0;
 
     // header text
+    let about = crate::json::About {
+        title: None,
+        units: units.map(str::to_string),
+    };
+    let unit = |force: bool| match about.force_length() {
+        Some((f, l)) => format!(" [{}]", if force { f } else { l }),
+        None => String::new(),
+    };
     let (title, a_lab, b_lab, what) = match kind {
         ChartKind::Forces => (
             "Load path: contact forces of the pairs",
-            "x_n (normal force, compression +)",
-            "x_t (tangential force)",
+            format!("x_n{} (normal force, compression +)", unit(true)),
+            format!("x_t{} (tangential force)", unit(true)),
             "forces",
         ),
         ChartKind::Displacements => (
             "Load path: mutual displacements of the pairs",
-            "z_n (opening +)",
-            "z_t (slip)",
+            format!("z_n{} (opening +)", unit(false)),
+            format!("z_t{} (slip)", unit(false)),
             "mutual displacements",
         ),
     };
@@ -316,8 +328,8 @@ pub fn chart(
     // legend
     let ly = top - 30.0;
     g.line((20.0, ly - 3.0), (44.0, ly - 3.0), C_NORMAL, 2.0, "");
-    g.math(a_lab, 50.0, ly, 9.0, Anchor::Start, "#222222");
-    let x2 = 50.0 + font::width_rich(a_lab, 9.0) + 30.0;
+    g.math(&a_lab, 50.0, ly, 9.0, Anchor::Start, "#222222");
+    let x2 = 50.0 + font::width_rich(&a_lab, 9.0) + 30.0;
     g.line(
         (x2, ly - 3.0),
         (x2 + 24.0, ly - 3.0),
@@ -325,8 +337,8 @@ pub fn chart(
         2.0,
         r#" stroke-dasharray="5 3""#,
     );
-    g.math(b_lab, x2 + 30.0, ly, 9.0, Anchor::Start, "#222222");
-    let x3 = x2 + 30.0 + font::width_rich(b_lab, 9.0) + 30.0;
+    g.math(&b_lab, x2 + 30.0, ly, 9.0, Anchor::Start, "#222222");
+    let x3 = x2 + 30.0 + font::width_rich(&b_lab, 9.0) + 30.0;
     g.polygon(&tri(x3 + 6.0, ly - 3.0, 4.5), C_EVENT, "none", 0.0, "");
     g.text(
         "event of the pair",

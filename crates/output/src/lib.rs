@@ -200,8 +200,20 @@ pub fn load_path_svgs(
     let s = chart::samples(solution)?;
     let sel = chart::select(solution, &s, options.pairs.as_deref());
     Ok((
-        chart::chart(solution, &s, &sel, ChartKind::Forces),
-        chart::chart(solution, &s, &sel, ChartKind::Displacements),
+        chart::chart(
+            solution,
+            &s,
+            &sel,
+            ChartKind::Forces,
+            options.units.as_deref(),
+        ),
+        chart::chart(
+            solution,
+            &s,
+            &sel,
+            ChartKind::Displacements,
+            options.units.as_deref(),
+        ),
     ))
 }
 

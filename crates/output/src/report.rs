@@ -110,12 +110,19 @@ fn write_all(
             DrawnPictures {
                 map: chart::scheme_map_svg(solution, &columns),
                 structure,
-                forces: chart::chart(solution, &samples, &selected, ChartKind::Forces),
+                forces: chart::chart(
+                    solution,
+                    &samples,
+                    &selected,
+                    ChartKind::Forces,
+                    options.units.as_deref(),
+                ),
                 displacements: chart::chart(
                     solution,
                     &samples,
                     &selected,
                     ChartKind::Displacements,
+                    options.units.as_deref(),
                 ),
             }
         })

@@ -243,20 +243,33 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         Anchor::Start,
         "#111111",
     );
+    // The file's force and length units after the values they measure.
+    let about = crate::json::About {
+        title: None,
+        units: options.units.clone(),
+    };
+    let (fu, lu) = match about.force_length() {
+        Some((f, l)) => (format!(" {f}"), format!(" {l}")),
+        None => (String::new(), String::new()),
+    };
     let mut info = format!(
-        "Grey: undeformed. Deformation scale × {}  (largest displacement {}).",
+        "Grey: undeformed. Deformation scale × {}  (largest displacement {}{lu}).",
         num(scale),
         num(umax)
     );
     if fmax > 0.0 {
-        info.push_str(&format!(" Longest arrow: contact force {}.", num(fmax)));
+        info.push_str(&format!(" Longest arrow: contact force {}{fu}.", num(fmax)));
     }
     g.text(&info, 20.0, 42.0, 9.0, Anchor::Start, "#333333");
     if km > 0.0 {
         g.text(
             &format!(
-                "Bending moment drawn on the tension side; largest |M| = {}.",
-                num(mmax)
+                "Bending moment drawn on the tension side; largest |M| = {}{}.",
+                num(mmax),
+                match about.force_length() {
+                    Some((f, l)) => format!(" {f}·{l}"),
+                    None => String::new(),
+                }
             ),
             20.0,
             56.0,
@@ -632,10 +645,13 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         }
         let mut scale = Vec::new();
         if fl_max > 0.0 {
-            scale.push(format!("longest load arrow {}", num(fl_max)));
+            scale.push(format!("longest load arrow {}{fu}", num(fl_max)));
         }
         if wl_max > 0.0 {
-            scale.push(format!("distributed up to {} per length", num(wl_max)));
+            scale.push(match about.force_length() {
+                Some((f, l)) => format!("distributed up to {} {f}/{l}", num(wl_max)),
+                None => format!("distributed up to {} per length", num(wl_max)),
+            });
         }
         if loads.body > 0 {
             scale.push(format!("body forces on {} elements not drawn", loads.body));
@@ -699,7 +715,20 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
             StressComponent::Sxx => "σ_{xx}",
             StressComponent::Syy => "σ_{yy}",
         };
-        g.math(name, bx - 4.0, by - 8.0, 9.0, Anchor::Start, "#222222");
+        // The unit on a line of its own: the bar sits at the picture's right edge.
+        if let Some((f, l)) = about.force_length() {
+            g.math(name, bx - 4.0, by - 20.0, 9.0, Anchor::Start, "#222222");
+            g.text(
+                &format!("[{f}/({l}·{l})]"),
+                bx - 4.0,
+                by - 8.0,
+                9.0,
+                Anchor::Start,
+                "#222222",
+            );
+        } else {
+            g.math(name, bx - 4.0, by - 8.0, 9.0, Anchor::Start, "#222222");
+        }
         g.text(
             "element mean",
             bx - 4.0,
