@@ -9,8 +9,8 @@ use std::path::Path;
 
 use unilateral_contact::ContactSolution;
 
-use crate::finite::{self, full as n};
-use crate::json::{breakpoint_pairs, dof_name, About, PathOutputError};
+use crate::finite::{self, full as n, Full};
+use crate::json::{breakpoint_blocks, dof_name, About, PathOutputError};
 
 /// The name of the long table of the whole path: every pair at every breakpoint.
 pub const PATH_CSV: &str = "path.csv";
@@ -41,10 +41,6 @@ pub fn write_contact_csv_with(
     about: &About,
 ) -> std::io::Result<Vec<std::path::PathBuf>> {
     finite::contact_solution(sol)?;
-    let at = breakpoint_pairs(sol).map_err(|e| match e {
-        PathOutputError::NonFinite(n) => std::io::Error::from(n),
-        PathOutputError::Contact(c) => std::io::Error::other(c),
-    })?;
     let columns = [
         about.column("x_n", |f, _| f.into()),
         about.column("x_t", |f, _| f.into()),
@@ -104,30 +100,61 @@ pub fn write_contact_csv_with(
         String::new()
     };
     path.push('\n');
-    for (st, ps) in sol.steps.iter().zip(&at) {
-        for (i, p) in ps.iter().flatten().enumerate() {
-            let _ = writeln!(
-                path,
-                "{},{},{},{},{},{},{},{},{}{c_column}",
-                st.index,
-                n(st.p),
-                i + 1,
-                csv_field(&p.name),
-                n(p.x_n),
-                n(p.x_t),
-                n(p.z_n),
-                n(p.z_t),
-                p.state
-            );
-        }
-    }
+    // path.csv is long (steps × pairs rows): it is streamed block by block into a file beside
+    // the final one and renamed when complete, so nothing is left half-written on an error and
+    // no more than one block of values is held.
     std::fs::create_dir_all(dir)?;
+    let c = dir.join(PATH_CSV);
+    let part = dir.join(format!("{PATH_CSV}.part"));
+    let streamed = (|| -> std::io::Result<()> {
+        use std::io::Write as _;
+        let mut out = std::io::BufWriter::new(std::fs::File::create(&part)?);
+        out.write_all(path.as_bytes())?;
+        let mut io_error = None;
+        let mut row = String::new();
+        breakpoint_blocks(sol, |steps, block| {
+            for (st, ps) in steps.iter().zip(&block) {
+                for (i, p) in ps.iter().flatten().enumerate() {
+                    row.clear();
+                    let _ = writeln!(
+                        row,
+                        "{},{},{},{},{},{},{},{},{}{c_column}",
+                        st.index,
+                        Full(st.p),
+                        i + 1,
+                        csv_field(&p.name),
+                        Full(p.x_n),
+                        Full(p.x_t),
+                        Full(p.z_n),
+                        Full(p.z_t),
+                        p.state
+                    );
+                    if let Err(e) = out.write_all(row.as_bytes()) {
+                        io_error = Some(e);
+                        return Ok(());
+                    }
+                }
+            }
+            Ok(())
+        })
+        .map_err(|e| match e {
+            PathOutputError::NonFinite(n) => std::io::Error::from(n),
+            PathOutputError::Contact(c) => std::io::Error::other(c),
+        })?;
+        if let Some(e) = io_error {
+            return Err(e);
+        }
+        out.flush()
+    })();
+    if let Err(e) = streamed {
+        let _ = std::fs::remove_file(&part);
+        return Err(e);
+    }
     let a = dir.join("pairs.csv");
     let b = dir.join("steps.csv");
-    let c = dir.join(PATH_CSV);
     std::fs::write(&a, pairs)?;
     std::fs::write(&b, steps)?;
-    std::fs::write(&c, path)?;
+    std::fs::rename(&part, &c)?;
     Ok(vec![a, b, c])
 }
 

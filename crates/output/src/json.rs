@@ -3,7 +3,7 @@
 //! no `null`, `NaN` or `inf` is ever written.
 
 use serde_json::{json, Value};
-use unilateral_contact::{ContactError, ContactSolution, Outcome, PairResult};
+use unilateral_contact::{ContactError, ContactSolution, LoadStep, Outcome, PairResult};
 use unilateral_lcp::{LcpSolution, Residual, Tableau};
 
 use crate::finite::{self, NonFiniteOutput};
@@ -113,48 +113,70 @@ pub(crate) fn pairs_json(ps: &[PairResult]) -> Value {
 }
 
 /// The values of every pair at every breakpoint of the path (`None` where a load is not on
-/// it), each number checked finite. Without tightening they are the solution at each step's
-/// `p`, found in one walk along the path. Traced with the paper's tightening `c > 0` they are
-/// the traced path itself at its breakpoints (with `c` in them, as the steps' events are):
-/// never tightening-free values beside `c`-dependent events, and no removal of `c` at every
-/// breakpoint (which cost far more than the path). They are formed in blocks of
-/// [`BREAKPOINT_BLOCK`] breakpoints so that the memory stays that of a few columns of `M`.
+/// it), each number checked finite ([`breakpoint_blocks`], collected).
 pub(crate) fn breakpoint_pairs(
     sol: &ContactSolution,
 ) -> Result<Vec<Option<Vec<PairResult>>>, PathOutputError> {
-    let at: Vec<Option<(f64, Vec<PairResult>)>> = if sol.tightening > 0.0 {
-        // Breakpoint `k` of the traced path is the point after step `k`.
-        let mut out = Vec::with_capacity(sol.steps.len());
-        for block in sol.steps.chunks(BREAKPOINT_BLOCK) {
-            let points: Vec<(usize, f64)> = block.iter().map(|st| (st.index, 0.0)).collect();
-            out.extend(sol.traced_on_segments(&points)?);
-        }
-        out
-    } else {
-        let loads: Vec<f64> = sol.steps.iter().map(|s| s.p).collect();
-        sol.at_many(&loads)?
-            .into_iter()
-            .zip(loads)
-            .map(|(point, p)| point.map(|(pairs, _)| (p, pairs)))
-            .collect()
-    };
-    let mut out = Vec::with_capacity(at.len());
-    for (st, point) in sol.steps.iter().zip(at) {
-        let pairs = point.map(|(_, pairs)| pairs);
-        for (i, p) in pairs.iter().flatten().enumerate() {
-            let at = |what: &str| format!("steps[{}].pairs[{}].{what}", st.index, i + 1);
-            finite::finite(p.x_n, || at("x_n"))?;
-            finite::finite(p.x_t, || at("x_t"))?;
-            finite::finite(p.z_n, || at("z_n"))?;
-            finite::finite(p.z_t, || at("z_t"))?;
-        }
-        out.push(pairs);
-    }
+    let mut out = Vec::with_capacity(sol.steps.len());
+    breakpoint_blocks(sol, |_, block| {
+        out.extend(block);
+        Ok(())
+    })?;
     Ok(out)
 }
 
-/// Breakpoints of a tightened path formed at once by [`breakpoint_pairs`] (one product of `M`
-/// with as many columns).
+/// The values of every pair at every breakpoint of the path, handed to `f` block by block
+/// (the steps of the block and, for each, the pairs or `None` where its load is not on the
+/// path), each number checked finite. Without tightening they are the solution at each
+/// step's `p`, found in one walk along the path. Traced with the paper's tightening `c > 0`
+/// they are the traced path itself at its breakpoints (with `c` in them, as the steps' events
+/// are): never tightening-free values beside `c`-dependent events, and no removal of `c` at
+/// every breakpoint (which cost far more than the path); each block of [`BREAKPOINT_BLOCK`]
+/// breakpoints is formed, handed over and dropped, so a writer that streams holds no more
+/// than one block.
+pub(crate) fn breakpoint_blocks(
+    sol: &ContactSolution,
+    mut f: impl FnMut(&[LoadStep], Vec<Option<Vec<PairResult>>>) -> Result<(), PathOutputError>,
+) -> Result<(), PathOutputError> {
+    let check = |steps: &[LoadStep],
+                 at: Vec<Option<(f64, Vec<PairResult>)>>|
+     -> Result<Vec<Option<Vec<PairResult>>>, PathOutputError> {
+        let mut out = Vec::with_capacity(at.len());
+        for (st, point) in steps.iter().zip(at) {
+            let pairs = point.map(|(_, pairs)| pairs);
+            for (i, p) in pairs.iter().flatten().enumerate() {
+                let at = |what: &str| format!("steps[{}].pairs[{}].{what}", st.index, i + 1);
+                finite::finite(p.x_n, || at("x_n"))?;
+                finite::finite(p.x_t, || at("x_t"))?;
+                finite::finite(p.z_n, || at("z_n"))?;
+                finite::finite(p.z_t, || at("z_t"))?;
+            }
+            out.push(pairs);
+        }
+        Ok(out)
+    };
+    if sol.tightening > 0.0 {
+        // Breakpoint `k` of the traced path is the point after step `k`.
+        for block in sol.steps.chunks(BREAKPOINT_BLOCK) {
+            let points: Vec<(usize, f64)> = block.iter().map(|st| (st.index, 0.0)).collect();
+            let at = sol.traced_on_segments(&points)?;
+            f(block, check(block, at)?)?;
+        }
+    } else {
+        let loads: Vec<f64> = sol.steps.iter().map(|s| s.p).collect();
+        let at = sol
+            .at_many(&loads)?
+            .into_iter()
+            .zip(loads)
+            .map(|(point, p)| point.map(|(pairs, _)| (p, pairs)))
+            .collect();
+        f(&sol.steps, check(&sol.steps, at)?)?;
+    }
+    Ok(())
+}
+
+/// Breakpoints of a tightened path formed at once by [`breakpoint_blocks`] (one product of
+/// `M` with as many columns).
 pub(crate) const BREAKPOINT_BLOCK: usize = 256;
 
 /// The JSON value of a residual.
