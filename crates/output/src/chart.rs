@@ -772,17 +772,7 @@ pub fn scheme_map_svg(sol: &ContactSolution, cols: &[SchemeColumn]) -> String {
     let head = 40.0 + cap.len() as f64 * 14.0 + 6.0;
     let height = head + MAP_LEGEND + h + 50.0;
     let mut g = Svg::new(MAP_W, height, &title);
-    g.text(&title, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
-    for (i, l) in cap.iter().enumerate() {
-        g.text(
-            l,
-            20.0,
-            46.0 + 14.0 * i as f64,
-            9.0,
-            Anchor::Start,
-            "#444444",
-        );
-    }
+    g.heading(&title, &cap);
     if cols.is_empty() {
         g.text(
             "no load path to draw (no solution along the path)",

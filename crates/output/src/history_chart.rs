@@ -187,17 +187,7 @@ pub fn history_curves_svg(
     let top = 40.0 + cap.len() as f64 * 14.0 + 16.0 + legend_rows as f64 * 14.0 + 20.0;
     let height = top + rows as f64 * (ph + gap_y) + 10.0;
     let mut g = Svg::new(width, height, &title);
-    g.text(&title, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
-    for (i, l) in cap.iter().enumerate() {
-        g.text(
-            l,
-            20.0,
-            46.0 + 14.0 * i as f64,
-            9.0,
-            Anchor::Start,
-            "#444444",
-        );
-    }
+    g.heading(&title, &cap);
     // stage legend
     let ly = 46.0 + cap.len() as f64 * 14.0 + 10.0;
     if n_stages <= 10 {

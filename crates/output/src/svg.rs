@@ -310,6 +310,22 @@ impl Svg {
         self.text_full(s, x, y, size, anchor, 0.0, color, false);
     }
 
+    /// A chart's title (13 px at the top left) and its caption lines below it (9 px, 14 px
+    /// apart from y = 46), as every chart of the report starts.
+    pub fn heading(&mut self, title: &str, caption: &[String]) {
+        self.text(title, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
+        for (i, l) in caption.iter().enumerate() {
+            self.text(
+                l,
+                20.0,
+                46.0 + 14.0 * i as f64,
+                9.0,
+                Anchor::Start,
+                "#444444",
+            );
+        }
+    }
+
     /// Text with subscripts (`z_n`).
     pub fn math(&mut self, s: &str, x: f64, y: f64, size: f64, anchor: Anchor, color: &str) {
         self.text_full(s, x, y, size, anchor, 0.0, color, true);
