@@ -217,7 +217,7 @@ impl<'a> Pivoter<'a> {
         // Entries are equal when they differ by round-off of the terms they are formed from
         // (times the size of the start's structural columns they are applied to). A bound of
         // a whole row (`max |K⁻¹|` times the row's data) would be far coarser: on a long path it
-        // merged entries that differ by a third of their size, and the friction part of a
+        // merged entries that differ by half their size, and the friction part of a
         // slipping pair left before its normal row (a false mechanism of the 1000-support beam).
         // For a structural start column (solved whole) the bound of the rows stays.
         let coarse = TIE
@@ -514,8 +514,11 @@ impl<'a> Pivoter<'a> {
         // far exceeds the tie's tolerance on small values: the wrong row leaves, the opposite
         // friction part enters and the basis turns singular some pivots later (the 1000-support
         // beam). Refined once from the data, the residual shrinks to its square.
+        // Only a doubtful judgement is refined: candidates close to the minimum that the tie
+        // test did not count as tied (an exact tie found, or a clear minimum, stays as it is).
         if let Some((slot, _)) = step {
-            if !self.near_ties(&alpha, slot, UNSURE_TIE).is_empty() {
+            let close = self.near_ties(&alpha, slot, UNSURE_TIE);
+            if close.len() > self.near_ties(&alpha, slot, TIE).len().max(1) {
                 self.refine(entering, &mut alpha);
                 self.refine_values();
                 step = self.ratio_test(&alpha);
