@@ -10,6 +10,7 @@ mod fixes;
 mod hertz;
 mod history;
 mod keys;
+mod long_path;
 mod mindlin;
 mod scale;
 mod surface;

@@ -247,7 +247,7 @@ impl Basis {
         out
     }
 
-    /// What [`Basis::inverse_entry`] needs of a slot: for a slack row, `A[i, S]`.
+    /// What [`Basis::inverse_entry_terms`] needs of a slot: for a slack row, `A[i, S]`.
     pub fn inverse_row_data(&self, cols: &Columns, slot: usize) -> Vec<f64> {
         let var = self.slot_var[slot];
         if var < self.n {
@@ -267,21 +267,55 @@ impl Basis {
         }
     }
 
-    /// Entry `(slot, r)` of `B⁻¹` in `O(k)`, with `data` from [`Basis::inverse_row_data`].
-    pub fn inverse_entry(&self, slot: usize, r: usize, data: &[f64]) -> f64 {
+    /// Column `r` of `K⁻¹` (a row whose slack is non-basic) refined once from the data,
+    /// `y += K⁻¹(e_r − K y)` (`O(k²)`): the updated inverse satisfies `K y = e_r` only to its
+    /// drift, and entries of `B⁻¹` that the data make equal then differ by that residual.
+    pub fn kernel_column_refined(&self, cols: &Columns, r: usize) -> Option<Vec<f64>> {
+        let b = self.r_pos[r];
+        if b == NONE {
+            return None;
+        }
+        let y = self.kinv.col(b).to_vec();
+        let mut res = vec![0.0; y.len()];
+        res[b] = 1.0;
+        for (&c, &yc) in self.s_cols.iter().zip(&y) {
+            if yc != 0.0 {
+                for (ra, &row) in res.iter_mut().zip(&self.r_rows) {
+                    *ra -= cols.entry(row, c) * yc;
+                }
+            }
+        }
+        let corr = self.kernel_solve(&res);
+        Some(y.iter().zip(&corr).map(|(a, c)| a + c).collect())
+    }
+
+    /// [`Basis::inverse_entry_terms`] of a slack row with `y` the column of `K⁻¹` for row `r`
+    /// ([`Basis::kernel_column_refined`]).
+    pub fn slack_entry_terms(&self, slot: usize, r: usize, data: &[f64], y: &[f64]) -> (f64, f64) {
+        let var = self.slot_var[slot];
+        let unit = if r == var { 1.0 } else { 0.0 };
+        (unit - dot(data, y), unit + column_terms(data, y))
+    }
+
+    /// Entry `(slot, r)` of `B⁻¹` in `O(k)` and the size of the terms it is formed from (its
+    /// round-off is relative to those), with `data` from [`Basis::inverse_row_data`]. For a
+    /// slack row the terms are `|δ| + Σ_s |A[i, s]| |K⁻¹[s, b]|`; an entry of `K⁻¹` itself is
+    /// measured against the inverse's largest entry.
+    pub fn inverse_entry_terms(&self, slot: usize, r: usize, data: &[f64]) -> (f64, f64) {
         let var = self.slot_var[slot];
         let b = self.r_pos[r];
         if var < self.n {
             let unit = if r == var { 1.0 } else { 0.0 };
             if b == NONE {
-                unit
+                (unit, unit)
             } else {
-                unit - dot(data, self.kinv.col(b))
+                let col = self.kinv.col(b);
+                (unit - dot(data, col), unit + column_terms(data, col))
             }
         } else if b == NONE {
-            0.0
+            (0.0, 0.0)
         } else {
-            self.kinv.get(self.s_pos[var], b)
+            (self.kinv.get(self.s_pos[var], b), self.kinv.max_entry())
         }
     }
 
@@ -353,6 +387,14 @@ impl Basis {
         self.var_slot[entering] = slot;
         self.var_slot[leaving] = NONE;
     }
+}
+
+/// The size of the round-off of `data · col` for a column `col` of `K⁻¹`: `Σ |data| · max |col|`.
+/// An entry of the inverse carries round-off relative to the column's scale, not to itself (an
+/// entry that is zero by the data comes out as noise of that scale).
+fn column_terms(data: &[f64], col: &[f64]) -> f64 {
+    let g = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    g * data.iter().map(|v| v.abs()).sum::<f64>()
 }
 
 /// `out += Σ y_s S[offset.., s]` over `(s, y_s)` with `S` the stored columns of `M`, four

@@ -50,6 +50,14 @@ const TIE: f64 = 1e-9;
 /// column, however small their own terms (used where a ray's direction is verified).
 const ROUNDOFF: f64 = 1e-14;
 
+/// Candidates within this fraction of the minimum ratio are re-judged on refreshed basic values.
+const NEAR_TIE: f64 = 1e-7;
+
+/// Candidates within this fraction of the minimum ratio are re-judged on a column refined from
+/// the data: an entry `10⁻⁶` of the column's largest with a relative error of `10⁻¹²` of that
+/// largest is accurate only to `10⁻⁶` of itself.
+const UNSURE_TIE: f64 = 1e-4;
+
 /// Relative kernel residual above which the basis is refactorised at once.
 const DRIFT: f64 = 1e-9;
 
@@ -206,9 +214,13 @@ impl<'a> Pivoter<'a> {
             .iter()
             .map(|&s| (s, self.basis.inverse_row_data(&self.cols, s)))
             .collect();
-        // Entries are equal when they differ by round-off of the rows they belong to (times the
-        // size of the start's structural columns they are applied to).
-        let thr = 1e-9
+        // Entries are equal when they differ by round-off of the terms they are formed from
+        // (times the size of the start's structural columns they are applied to). A bound of
+        // a whole row (`max |K⁻¹|` times the row's data) would be far coarser: on a long path it
+        // merged entries that differ by half their size, and the friction part of a
+        // slipping pair left before its normal row (a false mechanism of the 1000-support beam).
+        // For a structural start column (solved whole) the bound of the rows stays.
+        let coarse = TIE
             * self.start_scale
             * alive
                 .iter()
@@ -216,30 +228,76 @@ impl<'a> Pivoter<'a> {
                 .fold(0.0f64, f64::max);
         for &r in &self.priority {
             let c = self.start[r];
-            let vals: Vec<f64> = if self.basis.is_basic(c) {
+            // (value, the size of its round-off) for each candidate still tied.
+            let vals: Vec<(f64, f64)> = if self.basis.is_basic(c) {
+                // A unit column: exact.
                 let t = self.basis.var_slot[c];
                 alive
                     .iter()
-                    .map(|(s, _)| if *s == t { 1.0 / alpha[*s] } else { 0.0 })
+                    .map(|(s, _)| (if *s == t { 1.0 / alpha[*s] } else { 0.0 }, 0.0))
                     .collect()
             } else if c < n {
-                alive
+                let entries = |refined: Option<&[f64]>| -> Vec<(f64, f64)> {
+                    alive
+                        .iter()
+                        .map(|(s, data)| {
+                            let (v, t) = match refined {
+                                Some(y) if self.basis.slot_var[*s] < n => {
+                                    self.basis.slack_entry_terms(*s, c, data, y)
+                                }
+                                _ => self.basis.inverse_entry_terms(*s, c, data),
+                            };
+                            let a = alpha[*s];
+                            (v / a, TIE * self.start_scale * t / a.abs())
+                        })
+                        .collect()
+                };
+                let vals = entries(None);
+                // Entries that differ by more than round-off of their terms but less than
+                // the bound of the rows may differ only by the drift of the updated inverse:
+                // judged again on its column refined from the data.
+                let (lo, hi) = vals
                     .iter()
-                    .map(|(s, data)| self.basis.inverse_entry(*s, c, data) / alpha[*s])
-                    .collect()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                        (l.min(v.0), h.max(v.0))
+                    });
+                let fine = vals.iter().fold(0.0f64, |m, v| m.max(v.1));
+                let unsure = hi - lo > fine && hi - lo <= coarse;
+                match unsure.then(|| self.basis.kernel_column_refined(&self.cols, c)) {
+                    Some(Some(y)) => entries(Some(&y)),
+                    _ => vals,
+                }
             } else {
                 let col = self.basis.ftran(&self.cols, c);
-                alive.iter().map(|(s, _)| col[*s] / alpha[*s]).collect()
+                alive
+                    .iter()
+                    .map(|(s, _)| (col[*s] / alpha[*s], coarse))
+                    .collect()
             };
-            if max_abs(&vals) <= thr {
+            if vals.iter().all(|&(v, t)| v.abs() <= t) {
                 continue;
             }
-            let best = if largest {
-                vals.iter().copied().fold(f64::NEG_INFINITY, f64::max)
-            } else {
-                vals.iter().copied().fold(f64::INFINITY, f64::min)
-            };
-            let keep: Vec<bool> = vals.iter().map(|v| (v - best).abs() <= thr).collect();
+            let (best, tb) = vals.iter().copied().fold(
+                (
+                    if largest {
+                        f64::NEG_INFINITY
+                    } else {
+                        f64::INFINITY
+                    },
+                    0.0,
+                ),
+                |acc, (v, t)| {
+                    if (largest && v > acc.0) || (!largest && v < acc.0) {
+                        (v, t)
+                    } else {
+                        acc
+                    }
+                },
+            );
+            let keep: Vec<bool> = vals
+                .iter()
+                .map(|&(v, t)| (v - best).abs() <= t.max(tb))
+                .collect();
             let mut k = keep.iter();
             alive.retain(|_| *k.next().unwrap_or(&false));
             if alive.len() == 1 {
@@ -289,9 +347,10 @@ impl<'a> Pivoter<'a> {
         Some((pick, val(pick) / alpha[pick]))
     }
 
-    /// The candidates within `1e-7` (relative) of the minimum ratio at `slot`, `slot` included,
-    /// when there is more than one: a tie that drift of the updated basic values could misjudge.
-    fn near_ties(&self, alpha: &[f64], slot: usize) -> Vec<usize> {
+    /// The candidates within `window` (relative) of the minimum ratio at `slot`, `slot`
+    /// included, when there is more than one: a tie that drift of the updated basic values
+    /// ([`NEAR_TIE`]) or round-off of the column ([`UNSURE_TIE`]) could misjudge.
+    fn near_ties(&self, alpha: &[f64], slot: usize, window: f64) -> Vec<usize> {
         let val = |i: usize| self.beta[i].max(0.0);
         let rmin = val(slot) / alpha[slot];
         let thr = self.tol.pivot * max_abs(alpha);
@@ -299,7 +358,7 @@ impl<'a> Pivoter<'a> {
         let close: Vec<usize> = (0..alpha.len())
             .filter(|&i| {
                 alpha[i] > thr
-                    && val(i) - rmin * alpha[i] <= 1e-7 * (val(i) + rmin * alpha[i]) + zero
+                    && val(i) - rmin * alpha[i] <= window * (val(i) + rmin * alpha[i]) + zero
             })
             .collect();
         if close.len() > 1 {
@@ -440,7 +499,7 @@ impl<'a> Pivoter<'a> {
                     self.refresh_values();
                     step = self.ratio_test(&alpha);
                 } else {
-                    let close = self.near_ties(&alpha, slot);
+                    let close = self.near_ties(&alpha, slot, NEAR_TIE);
                     if !close.is_empty() {
                         self.refresh_slots(&close);
                         step = self.ratio_test(&alpha);
@@ -448,7 +507,45 @@ impl<'a> Pivoter<'a> {
                 }
             }
         }
+        // A tie is judged on values and a column that satisfy the equations to round-off of
+        // their terms. Solved with the explicit `K⁻¹`, they satisfy them only to `cond(K)·ε`
+        // of `|K| |y|`, and rows that the data tie exactly (for a slipping pair
+        // `x_t∓ = 2f·x_n − x_t±`, the last a non-basic row) then differ by that residual, which
+        // far exceeds the tie's tolerance on small values: the wrong row leaves, the opposite
+        // friction part enters and the basis turns singular some pivots later (the 1000-support
+        // beam). Refined once from the data, the residual shrinks to its square.
+        // Only a doubtful judgement is refined: candidates close to the minimum that the tie
+        // test did not count as tied (an exact tie found, or a clear minimum, stays as it is).
+        if let Some((slot, _)) = step {
+            let close = self.near_ties(&alpha, slot, UNSURE_TIE);
+            if close.len() > self.near_ties(&alpha, slot, TIE).len().max(1) {
+                self.refine(entering, &mut alpha);
+                self.refine_values();
+                step = self.ratio_test(&alpha);
+            }
+        }
         Ok((alpha, step))
+    }
+
+    /// `α += B⁻¹(A_e − B α)`: one step of refinement from the data (`O(n·k)`).
+    fn refine(&self, entering: usize, alpha: &mut [f64]) {
+        let zero = vec![0.0; alpha.len()];
+        let r = self.direction_residual(entering, alpha, &zero).0;
+        let corr = self.basis.solve(&self.cols, &r);
+        alpha.iter_mut().zip(&corr).for_each(|(a, c)| *a += c);
+    }
+
+    /// `β += B⁻¹(h − B β)`: the basic values refined once from the data (`O(n·k)`).
+    fn refine_values(&mut self) {
+        let mut r = self.cols.h.clone();
+        for (slot, &c) in self.basis.slot_var.iter().enumerate() {
+            if self.beta[slot] != 0.0 {
+                self.cols.axpy_col(&mut r, -self.beta[slot], c);
+            }
+        }
+        let corr = self.basis.solve(&self.cols, &r);
+        self.beta.iter_mut().zip(&corr).for_each(|(b, c)| *b += c);
+        self.since_values = 0;
     }
 
     /// A ray (no positive entry in `alpha`, on a fresh factorisation) is believed only if its
@@ -464,10 +561,7 @@ impl<'a> Pivoter<'a> {
         if check.equation > crate::ACCEPT_RESIDUAL {
             // Refined once from the data: the round-off of the inverse (up to cond(K)·ε of the
             // sums) shrinks to its square.
-            let zero = vec![0.0; alpha.len()];
-            let r = self.direction_residual(entering, alpha, &zero).0;
-            let corr = self.basis.solve(&self.cols, &r);
-            alpha.iter_mut().zip(&corr).for_each(|(a, c)| *a += c);
+            self.refine(entering, alpha);
             if let Some(step) = self.ratio_test(alpha) {
                 self.ray_check = None;
                 return Some(step);
