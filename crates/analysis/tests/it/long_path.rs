@@ -22,73 +22,7 @@
 use unilateral_analysis::analyze;
 use unilateral_contact::Outcome;
 use unilateral_io::{read_problem, Problem};
-
-/// The benchmark's model text for `m` bearings (as `beam_model` in the benchmark).
-fn beam_model(m: usize) -> String {
-    let l = m - 1;
-    format!(
-        r#"title = "Continuous beam on {m} frictional elastic bearings (benchmark)"
-units = "N, m"
-
-[[sections]]
-name = "beam"
-E = 3.0e10
-A = 0.5
-I = 0.04
-
-[[sections]]
-name = "tie"
-E = 2.0e11
-A = 1.0e-7
-I = 1.0e-9
-
-[[members]]
-name = "beam"
-start = [0.0, 0.0]
-end = [{l}.0, 0.0]
-divisions = {l}
-section = "beam"
-
-[[members]]
-name = "soles"
-type = "bar"
-start = [0.0, 0.0]
-end = [{l}.0, 0.0]
-divisions = {l}
-section = "tie"
-
-[[springs]]
-nodes = "soles.nodes"
-direction = [0.0, 1.0]
-stiffness = 1.0e9
-
-[[springs]]
-nodes = "soles.nodes"
-direction = [1.0, 0.0]
-stiffness = 2.0e6
-
-[[contact]]
-name = "bearing"
-from = "soles.nodes"
-to = "beam.nodes"
-normal = [0.0, 1.0]
-friction = 0.3
-
-[[loads.constant.distributed]]
-elements = "beam"
-q = [0.0, -1.0e4]
-
-[[loads.variable.distributed]]
-elements = "beam"
-start = [1.0e3, -4.0e4]
-end = [1.0e3, 1.0e4]
-
-[solve]
-target = 1.0
-trace = "end"
-"#
-    )
-}
+use unilateral_oracle::fixtures::bearings::beam_model;
 
 /// The path of the 500-bearing beam reaches its end without a numerical failure or a false
 /// mechanism, and the solution it reports at the target satisfies the contact conditions,
