@@ -559,29 +559,14 @@ mod tests {
         );
     }
 
-    // Reference: brute-force enumeration (unilateral-oracle) of the tightened LCP
-    // x = (q_c + c·t) + p·d + M z of the paper's Example 1 (the doc example of `solve`), at the
-    // middle of every segment of the traced path and at every breakpoint: the traced values
-    // must be one of its solutions (the traced path is a path of solutions of that LCP), and
-    // with c = 1 they differ from the problem's own solution (pair 1 is pressed by c).
     #[test]
     fn traced_values_of_a_pair_with_a_huge_friction_coefficient_stay_finite() {
         // Example 1 with f = 1.797e308 at pair 3 (the corpus's mutant), c = 1: before its one
         // event (p = 32/3, pair 1 opens) every pair is closed and sticks with z = 0, so by
         // hand x_n = c + p·d_n = (0, 25/3, 16/3) there and x_t = 0, although the LCP's rows
         // x_t± = f·x_n ± x_t of pair 3 are beyond the floating-point range.
-        use crate::{solve, ContactZone, Follow};
-        use faer::mat;
-        let mut zone = ContactZone::new(
-            mat![
-                [0.1875, -0.375, 0.1875],
-                [-0.375, 0.75, -0.375],
-                [0.1875, -0.375, 0.1875]
-            ],
-            mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
-        );
-        zone.friction = vec![0.6, 0.6, f64::MAX];
-        zone.variable.normal = vec![-0.09375, 0.6875, 0.40625];
+        use crate::{solve, Follow};
+        let zone = example1_zone(vec![0.6, 0.6, f64::MAX]);
         let settings = SolveSettings {
             tightening: 1.0,
             follow: Follow::ToEnd,
@@ -598,20 +583,31 @@ mod tests {
         }
     }
 
-    #[test]
-    fn traced_values_solve_the_tightened_lcp() {
-        use crate::{solve, ContactZone, Follow};
-        use faer::mat;
-        let mut zone = ContactZone::new(
-            mat![
+    /// The paper's Example 1 as a contact zone (its `Rnn`, `Rtt` and variable normal load), with
+    /// the given friction coefficients.
+    fn example1_zone(friction: Vec<f64>) -> crate::ContactZone {
+        let mut zone = crate::ContactZone::new(
+            faer::mat![
                 [0.1875, -0.375, 0.1875],
                 [-0.375, 0.75, -0.375],
                 [0.1875, -0.375, 0.1875]
             ],
-            mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
+            faer::mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
         );
-        zone.friction = vec![0.6; 3];
+        zone.friction = friction;
         zone.variable.normal = vec![-0.09375, 0.6875, 0.40625];
+        zone
+    }
+
+    // Reference: brute-force enumeration (unilateral-oracle) of the tightened LCP
+    // x = (q_c + c·t) + p·d + M z of the paper's Example 1 (the doc example of `solve`), at the
+    // middle of every segment of the traced path and at every breakpoint: the traced values
+    // must be one of its solutions (the traced path is a path of solutions of that LCP), and
+    // with c = 1 they differ from the problem's own solution (pair 1 is pressed by c).
+    #[test]
+    fn traced_values_solve_the_tightened_lcp() {
+        use crate::{solve, Follow};
+        let zone = example1_zone(vec![0.6; 3]);
         let c = 1.0;
         let settings = SolveSettings {
             tightening: c,

@@ -41,13 +41,7 @@ pub fn write_contact_csv_with(
     about: &About,
 ) -> std::io::Result<Vec<std::path::PathBuf>> {
     finite::contact_solution(sol)?;
-    let columns = [
-        about.column("x_n", |f, _| f.into()),
-        about.column("x_t", |f, _| f.into()),
-        about.column("z_n", |_, l| l.into()),
-        about.column("z_t", |_, l| l.into()),
-    ]
-    .join(",");
+    let columns = about.pair_columns();
     let mut pairs = format!("pair,name,{columns},state\n");
     for (i, p) in sol.pairs.iter().enumerate() {
         let _ = writeln!(

@@ -370,13 +370,7 @@ fn history_tables(
     check(h)?;
     let n = h.stages.len();
     let mut files = Vec::with_capacity(n + 2);
-    let values = [
-        about.column("x_n", |f, _| f.into()),
-        about.column("x_t", |f, _| f.into()),
-        about.column("z_n", |_, l| l.into()),
-        about.column("z_t", |_, l| l.into()),
-    ]
-    .join(",");
+    let values = about.pair_columns();
     let kept_column = about.column("slip_kept", |_, l| l.into());
     for st in &h.stages {
         let mut t = format!("pair,name,{values},state\n");

@@ -41,6 +41,18 @@ impl About {
             None => name.to_string(),
         }
     }
+
+    /// The four value columns of a pair, `x_n,x_t,z_n,z_t`, each with its unit when known
+    /// (forces for `x`, lengths for `z`), as every pair table names them.
+    pub(crate) fn pair_columns(&self) -> String {
+        [
+            self.column("x_n", |f, _| f.into()),
+            self.column("x_t", |f, _| f.into()),
+            self.column("z_n", |_, l| l.into()),
+            self.column("z_t", |_, l| l.into()),
+        ]
+        .join(",")
+    }
 }
 
 /// Options of the JSON document of the paper's load path ([`contact_json_with`],

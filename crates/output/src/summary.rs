@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use unilateral_contact::{ContactSolution, Outcome};
+use unilateral_contact::{ContactSolution, Outcome, PairResult};
 use unilateral_lcp::{LcpSolution, Tableau};
 
 use crate::finite::{self, NonFiniteOutput};
@@ -230,16 +230,7 @@ pub fn contact_summary_detail(
         ] {
             let _ = writeln!(s, "  {label}:");
             for p in list {
-                let _ = writeln!(
-                    s,
-                    "  {:<8} {:>14} {:>14} {:>14} {:>14}  {}",
-                    p.name,
-                    fmt_num(p.x_n),
-                    fmt_num(p.x_t),
-                    fmt_num(p.z_n),
-                    fmt_num(p.z_t),
-                    p.state
-                );
+                pair_row(&mut s, p);
             }
         }
     } else if !sol.pairs.is_empty() {
@@ -255,16 +246,7 @@ pub fn contact_summary_detail(
             "pair", "x_n", "x_t", "z_n", "z_t"
         );
         for p in &sol.pairs {
-            let _ = writeln!(
-                s,
-                "  {:<8} {:>14} {:>14} {:>14} {:>14}  {}",
-                p.name,
-                fmt_num(p.x_n),
-                fmt_num(p.x_t),
-                fmt_num(p.z_n),
-                fmt_num(p.z_t),
-                p.state
-            );
+            pair_row(&mut s, p);
         }
     }
     if let Some(r) = &sol.residual {
@@ -449,4 +431,18 @@ pub fn timings_summary(t: &unilateral_analysis::Timings) -> String {
         .map(|(name, d)| format!("{name} {:.2} s", d.as_secs_f64()))
         .collect();
     format!("\ntime: {}\n", parts.join(", "))
+}
+
+/// One pair's line of the summary's table of pairs (name, `x_n`, `x_t`, `z_n`, `z_t`, state).
+fn pair_row(s: &mut String, p: &PairResult) {
+    let _ = writeln!(
+        s,
+        "  {:<8} {:>14} {:>14} {:>14} {:>14}  {}",
+        p.name,
+        fmt_num(p.x_n),
+        fmt_num(p.x_t),
+        fmt_num(p.z_n),
+        fmt_num(p.z_t),
+        p.state
+    );
 }
