@@ -545,6 +545,13 @@ impl Analysis {
         self.solution.p
     }
 
+    /// The full structural results for pair results `pairs` at load `p` (for instance those of
+    /// [`unilateral_contact::ContactSolution::at_many`] at many loads in one walk along the
+    /// path): one solve with the bonded structure's factor, checked finite.
+    pub fn recover_pairs(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
+        self.recover(p, pairs)
+    }
+
     fn recover(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
         let r = self
             .condensed
@@ -558,18 +565,22 @@ impl Analysis {
     /// the engine's own failure) is [`AnalysisError::Contact`].
     pub fn results_at(&self, p: f64) -> Result<(Vec<PairResult>, Results), AnalysisError> {
         let Some((pairs, _)) = self.solution.at(p)? else {
-            let end = match &self.solution.outcome {
-                Outcome::Ray { .. } => "infinity (ray)".to_string(),
-                _ => self
-                    .solution
-                    .steps
-                    .last()
-                    .map_or("p = 0".to_string(), |s| format!("p = {}", s.p)),
-            };
-            return Err(AnalysisError::NotOnPath { p, end });
+            return Err(self.not_on_path(p));
         };
         let r = self.recover(p, &pairs)?;
         Ok((pairs, r))
+    }
+
+    fn not_on_path(&self, p: f64) -> AnalysisError {
+        let end = match &self.solution.outcome {
+            Outcome::Ray { .. } => "infinity (ray)".to_string(),
+            _ => self
+                .solution
+                .steps
+                .last()
+                .map_or("p = 0".to_string(), |s| format!("p = {}", s.p)),
+        };
+        AnalysisError::NotOnPath { p, end }
     }
 
     /// The loads of the events along the path (one per step), in order.

@@ -130,7 +130,7 @@ impl PathSolver {
     pub(crate) fn residual(&self, p: f64, x: &[f64], z: &[f64]) -> crate::Residual {
         let n = self.n;
         crate::Residual::of_parametric_with(
-            &|i, j| self.prep.original_entry(i, j),
+            &OriginalColumns(&self.prep),
             (n, n),
             &self.q0,
             &self.d,
@@ -279,4 +279,16 @@ pub fn tableaux(
 ) -> Result<Vec<Tableau>, LcpError> {
     PathSolver::new(problem.clone(), options.clone(), Settings::default())?
         .tableaux(path, max_steps)
+}
+
+/// The original `M` of a prepared problem, as the residuals read it.
+struct OriginalColumns<'a>(&'a crate::pivoting::prepare::Prepared);
+
+impl crate::residual::ColumnSource for OriginalColumns<'_> {
+    fn entry(&self, i: usize, j: usize) -> f64 {
+        self.0.original_entry(i, j)
+    }
+    fn column_into(&self, j: usize, rows: std::ops::Range<usize>, out: &mut [f64]) {
+        self.0.original_column_into(j, rows, out);
+    }
 }

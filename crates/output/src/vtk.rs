@@ -37,6 +37,7 @@
 //! all others (the state the summary and the JSON report, found in ParaView's field data
 //! without knowing its load).
 
+use rayon::prelude::*;
 use std::borrow::Cow;
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -83,8 +84,6 @@ pub fn write_vtk_with(
     let pairs = PairGeometry::new(model, analysis, format);
     std::fs::create_dir_all(dir)?;
     let width = snapshots.len().saturating_sub(1).to_string().len().max(3);
-    // Every file is made and checked before the first is written.
-    let mut texts: Vec<(String, Vec<u8>)> = Vec::new();
     let mut pvd = String::from(
         "<?xml version=\"1.0\"?>\n\
          <VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
@@ -98,30 +97,85 @@ pub fn write_vtk_with(
             pairs: Cow::Borrowed(&[]),
             results: None,
             reported: false,
+            pending: false,
         }];
         &empty
     } else {
         &snapshots
     };
-    for (k, snap) in list.iter().enumerate() {
-        let name = format!("mesh_{k:0width$}.vtu");
-        dataset(&mut pvd, snap.p, 0, &name);
-        let text = mesh.vtu(model, snap).finish(&name)?;
-        texts.push((name, text));
-        if pairs.m > 0 {
-            let name = format!("pairs_{k:0width$}.vtu");
-            dataset(&mut pvd, snap.p, 1, &name);
-            let text = pairs.vtu(snap).finish(&name)?;
-            texts.push((name, text));
+    // The frames are recovered, made and written on the thread pool, each into a `.part`
+    // file (each file's bytes do not depend on the number of threads); only when every frame
+    // is made and checked are they renamed, numbered in load order without the frames that
+    // could not be recovered, and the collection written. A frame in memory at a time per
+    // thread, whatever the length of the path.
+    let made: Vec<io::Result<Option<Vec<PathBuf>>>> = list
+        .par_iter()
+        .enumerate()
+        .map(|(i, snap)| {
+            let recovered;
+            let snap = if snap.pending {
+                let Ok(r) = analysis.recover_pairs(snap.p, &snap.pairs) else {
+                    return Ok(None);
+                };
+                recovered = Snapshot {
+                    p: snap.p,
+                    pairs: Cow::Borrowed(&snap.pairs),
+                    results: Some(Cow::Owned(r)),
+                    reported: snap.reported,
+                    pending: false,
+                };
+                &recovered
+            } else {
+                snap
+            };
+            let mut files = Vec::with_capacity(2);
+            let name = format!("mesh_{i:0width$}.vtu");
+            let text = mesh.vtu(model, snap).finish(&name)?;
+            files.push(write_file(dir, &part_name(i, 0), &text)?);
+            if pairs.m > 0 {
+                let name = format!("pairs_{i:0width$}.vtu");
+                let text = pairs.vtu(snap).finish(&name)?;
+                files.push(write_file(dir, &part_name(i, 1), &text)?);
+            }
+            Ok(Some(files))
+        })
+        .collect();
+    let failed = made.iter().any(|m| m.is_err());
+    if failed {
+        for f in made.iter().flatten().flatten().flatten() {
+            let _ = std::fs::remove_file(f);
         }
+        for m in made {
+            m?;
+        }
+        unreachable!("an error was found above");
+    }
+    let mut written = Vec::new();
+    let mut k = 0usize;
+    for (snap, files) in list.iter().zip(made) {
+        let Some(files) = files? else { continue };
+        for (part, file) in files.into_iter().enumerate() {
+            let name = if part == 0 {
+                format!("mesh_{k:0width$}.vtu")
+            } else {
+                format!("pairs_{k:0width$}.vtu")
+            };
+            dataset(&mut pvd, snap.p, part, &name);
+            let to = dir.join(&name);
+            std::fs::rename(&file, &to)?;
+            written.push(to);
+        }
+        k += 1;
     }
     pvd.push_str("  </Collection>\n</VTKFile>\n");
     check_numbers(PVD_FILE, &pvd)?;
-    texts.push((PVD_FILE.to_string(), pvd.into_bytes()));
-    texts
-        .iter()
-        .map(|(name, text)| write_file(dir, name, text))
-        .collect()
+    written.push(write_file(dir, PVD_FILE, pvd.as_bytes())?);
+    Ok(written)
+}
+
+/// The temporary name of part `part` of frame `i` while the frames are made.
+fn part_name(i: usize, part: usize) -> String {
+    format!(".frame_{i}_{part}.vtu.part")
 }
 
 /// [`write_vtk`] for a caller that holds the model apart: `model` must be the model `analysis`
@@ -241,6 +295,9 @@ struct Snapshot<'a> {
     results: Option<Cow<'a, Results>>,
     /// The state at the reported load (the field `reported` = 1 of its files).
     reported: bool,
+    /// The structure is still to be recovered from the pairs; a frame whose recovery fails is
+    /// left out.
+    pending: bool,
 }
 
 /// The start, every step of the path that changes a pair's state (where recoverable; none for
@@ -268,15 +325,20 @@ fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
         .collect();
     loads.sort_by(f64::total_cmp);
     loads.dedup_by(|x, y| same(*x, *y));
+    // One walk along the path for the pairs of all frames; their structures are recovered
+    // frame by frame as the files are made ([`Snapshot::pending`]).
+    let answers = a.solution.at_many(&loads).unwrap_or_default();
     let mut out: Vec<Snapshot> = loads
         .into_iter()
-        .filter_map(|p| {
-            let (pairs, r) = a.results_at(p).ok()?;
+        .zip(answers)
+        .filter_map(|(p, answer)| {
+            let (pairs, _) = answer?;
             Some(Snapshot {
                 p,
                 pairs: Cow::Owned(pairs),
-                results: Some(Cow::Owned(r)),
+                results: None,
                 reported: false,
+                pending: true,
             })
         })
         .collect();
@@ -290,6 +352,7 @@ fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
                 pairs: Cow::Borrowed(&a.solution.pairs),
                 results: Some(Cow::Borrowed(r)),
                 reported: true,
+                pending: false,
             },
         );
     }

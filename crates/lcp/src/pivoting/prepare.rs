@@ -99,6 +99,29 @@ impl Prepared {
         }
     }
 
+    /// Rows `rows` of column `j` of the original `M` into `out`, bit for bit as
+    /// [`Prepared::original_entry`] (read from the stored column in one contiguous slice).
+    pub fn original_column_into(&self, j: usize, rows: std::ops::Range<usize>, out: &mut [f64]) {
+        match &self.original {
+            Some(m) => out.copy_from_slice(&m.col_as_slice(j)[rows]),
+            None => {
+                let (col, neg) = self.m_scaled.col(j);
+                let ce = self.scaling.col_exp[j];
+                let re = &self.scaling.row_exp[rows.clone()];
+                for ((o, &v), &r) in out.iter_mut().zip(&col[rows]).zip(re) {
+                    let v = if neg { -v } else { v };
+                    let k = -(r + ce);
+                    // one multiplication by 2^k, as `ldexp` makes it in this range
+                    *o = if (-1000..=1000).contains(&k) {
+                        v * f64::from_bits(((k + 1023) as u64) << 52)
+                    } else {
+                        crate::binary::ldexp(v, k)
+                    };
+                }
+            }
+        }
+    }
+
     /// The original `M` as a matrix (an `O(n²)` copy; for a [`Prepared::from_owned`]).
     pub fn original_matrix(&self) -> Mat<f64> {
         match &self.original {
