@@ -281,16 +281,24 @@ pub(crate) fn path_output_failure(e: unilateral_output::PathOutputError) -> Fail
 /// Writes a JSON document (`-`: stdout), with `program`, `schema` and no negative zero
 /// ([`unilateral_output::with_provenance`]): every document the program writes goes through
 /// here.
-pub(crate) fn write_json(out: &Path, value: &serde_json::Value) -> Result<(), Failure> {
-    let value = unilateral_output::with_provenance(value.clone());
-    let text = serde_json::to_string_pretty(&value)
-        .map_err(|e| Failure::Internal(format!("JSON: {e}")))?;
+pub(crate) fn write_json(out: &Path, value: serde_json::Value) -> Result<(), Failure> {
+    use std::io::Write;
+    let value = unilateral_output::with_provenance(value);
     if out == Path::new("-") {
+        let text = serde_json::to_string_pretty(&value)
+            .map_err(|e| Failure::Internal(format!("JSON: {e}")))?;
         self::out(&format!("{text}\n"));
         return Ok(());
     }
-    std::fs::write(out, text + "\n")
-        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))
+    // Streamed to the file: a long path's document is not held twice more as text.
+    let cannot =
+        |e: &dyn std::fmt::Display| Failure::Input(format!("cannot write {}: {e}", out.display()));
+    let file = std::fs::File::create(out).map_err(|e| cannot(&e))?;
+    let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
+    serde_json::to_writer_pretty(&mut w, &value).map_err(|e| cannot(&e))?;
+    w.write_all(b"\n")
+        .and_then(|()| w.flush())
+        .map_err(|e| cannot(&e))
 }
 
 /// Writes `text` to stdout. A reader that closed the pipe early (`unilateral solve … | head`)

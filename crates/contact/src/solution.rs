@@ -316,7 +316,8 @@ impl ContactSolution {
     /// `x = q_c + c·t + p·d + M z`, with `t` the tightening direction
     /// ([`ContactLcp::tightening_direction`]). With `c > 0` these values and their states
     /// depend on `c`; with `c = 0` they are the solution of the problem. Points off the path
-    /// (an index beyond the breakpoints) are `None`. All `x` are found in one matrix product.
+    /// (an index beyond the breakpoints) are `None`. All `x` are found in one matrix product,
+    /// and `x_i` is zero exactly where `z_i ≠ 0` (complementary on the segment's basis).
     /// An error when a value leaves the floating-point range ([`ContactError::OutOfRange`]).
     #[allow(clippy::type_complexity)]
     pub fn traced_on_segments(
@@ -402,6 +403,14 @@ impl ContactSolution {
             let mut x: Vec<f64> = (0..n)
                 .map(|i| prob.q0[i] * down + c * down * t[i] + p * down * prob.d[i] + mz[(i, j)])
                 .collect();
+            // Complementary to a non-zero `z_i`, `x_i` is not basic on the segment: it is
+            // zero exactly (the product leaves the round-off of its terms there: an open pair
+            // would carry a force of the size of its displacement's terms times 1e-16).
+            for (xi, &zi) in x.iter_mut().zip(&zs[j]) {
+                if zi != 0.0 {
+                    *xi = 0.0;
+                }
+            }
             if e > 0 {
                 let m = n / 3;
                 for i in 0..m {

@@ -171,16 +171,23 @@ impl Residual {
             for &j in &nz {
                 m.column_into(j, a..b, &mut col);
                 let zj = z[j];
+                // no branch in the loop: one flag for the whole column (NaN fails every
+                // comparison)
+                let mut ok = true;
                 for ((ri, gi), &mij) in r.iter_mut().zip(mag.iter_mut()).zip(&col) {
-                    if !mij.is_finite() {
-                        return Err(Plain::NotFinite);
-                    }
                     let t = mij * zj;
-                    if !fits(mij) || !fits(t) {
-                        return Err(Plain::OutOfRange);
-                    }
+                    let (a, b) = (mij.abs(), t.abs());
+                    ok &=
+                        (a <= hi) & ((a >= lo) | (a == 0.0)) & (b <= hi) & ((b >= lo) | (b == 0.0));
                     *ri += t;
-                    *gi += t.abs();
+                    *gi += b;
+                }
+                if !ok {
+                    return Err(if col.iter().all(|v| v.is_finite()) {
+                        Plain::OutOfRange
+                    } else {
+                        Plain::NotFinite
+                    });
                 }
             }
             if !r.iter().chain(&mag).all(|&v| fits(v)) {

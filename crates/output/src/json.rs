@@ -139,8 +139,9 @@ pub(crate) fn breakpoint_pairs(
 
 /// The values of every pair at every breakpoint of the path, handed to `f` block by block
 /// (the steps of the block and, for each, the pairs or `None` where its load is not on the
-/// path), each number checked finite. Without tightening they are the solution at each
-/// step's `p`, found in one walk along the path. Traced with the paper's tightening `c > 0`
+/// path), each number checked finite. They are the path's own breakpoints, `x` formed from
+/// their `z` by one product per block: without tightening the solution at each step's `p`
+/// (and, after a turning point, that step's point, not another of the same load). Traced with the paper's tightening `c > 0`
 /// they are the traced path itself at its breakpoints (with `c` in them, as the steps' events
 /// are): never tightening-free values beside `c`-dependent events, and no removal of `c` at
 /// every breakpoint (which cost far more than the path); each block of [`BREAKPOINT_BLOCK`]
@@ -167,22 +168,15 @@ pub(crate) fn breakpoint_blocks(
         }
         Ok(out)
     };
-    if sol.tightening > 0.0 {
-        // Breakpoint `k` of the traced path is the point after step `k`.
-        for block in sol.steps.chunks(BREAKPOINT_BLOCK) {
-            let points: Vec<(usize, f64)> = block.iter().map(|st| (st.index, 0.0)).collect();
-            let at = sol.traced_on_segments(&points)?;
-            f(block, check(block, at)?)?;
-        }
-    } else {
-        let loads: Vec<f64> = sol.steps.iter().map(|s| s.p).collect();
-        let at = sol
-            .at_many(&loads)?
-            .into_iter()
-            .zip(loads)
-            .map(|(point, p)| point.map(|(pairs, _)| (p, pairs)))
-            .collect();
-        f(&sol.steps, check(&sol.steps, at)?)?;
+    // Breakpoint `k` of the traced path is the point after step `k`: its values are the
+    // path's own, `x` formed from its `z` by one matrix product per block of steps. Without
+    // the tightening they are the solution at the step's load (the path is continuous there),
+    // and at a step after a turning point they are that step's point, not another point of
+    // the path at the same load.
+    for block in sol.steps.chunks(BREAKPOINT_BLOCK) {
+        let points: Vec<(usize, f64)> = block.iter().map(|st| (st.index, 0.0)).collect();
+        let at = sol.traced_on_segments(&points)?;
+        f(block, check(block, at)?)?;
     }
     Ok(())
 }
@@ -318,8 +312,8 @@ fn path_document(
             ))
         } else {
             json!(
-                "steps[k].pairs: every pair at the step's p (the solution on the traced path's \
-                 basis); null where p is not on it"
+                "steps[k].pairs: every pair at the step's breakpoint of the path: the solution \
+                 at the step's p"
             )
         };
     }

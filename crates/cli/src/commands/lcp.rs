@@ -42,7 +42,7 @@ pub(crate) fn run(args: LcpArgs) -> Result<(), Failure> {
     }
     if let Some(out) = json {
         let doc = with_timings(unilateral_output::lcp_json(&sol)?, &timings);
-        write_json(&out, &doc)?;
+        write_json(&out, doc)?;
     }
     lcp_status_failure(&file, sol.status).map_or(Ok(()), Err)
 }

@@ -176,7 +176,7 @@ pub(crate) fn write_outputs(
         timings.write = Some(started.elapsed());
     }
     let json_written = match &args.json {
-        Some(out) => json().and_then(|doc| write_json(out, &with_timings(doc, &timings))),
+        Some(out) => json().and_then(|doc| write_json(out, with_timings(doc, &timings))),
         None => Ok(()),
     };
     written.and(json_written)

@@ -49,7 +49,7 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
         .map_err(|e| contact_failure(&file, &e, origin))?;
     let label = |v| sol.lcp.label(v);
     if let Some(out) = &json {
-        write_json(out, &unilateral_output::tableaux_json(&tables, &label)?)?;
+        write_json(out, unilateral_output::tableaux_json(&tables, &label)?)?;
     }
     if json.as_deref() != Some(Path::new("-")) {
         crate::output::outln!(

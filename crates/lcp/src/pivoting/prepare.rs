@@ -108,15 +108,23 @@ impl Prepared {
                 let (col, neg) = self.m_scaled.col(j);
                 let ce = self.scaling.col_exp[j];
                 let re = &self.scaling.row_exp[rows.clone()];
-                for ((o, &v), &r) in out.iter_mut().zip(&col[rows]).zip(re) {
-                    let v = if neg { -v } else { v };
-                    let k = -(r + ce);
-                    // one multiplication by 2^k, as `ldexp` makes it in this range
-                    *o = if (-1000..=1000).contains(&k) {
-                        v * f64::from_bits(((k + 1023) as u64) << 52)
-                    } else {
-                        crate::binary::ldexp(v, k)
-                    };
+                let col = &col[rows];
+                let (lo, hi) = re
+                    .iter()
+                    .fold((i32::MAX, i32::MIN), |(a, b), &r| (a.min(r), b.max(r)));
+                if re.is_empty() || (lo + ce >= -1000 && hi + ce <= 1000) {
+                    // v·2^−(r + c): one multiplication by an exact power of two, as `ldexp`
+                    // makes it in this range (a loop without branches)
+                    let sign = if neg { -1.0 } else { 1.0 };
+                    for ((o, &v), &r) in out.iter_mut().zip(col).zip(re) {
+                        let f = f64::from_bits(((1023 - (r + ce)) as u64) << 52);
+                        *o = (sign * v) * f;
+                    }
+                } else {
+                    for ((o, &v), &r) in out.iter_mut().zip(col).zip(re) {
+                        let v = if neg { -v } else { v };
+                        *o = crate::binary::ldexp(v, -(r + ce));
+                    }
                 }
             }
         }
