@@ -38,56 +38,35 @@ pub fn end_load(sol: &ContactSolution) -> Option<f64> {
 /// as traced, with `c` in it ([`ContactSolution::traced_on_segments`]), at its breakpoints
 /// (above [`MAX_SAMPLES`], at that many spread evenly over them by their index): exact there,
 /// linear in between, and never mixed with values without the tightening. Without one, the
-/// solution of the problem at `p = 0`, at every event load and at the end (thinned alike),
-/// evaluated in one walk along the path ([`ContactSolution::at_many`]); a load off the traced
-/// path is skipped. An error of the solution at a load is returned. Nothing is solved or
-/// prepared again.
+/// same breakpoints are the solution of the problem at their loads (the start, every event),
+/// and the end (on a ray, a little beyond the last event) is evaluated on the path's last
+/// segment ([`ContactSolution::at_many`]). An error of the solution at a load is returned.
+/// Nothing is solved or prepared again.
 pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
+    let mut out = traced_samples(sol)?;
     if sol.tightening > 0.0 {
-        return traced_samples(sol);
+        return Ok(out);
     }
-    let mut want: Vec<f64> = vec![0.0];
-    want.extend(
-        sol.steps
-            .iter()
-            .map(|s| s.p)
-            .filter(|p| p.is_finite() && *p >= 0.0),
-    );
-    if let Some(e) = end_load(sol) {
-        want.push(e);
-    }
-    let mut loads: Vec<f64> = Vec::with_capacity(want.len());
-    for p in want {
-        if loads
-            .last()
-            .is_some_and(|q: &f64| (q - p).abs() <= 1e-12 * p.abs().max(1.0))
-        {
-            continue;
-        }
-        loads.push(p);
-    }
-    let loads = thin(loads, MAX_SAMPLES);
-    let mut out = PathSamples {
-        loads: Vec::new(),
-        pairs: Vec::new(),
-    };
-    for (p, at) in loads.iter().copied().zip(sol.at_many(&loads)?) {
-        if let Some((pairs, _)) = at {
-            out.loads.push(p);
+    // Without tightening the breakpoints are the solution at their loads; the charts go on
+    // to the end (on a ray, a little beyond the last event), a load past the last breakpoint.
+    let last = out.loads.last().copied().unwrap_or(0.0);
+    if let Some(e) = end_load(sol).filter(|&e| e > last * (1.0 + 1e-12)) {
+        if let Some(Some((pairs, _))) = sol.at_many(&[e])?.into_iter().next() {
+            out.loads.push(e);
             out.pairs.push(pairs);
         } else if sol
             .p
-            .is_some_and(|q| (q - p).abs() <= 1e-12 * p.abs().max(1.0))
+            .is_some_and(|q| (q - e).abs() <= 1e-12 * e.abs().max(1.0))
         {
-            out.loads.push(p);
+            out.loads.push(e);
             out.pairs.push(sol.pairs.clone());
         }
     }
     Ok(out)
 }
 
-/// The traced path (with the tightening) at its breakpoints, consecutive breakpoints at the
-/// same load taken once, thinned to [`MAX_SAMPLES`].
+/// The traced path at its breakpoints, consecutive breakpoints at the same load taken once
+/// (the last: the scheme settled there), thinned to [`MAX_SAMPLES`].
 fn traced_samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
     let bps = &sol.path.breakpoints;
     let mut idx: Vec<usize> = Vec::with_capacity(bps.len());
