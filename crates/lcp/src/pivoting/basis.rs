@@ -466,8 +466,8 @@ mod tests {
             vec![1.0; n],
             vec![1.0; n],
         );
-        // 4·62 + 3 columns: the eight-column passes, one left-over four and three singles.
-        let zcols: Vec<(usize, f64)> = (0..251)
+        // 8·31 + 4 + 3 columns: the eight-column passes, one left-over four, three singles.
+        let zcols: Vec<(usize, f64)> = (0..255)
             .map(|j| ((j * 37) % n, (j as f64 - 125.3) / 17.0))
             .collect();
         let start: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
