@@ -219,18 +219,8 @@ impl Basis {
                 cols.axpy_col(tmp, -y, c);
             }
         }
-        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y. This pass streams k
-        // columns of M and dominates a pivot: blocks of rows on the thread pool when it is
-        // large (each row's sum is the same whatever the number of threads).
-        let tmp = &mut tmp[..n];
-        if n * zcols.len() >= 1 << 18 && n >= 64 {
-            const ROWS: usize = 256;
-            tmp.par_chunks_mut(ROWS)
-                .enumerate()
-                .for_each(|(i, rows)| add_columns(cols, &zcols, rows, i * ROWS));
-        } else {
-            add_columns(cols, &zcols, tmp, 0);
-        }
+        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y.
+        add_columns_pooled(cols, &zcols, &mut tmp[..n]);
     }
 
     fn scatter(&self, ys: &[f64], tmp: &[f64], n: usize) -> Vec<f64> {
@@ -397,20 +387,113 @@ fn column_terms(data: &[f64], col: &[f64]) -> f64 {
     g * data.iter().map(|v| v.abs()).sum::<f64>()
 }
 
-/// `out += Σ y_s S[offset.., s]` over `(s, y_s)` with `S` the stored columns of `M`, four
-/// columns per pass over `out`.
+/// `out += Σ y_s S[.., s]` ([`add_columns`]) over all rows. This pass streams the `k` kernel
+/// columns of `M` and dominates a pivot. It is memory-bound, and what the memory delivers
+/// depends on how long each column is read without a jump: one long run of rows per thread of
+/// the pool (not many short blocks; at least `MIN_RUN` rows on a pool with many threads),
+/// eight columns per pass over it. Each row's sum is the same whatever the number of threads.
+fn add_columns_pooled(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64]) {
+    const MIN_RUN: usize = 512;
+    let n = out.len();
+    let threads = rayon::current_num_threads();
+    if threads > 1 && n * zcols.len() >= 1 << 18 && n >= 64 {
+        let rows = n.div_ceil(threads).max(MIN_RUN).next_multiple_of(8);
+        out.par_chunks_mut(rows)
+            .enumerate()
+            .for_each(|(i, part)| add_columns(cols, zcols, part, i * rows));
+    } else {
+        add_columns(cols, zcols, out, 0);
+    }
+}
+
+/// `out += Σ y_s S[offset.., s]` over `(s, y_s)` with `S` the stored columns of `M`, in the
+/// order of `zcols`, four columns to a partial sum: `out_i += (y_a S_ia + y_b S_ib + y_c S_ic +
+/// y_d S_id)` for each four in turn, then the left-over columns one by one. Two fours are
+/// taken per pass over `out` (eight columns read side by side, half the passes over `out`);
+/// the sums are formed exactly as one four at a time would form them.
 fn add_columns(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64], offset: usize) {
     let len = out.len();
     let part = |s: usize| &cols.m.stored(s)[offset..offset + len];
-    let mut chunks = zcols.chunks_exact(4);
-    for ch in &mut chunks {
+    let mut eights = zcols.chunks_exact(8);
+    for ch in &mut eights {
+        let c: [&[f64]; 8] = std::array::from_fn(|j| part(ch[j].0));
+        let y: [f64; 8] = std::array::from_fn(|j| ch[j].1);
+        let [c0, c1, c2, c3, c4, c5, c6, c7] = c;
+        for (i, t) in out.iter_mut().enumerate() {
+            let first = *t + (y[0] * c0[i] + y[1] * c1[i] + y[2] * c2[i] + y[3] * c3[i]);
+            *t = first + (y[4] * c4[i] + y[5] * c5[i] + y[6] * c6[i] + y[7] * c7[i]);
+        }
+    }
+    let rest = eights.remainder();
+    let mut fours = rest.chunks_exact(4);
+    for ch in &mut fours {
         let (c0, c1, c2, c3) = (part(ch[0].0), part(ch[1].0), part(ch[2].0), part(ch[3].0));
         let (y0, y1, y2, y3) = (ch[0].1, ch[1].1, ch[2].1, ch[3].1);
         for ((((t, a0), a1), a2), a3) in out.iter_mut().zip(c0).zip(c1).zip(c2).zip(c3) {
             *t += y0 * a0 + y1 * a1 + y2 * a2 + y3 * a3;
         }
     }
-    for &(j, y) in chunks.remainder() {
+    for &(j, y) in fours.remainder() {
         crate::pivoting::kernel::axpy(out, y, part(j));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Arc;
+
+    use crate::pivoting::columns::ColumnStore;
+
+    /// The slack-row pass forms every row's sum as the plain loop below does (four columns to
+    /// a partial sum, in the order given, then the left-over columns one by one: the reference,
+    /// written independently of the eight-column blocking), bit for bit, on pools of 1, 2 and 3
+    /// threads (blocks of rows of different lengths).
+    #[test]
+    fn the_slack_row_pass_is_the_same_sum_whatever_the_threads() {
+        let n = 1100;
+        // Entries of different signs and magnitudes, so that a different association of the
+        // sums would change their last bits.
+        let data: Vec<f64> = (0..n * n)
+            .map(|i| {
+                let k = (i as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+                (k as f64 / (1u64 << 24) as f64 - 0.5) * (1.0 + (i % 7) as f64 * 1e3)
+            })
+            .collect();
+        let cols = Columns::new(
+            n,
+            Arc::new(ColumnStore::new(n, data)),
+            vec![1.0; n],
+            vec![1.0; n],
+        );
+        // 8·31 + 4 + 3 columns: the eight-column passes, one left-over four, three singles.
+        let zcols: Vec<(usize, f64)> = (0..255)
+            .map(|j| ((j * 37) % n, (j as f64 - 125.3) / 17.0))
+            .collect();
+        let start: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+        let mut reference = start.clone();
+        for (i, t) in reference.iter_mut().enumerate() {
+            let v = |c: &(usize, f64)| c.1 * cols.m.stored(c.0)[i];
+            let mut fours = zcols.chunks_exact(4);
+            for f in &mut fours {
+                *t += v(&f[0]) + v(&f[1]) + v(&f[2]) + v(&f[3]);
+            }
+            for c in fours.remainder() {
+                *t += v(c);
+            }
+        }
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a pool");
+            let mut out = start.clone();
+            pool.install(|| add_columns_pooled(&cols, &zcols, &mut out));
+            let same = out
+                .iter()
+                .zip(&reference)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same, "{threads} threads");
+        }
     }
 }
