@@ -11,8 +11,7 @@
 //! * `zone`: the beam's contact zone with `Rnn`, `Rtt` in Matrix Market files, `unilateral solve
 //!   --trace end --tightening 1` (the paper's procedure);
 //! * `zone+out`: the same with `--csv` and `--report` as well (sizes up to
-//!   `UNILATERAL_BENCH_REPORT_MAX`, default 300: today the report re-evaluates the path at every
-//!   event);
+//!   `UNILATERAL_BENCH_REPORT_MAX`, default 300);
 //! * `model`: a structural model, a continuous deck on `m` frictional elastic bearings (an
 //!   elastomer layer meshed with QM6 under a frame member, the bearings' bases on the ground),
 //!   condensed and traced to the end in the process (an early mechanism at m = 2000: a short
@@ -20,7 +19,10 @@
 //! * `beam`: a structural model, a continuous frame beam (spans 1 m) on `m` frictional elastic
 //!   bearings, each a vertical and a horizontal spring under a sole plate with a frictional
 //!   contact pair to the beam; dead weight, a variable load from down to up along the beam and a
-//!   sideways load (bearings lift and slide in turn: the long path), `solve --trace end`.
+//!   sideways load (bearings lift and slide in turn: the long path), `solve --trace end`;
+//! * `beam+out`: the same with `--csv` and `--report`, and `beam+vtk` with `--vtk` (binary), for
+//!   sizes up to `UNILATERAL_BENCH_REPORT_MAX` (the path without tightening: its tables and
+//!   charts read the path's breakpoints; every ParaView frame is a recovered structure).
 //!
 //! `UNILATERAL_BENCH_CASES=beam` (a comma-separated list of the case names) runs only those.
 //!
@@ -390,6 +392,26 @@ fn main() {
         if selected("beam") {
             let args = ["solve", &beam_s, "--trace", "end", "--json", "out.json"];
             row("beam", &run(&args, d));
+        }
+        let beam_args = ["solve", &beam_s, "--trace", "end", "--json", "out.json"];
+        if m <= report_max() && selected("beam+out") {
+            let mut a = beam_args.to_vec();
+            a.extend(["--csv", "bcsv", "--report", "brep"]);
+            row("beam+out", &run(&a, d));
+        }
+        if m <= report_max() && selected("beam+vtk") {
+            let mut a = beam_args.to_vec();
+            a.extend(["--vtk", "bvtk", "--vtk-format", "binary"]);
+            row("beam+vtk", &run(&a, d));
+            let (files, bytes) = std::fs::read_dir(d.join("bvtk")).map_or((0, 0), |r| {
+                r.flatten().fold((0, 0u64), |(n, b), e| {
+                    (n + 1, b + e.metadata().map_or(0, |m| m.len()))
+                })
+            });
+            println!(
+                "{m:>5} beam+vtk: {files} files, {:.0} MB",
+                bytes as f64 / 1e6
+            );
         }
     }
     println!("load average after: {}", load_average());
