@@ -17,6 +17,8 @@ pub struct ContactLcp {
     pub lexicographic_order: Vec<usize>,
     /// Number of pairs `m`.
     pub pairs: usize,
+    /// The friction coefficient of each pair.
+    pub friction: Vec<f64>,
 }
 
 impl ContactLcp {
@@ -83,7 +85,25 @@ impl ContactLcp {
             tightening_direction: dir,
             lexicographic_order,
             pairs: m,
+            friction: f.clone(),
         }
+    }
+
+    /// The rows that the formulation ties exactly, one relation a pair with friction:
+    /// `x_t+ + x_t- − 2f·x_n = (2·max(1, f) − 2f)·c`, because the rows of `M`, `d` and `q_c` of
+    /// the two friction parts add up to `2f` times the normal row. Given to the engine, they
+    /// decide the tie of a slipping pair's normal row and opposite friction row from the data.
+    pub fn row_relations(&self) -> Vec<unilateral_lcp::RowRelation> {
+        let m = self.pairs;
+        (0..m)
+            .map(|i| {
+                let mut terms = vec![(m + i, 1.0), (2 * m + i, 1.0)];
+                if self.friction[i] != 0.0 {
+                    terms.push((i, -2.0 * self.friction[i]));
+                }
+                unilateral_lcp::RowRelation { terms }
+            })
+            .collect()
     }
 
     /// The tightening of amount `c` in this problem's direction (`None` for `c = 0`).

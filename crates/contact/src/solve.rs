@@ -20,6 +20,7 @@ fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
         // The start at p = 0 follows a tightening down; without one given, in the direction
         // that keeps friction consistent (`max(1, f)` on the tangential rows).
         covering: Some(lcp.tightening_direction.clone()),
+        row_relations: lcp.row_relations(),
         ..s.engine.clone()
     }
 }

@@ -67,7 +67,7 @@ pub use path::{
 pub use problem::{Lcp, ParametricLcp};
 pub use progress::{Phase, Progress, Snapshot};
 pub use residual::Residual;
-pub use settings::{Settings, ACCEPT_RESIDUAL};
+pub use settings::{RowRelation, Settings, ACCEPT_RESIDUAL};
 pub use solution::{LcpPoint, LcpSolution, LcpStatus, Strategy};
 pub use solver::{follow_path, solution_at, tableaux, PathSolver};
 pub use tableau::Tableau;

@@ -101,6 +101,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         settings.refactor_interval,
     );
     piv.progress = settings.progress.clone();
+    piv.relations = solver.relations.clone();
     let start_z = basic_z(prep, &piv.basis.slot_var, &cols.values(&piv.beta));
     let mut records: Vec<PivotRecord> = Vec::new();
     let mut crossed = None;

@@ -24,6 +24,10 @@ pub struct Settings {
     pub lexicographic_order: Option<Vec<usize>>,
     /// Covering vector of the standard Lemke method (all entries `> 0`); default all ones.
     pub covering: Option<Vec<f64>>,
+    /// Rows that the problem's formulation ties exactly (see [`RowRelation`]): ties in the
+    /// ratio test between them are then decided from the relation, not from round-off of the
+    /// basic values. Default: none.
+    pub row_relations: Vec<RowRelation>,
     /// Where the methods report what they are doing (default: nowhere). Not a setting of the
     /// computation: it is never validated, two handles compare equal, and the answer is the
     /// same with or without one.
@@ -38,9 +42,27 @@ impl Default for Settings {
             refactor_interval: 50,
             lexicographic_order: None,
             covering: None,
+            row_relations: Vec::new(),
             progress: crate::Progress::default(),
         }
     }
+}
+
+/// A linear relation `Σ λ_i x_i = λᵀ(q0 + t·cov)` that the formulation guarantees between rows of
+/// the problem: `λᵀM = 0` and `λᵀd = 0` hold in exact arithmetic (and in the floating-point data
+/// to round-off of their terms). In the contact LCP each pair's friction rows satisfy
+/// `x_t+ + x_t- − 2f·x_n = (2·max(1, f) − 2f)·c`.
+///
+/// On a basis where two of its rows are basic and the others not, the two rows' ratios differ by
+/// an amount the relation fixes exactly (zero, or of the sign of the right-hand side's
+/// combination); computed from the basic values they differ by round-off, which can let the
+/// wrong row leave. With the relation given, the engine decides such ties from it (and
+/// lexicographically when it is zero), and a row alone among its relation's basic rows never
+/// moves. A relation the data do not satisfy to round-off of the terms is not used.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RowRelation {
+    /// `(row i, λ_i)` with `λ_i ≠ 0`.
+    pub terms: Vec<(usize, f64)>,
 }
 
 /// Residual above which a solution is not reported as solved.
@@ -60,6 +82,18 @@ impl Settings {
             {
                 return Err(SettingsError::LexicographicOrder(n).into());
             }
+        }
+        if let Some(i) = self
+            .row_relations
+            .iter()
+            .flat_map(|r| &r.terms)
+            .map(|&(i, _)| i)
+            .find(|&i| i >= n)
+        {
+            return Err(LcpError::Dimension(format!(
+                "a row relation names row {}, the problem has {n}",
+                i + 1
+            )));
         }
         if let Some(c) = &self.covering {
             if c.len() != n {

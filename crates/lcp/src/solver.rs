@@ -58,6 +58,8 @@ pub struct PathSolver {
     pub(crate) c0: f64,
     /// The tightening's direction (zeros without one).
     pub(crate) cov: Vec<f64>,
+    /// The settings' row relations that the data satisfy, in the equilibrated rows.
+    pub(crate) relations: std::sync::Arc<crate::pivoting::relations::Relations>,
 }
 
 impl fmt::Debug for PathSolver {
@@ -85,7 +87,12 @@ impl PathSolver {
         let ParametricLcp { m, q0, d } = problem;
         let prep = Prepared::from_owned(m);
         let (c0, cov) = tightening_of(&options, n);
+        let relations = std::sync::Arc::new(crate::pivoting::relations::Relations::new(
+            &prep,
+            &settings.row_relations,
+        ));
         Ok(Self {
+            relations,
             q0,
             d,
             options,

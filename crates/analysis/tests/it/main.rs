@@ -12,6 +12,7 @@ mod history;
 mod keys;
 mod long_path;
 mod mindlin;
+mod related_rows;
 mod scale;
 mod surface;
 mod timings;

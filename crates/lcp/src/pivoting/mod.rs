@@ -10,4 +10,5 @@ pub(crate) mod enumerate;
 pub(crate) mod kernel;
 pub(crate) mod pivot;
 pub(crate) mod prepare;
+pub(crate) mod relations;
 pub(crate) mod scaling;

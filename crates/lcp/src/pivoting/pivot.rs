@@ -3,6 +3,7 @@
 
 use crate::pivoting::basis::{Basis, SingularBasis};
 use crate::pivoting::columns::Columns;
+use crate::pivoting::relations::Relations;
 
 /// Numerical thresholds, all relative to the (equilibrated) data.
 #[derive(Debug, Clone, Copy)]
@@ -90,6 +91,13 @@ pub(crate) struct Pivoter<'a> {
     pub ray_check: Option<RayCheck>,
     /// Bumped after every recorded pivot (inert unless a caller sets one: the load path does).
     pub progress: crate::Progress,
+    /// Rows the formulation ties exactly (none unless a caller sets them: the load path does).
+    pub relations: std::sync::Arc<Relations>,
+    /// The column entering at the ratio test under way.
+    entering: usize,
+    /// For each column of the start basis, its slot's rank in the priority (`usize::MAX`: not
+    /// in the start).
+    lex_rank: Vec<usize>,
 }
 
 /// A ray's direction checked against the data: the entering variable at rate 1, every basic
@@ -167,7 +175,66 @@ impl<'a> Pivoter<'a> {
             since_values: 0,
             ray_check: None,
             progress: crate::Progress::default(),
+            relations: Default::default(),
+            entering: usize::MAX,
+            lex_rank: Vec::new(),
         }
+        .with_lex_rank()
+    }
+
+    /// [`Pivoter::lex_rank`] of the current start and priority.
+    fn with_lex_rank(mut self) -> Self {
+        self.set_lex_rank();
+        self
+    }
+
+    fn set_lex_rank(&mut self) {
+        let mut rank = vec![usize::MAX; 2 * self.cols.n + 1];
+        for (k, &slot) in self.priority.iter().enumerate() {
+            if let Some(&c) = self.start.get(slot) {
+                rank[c] = k;
+            }
+        }
+        self.lex_rank = rank;
+    }
+
+    /// The sign of the first non-zero entry of `λᵀB_start` in the priority order: `λ_i` for a
+    /// start slot holding `x_i`, zero for a column of `M` (`λᵀM = 0`), `driver` for the
+    /// driver's column.
+    fn relation_lex_sign(&self, terms: &[(usize, f64)], driver: i8) -> i8 {
+        let d = self.cols.driver();
+        let mut best = (usize::MAX, 0i8);
+        for &(i, l) in terms {
+            let r = self.lex_rank[i];
+            if r < best.0 {
+                best = (r, if l > 0.0 { 1 } else { -1 });
+            }
+        }
+        if driver != 0 && self.lex_rank[d] < best.0 {
+            best = (self.lex_rank[d], driver);
+        }
+        best.1
+    }
+
+    /// The candidates that the row relations do not exclude ([`Relations::filter`]).
+    fn related_candidates(&self, cand: Vec<usize>) -> Vec<usize> {
+        if self.relations.is_empty() {
+            return cand;
+        }
+        let b = &self.basis;
+        let n = self.cols.n;
+        let driver = self.cols.driver();
+        self.relations.filter(
+            cand,
+            |s| b.slot_var[s],
+            |i| (i < n && b.is_basic(i)).then(|| b.var_slot[i]),
+            self.entering,
+            driver,
+            b.is_basic(driver),
+            &self.cols.h,
+            &self.cols.g,
+            |terms, drv| self.relation_lex_sign(terms, drv),
+        )
     }
 
     fn zero_value(&self) -> f64 {
@@ -315,6 +382,7 @@ impl<'a> Pivoter<'a> {
 
     /// [`Pivoter::ratio_test`] over the given candidate slots (positive entries of `alpha`).
     fn ratio_test_over(&self, alpha: &[f64], cand: Vec<usize>) -> Option<(usize, f64)> {
+        let cand = self.related_candidates(cand);
         if cand.is_empty() {
             return None;
         }
@@ -480,6 +548,7 @@ impl<'a> Pivoter<'a> {
     /// judgement made on accurate numbers: a ray on a fresh factorisation, a tiny pivot on basic
     /// values recomputed from the data.
     pub fn choose(&mut self, entering: usize) -> Result<(Vec<f64>, Option<Choice>), SingularBasis> {
+        self.entering = entering;
         let (mut alpha, drift) = self.basis.ftran_checked(&self.cols, entering);
         self.drift = drift;
         let mut step = self.ratio_test(&alpha);
@@ -734,6 +803,7 @@ impl<'a> Pivoter<'a> {
         let mut order: Vec<usize> = (0..n).collect();
         order.sort_by_key(|&s| key(self.start[s]));
         self.priority = order;
+        self.set_lex_rank();
         let mut col = vec![0.0; n];
         self.start_scale = self
             .start

@@ -8,6 +8,7 @@ mod degenerate;
 mod hostile;
 mod paper_example1;
 mod ray_verification;
+mod related_rows;
 mod solver;
 mod sweep;
 mod units;

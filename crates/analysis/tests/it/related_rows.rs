@@ -1,0 +1,147 @@
+//! The whole-process benchmark's long-path model (a continuous beam on frictional elastic
+//! bearings, `crates/cli/benches/whole_process.rs`, case `beam`) at m = 700, the smallest size in
+//! 600..=1000 whose path failed: it stopped at a numerically singular basis after 2152 steps
+//! (p ≈ 5134). There pair 274, slipping in the + direction (`z_t+` basic, `x_t+ = 0`), had
+//! `x_t- = 2f·x_n` by the data, so its rows `x_n` and `x_t-` reach zero at the same load; judged
+//! on round-off of the basic values the opposite friction row `x_t-` left instead of the normal
+//! row, its complement `z_t-` (the column of `z_t+` negated) entered, and the basis turned
+//! singular. The friction rows' relation `x_t+ + x_t- − 2f·x_n = (2·max(1, f) − 2f)·c` is now
+//! given to the engine, which decides such ties from it.
+//!
+//! References, none of them the code under test:
+//! * the physics: every bearing has springs, and the friction capacity `0.3·Σx_n` exceeds the
+//!   sideways load at every load (by vertical equilibrium `Σx_n = L·(1e4 + 1.5e4·p)` over the
+//!   beam of length L, the variable load going linearly from 4e4 down to −1e4 N/m; so a
+//!   capacity of `L·(3e3 + 4.5e3·p)` against `L·1e3·p` sideways): the structure is never a
+//!   mechanism and the load path ends in a ray (the scheme stops changing);
+//! * the contact conditions (formulation.md §1–§3) of the reported solutions, at the target and
+//!   on the final ray beyond the last event (the state the failure kept the path from), evaluated
+//!   here from the contact zone's matrices and loads (`x = R_c + p·R_v + R z`), each row against
+//!   the terms that form it, and the vertical equilibrium `Σx_n` against the hand value above.
+
+use unilateral_analysis::analyze;
+use unilateral_contact::{ContactZone, Outcome, PairResult};
+use unilateral_io::{read_problem, Problem};
+use unilateral_oracle::fixtures::bearings::beam_model;
+
+/// The contact conditions of `pairs` at load `p`, from the zone's data; returns the sum of the
+/// sizes of the terms that form the normal forces.
+fn check_contact_conditions(z: &ContactZone, p: f64, pairs: &[PairResult]) -> f64 {
+    let m = pairs.len();
+    let (zn, zt): (Vec<f64>, Vec<f64>) = pairs.iter().map(|r| (r.z_n, r.z_t)).unzip();
+    let row = |i: usize, normal: bool| -> (f64, f64) {
+        let (load_c, load_v, rn, rt) = if normal {
+            (&z.constant.normal, &z.variable.normal, &z.rnn, &z.rnt)
+        } else {
+            (
+                &z.constant.tangential,
+                &z.variable.tangential,
+                &z.rtn,
+                &z.rtt,
+            )
+        };
+        let mut v = load_c[i] + p * load_v[i];
+        let mut size = load_c[i].abs() + (p * load_v[i]).abs();
+        for j in 0..m {
+            v += rn[(i, j)] * zn[j] + rt[(i, j)] * zt[j];
+            size += (rn[(i, j)] * zn[j]).abs() + (rt[(i, j)] * zt[j]).abs();
+        }
+        (v, size)
+    };
+    let tol = 1e-9;
+    let mut terms = 0.0;
+    for (i, r) in pairs.iter().enumerate() {
+        let f = z.friction[i];
+        let (xn, sn) = row(i, true);
+        let (xt, st) = row(i, false);
+        let (sn, st) = (sn.max(xn.abs()), st.max(xt.abs()));
+        terms += sn;
+        assert!(
+            (xn - r.x_n).abs() <= tol * sn,
+            "p = {p}, pair {i}: x_n {} vs {xn}",
+            r.x_n
+        );
+        // x_t is read from the LCP's rows x_t± = f·x_n ± x_t, each accurate to the round-off
+        // of its own terms, which include those of f·x_n.
+        assert!(
+            (xt - r.x_t).abs() <= tol * (st + f * sn),
+            "p = {p}, pair {i}: x_t {} vs {xt}",
+            r.x_t
+        );
+        assert!(xn >= -tol * sn && r.z_n >= 0.0, "p = {p}, pair {i}: signs");
+        assert!(
+            xn.abs() <= tol * sn || r.z_n == 0.0,
+            "p = {p}, pair {i}: x_n·z_n ≠ 0"
+        );
+        let limit = f * xn;
+        let slack = tol * (st + f * sn);
+        assert!(
+            xt.abs() <= limit + slack,
+            "p = {p}, pair {i}: |x_t| {xt} > f·x_n {limit}"
+        );
+        if r.z_t != 0.0 {
+            let at = -r.z_t.signum() * limit;
+            assert!(
+                (xt - at).abs() <= slack,
+                "p = {p}, pair {i}: slip {} with x_t {xt}",
+                r.z_t
+            );
+        }
+    }
+    terms
+}
+
+/// The 700-bearing beam is traced to its ray, and its solutions at the target and beyond the
+/// last event satisfy the contact conditions, checked from the zone's data.
+#[test]
+fn the_700_bearing_beam_is_traced_to_its_ray() {
+    const M: usize = 700;
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("beam700.toml");
+    std::fs::write(&path, beam_model(M)).unwrap();
+    let p = match read_problem(&path).unwrap() {
+        Problem::Structural(p) => p,
+        Problem::ContactZone(_) => panic!("a structural model"),
+    };
+    let a = analyze(&p.model, &p.settings).unwrap();
+    let s = &a.solution;
+    let Outcome::Ray { p_from } = s.outcome else {
+        panic!(
+            "the structure is no mechanism and the path must not fail: {:?} after {} steps",
+            s.outcome,
+            s.steps.len()
+        );
+    };
+    // The failure was beyond p ≈ 5134, after 2151 steps: the path now goes past it.
+    assert!(
+        p_from > 5000.0 && s.steps.len() > 2150,
+        "{} steps to {p_from}",
+        s.steps.len()
+    );
+    assert_eq!(s.p, Some(1.0), "the solution is reported at the target");
+    let terms = check_contact_conditions(&a.zone, 1.0, &s.pairs);
+    let sum: f64 = s.pairs.iter().map(|r| r.x_n).sum();
+    let hand = (M - 1) as f64 * (1e4 + 1.5e4);
+    assert!(
+        (sum - hand).abs() <= 1e-9 * terms,
+        "Σx_n = {sum}, by hand {hand}, terms {terms}"
+    );
+
+    // On the final ray, beyond the last event.
+    let p_end = 2.0 * p_from;
+    let (pairs, residual) = s.at(p_end).unwrap().expect("a solution on the ray");
+    assert!(
+        residual.max() <= unilateral_lcp::ACCEPT_RESIDUAL,
+        "verified: {residual:?}"
+    );
+    let terms = check_contact_conditions(&a.zone, p_end, &pairs);
+    // Vertical equilibrium of the beam (length L = M − 1): Σx_n = L·(1e4 + 1.5e4·p), within
+    // round-off of the terms that form the normal forces (far beyond the target the slips are
+    // large and their terms cancel).
+    let sum: f64 = pairs.iter().map(|r| r.x_n).sum();
+    let hand = (M - 1) as f64 * (1e4 + 1.5e4 * p_end);
+    assert!(
+        (sum - hand).abs() <= 1e-9 * terms,
+        "Σx_n = {sum}, by hand {hand}, terms {terms}"
+    );
+}

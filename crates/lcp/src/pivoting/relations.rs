@@ -1,0 +1,198 @@
+//! Rows that the formulation ties exactly ([`crate::RowRelation`]), in the equilibrated rows, and
+//! the ratio test's use of them.
+//!
+//! For a relation `Σ λ_i x_i = κ` (`λᵀM = 0`, `λᵀg = 0`, `κ = λᵀh`), on a basis where the
+//! relation's rows other than `a` and `b` are non-basic (zero) and the entering variable is none
+//! of them, the rates of the two basic rows satisfy `λ_a α_a + λ_b α_b = 0` and their ratios
+//! differ by exactly `κ / (λ_b α_b)`. The perturbed right-hand side `h + B_start ε` of the
+//! lexicographic rule adds `(λᵀB_start) ε` to `κ`, so when `κ` is zero the sign of the first
+//! non-zero entry of `λᵀB_start` in the priority order decides. Either way one of the two rows
+//! can never leave before the other: it is no candidate. A row alone among its relation's basic
+//! rows has the rate zero exactly: it is no candidate either. Judged on basic values and columns
+//! computed with the updated inverse, these rows differ by round-off instead, which on long
+//! paths let the opposite friction part of a slipping pair leave before its normal row: its
+//! complement then enters with the column of the basic friction part negated, and the basis
+//! turns singular.
+
+use crate::pivoting::prepare::Prepared;
+use crate::RowRelation;
+
+/// A sum that cancels to within this fraction of its terms is zero by the data (the rows of a
+/// relation are formed with a few roundings each: `f·a + b`, `f·a − b`).
+const EXACT: f64 = 1e-13;
+
+/// The relations that the data satisfy, in the equilibrated rows: `(row, λ_i / E_i)`.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Relations {
+    list: Vec<Vec<(usize, f64)>>,
+    /// The relation of each row (`usize::MAX`: none).
+    of_row: Vec<usize>,
+}
+
+/// `Σ λ_i v_i` and `Σ |λ_i v_i|`.
+fn combine(terms: &[(usize, f64)], v: impl Fn(usize) -> f64) -> (f64, f64) {
+    terms.iter().fold((0.0, 0.0), |(s, t), &(i, l)| {
+        let x = l * v(i);
+        (s + x, t + x.abs())
+    })
+}
+
+/// `−1`, `0` or `1`: the sign of a combination, zero when it cancels to round-off of its terms.
+fn sign_of((s, t): (f64, f64)) -> i8 {
+    if s.abs() <= EXACT * t {
+        0
+    } else if s > 0.0 {
+        1
+    } else {
+        -1
+    }
+}
+
+impl Relations {
+    /// The given relations that the equilibrated `M` satisfies (`λᵀM = 0` to round-off of each
+    /// column's terms); a relation that shares a row with an earlier kept one is dropped. One
+    /// pass over the columns.
+    pub fn new(prep: &Prepared, given: &[RowRelation]) -> Self {
+        let n = prep.n;
+        let list: Vec<Vec<(usize, f64)>> = given
+            .iter()
+            .map(|r| {
+                r.terms
+                    .iter()
+                    .map(|&(i, l)| (i, l / prep.scaling.row[i]))
+                    .collect::<Vec<_>>()
+            })
+            .filter(|t| t.len() >= 2 && t.iter().all(|&(i, l)| i < n && l.is_finite() && l != 0.0))
+            .collect();
+        if list.is_empty() {
+            return Self::default();
+        }
+        let mut holds = vec![true; list.len()];
+        for j in 0..n {
+            let (col, _) = prep.m_scaled.col(j);
+            for (k, terms) in list.iter().enumerate() {
+                if holds[k] && sign_of(combine(terms, |i| col[i])) != 0 {
+                    holds[k] = false;
+                }
+            }
+        }
+        let mut of_row = vec![usize::MAX; n];
+        let mut kept = Vec::new();
+        for (terms, ok) in list.into_iter().zip(holds) {
+            if ok && terms.iter().all(|&(i, _)| of_row[i] == usize::MAX) {
+                for &(i, _) in &terms {
+                    of_row[i] = kept.len();
+                }
+                kept.push(terms);
+            }
+        }
+        if kept.is_empty() {
+            return Self::default();
+        }
+        Self { list: kept, of_row }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+
+    /// The candidate slots that the relations do not exclude (see the module documentation).
+    ///
+    /// `var_of` gives the basic variable of a slot, `slot_of` the slot of a basic `x_i`,
+    /// `entering` is the entering column, `driver` the driver's column, `driver_basic` whether it
+    /// is basic, `h` and `g` the tableau's right-hand side and driver column, and `lex` the
+    /// sign of the first non-zero entry of `λᵀB_start` in the priority order for a relation.
+    #[allow(clippy::too_many_arguments)]
+    pub fn filter(
+        &self,
+        cand: Vec<usize>,
+        var_of: impl Fn(usize) -> usize,
+        slot_of: impl Fn(usize) -> Option<usize>,
+        entering: usize,
+        driver: usize,
+        driver_basic: bool,
+        h: &[f64],
+        g: &[f64],
+        lex: impl Fn(&[(usize, f64)], i8) -> i8,
+    ) -> Vec<usize> {
+        if self.list.is_empty() || cand.is_empty() {
+            return cand;
+        }
+        let n = self.of_row.len();
+        let mut seen = vec![false; self.list.len()];
+        let mut excluded: Vec<usize> = Vec::new();
+        for &s in &cand {
+            let v = var_of(s);
+            if v >= n || self.of_row[v] == usize::MAX {
+                continue;
+            }
+            let k = self.of_row[v];
+            if std::mem::replace(&mut seen[k], true) {
+                continue;
+            }
+            let terms = &self.list[k];
+            if terms.iter().any(|&(i, _)| i == entering) {
+                continue;
+            }
+            // The driver moves with the entering column: the relation pins the rows only if
+            // it does not involve the driver.
+            let g_sign = sign_of(combine(terms, |i| g[i]));
+            if (driver_basic || entering == driver) && g_sign != 0 {
+                continue;
+            }
+            let basic: Vec<(usize, f64)> = terms
+                .iter()
+                .filter_map(|&(i, l)| slot_of(i).map(|s| (s, l)))
+                .collect();
+            match basic[..] {
+                // Alone: its rate is zero by the data.
+                [(a, _)] => excluded.push(a),
+                [(a, la), (b, lb)] if (la > 0.0) != (lb > 0.0) => {
+                    let kappa = match sign_of(combine(terms, |i| h[i])) {
+                        0 => lex(terms, -g_sign),
+                        s => s,
+                    };
+                    // ratio_b − ratio_a has the sign of κ·λ_b.
+                    match kappa as f64 * lb {
+                        d if d > 0.0 => excluded.push(b),
+                        d if d < 0.0 => excluded.push(a),
+                        _ => {}
+                    }
+                }
+                _ => {}
+            }
+        }
+        if excluded.is_empty() {
+            return cand;
+        }
+        let mut cand = cand;
+        cand.retain(|s| !excluded.contains(s));
+        cand
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::mat;
+
+    /// Rows 1 and 2 add up to twice row 0 (by hand); rows 0 and 1 do not add up to zero.
+    #[test]
+    fn only_relations_that_the_data_satisfy_are_kept() {
+        let m = mat![[1.0, 2.0, -3.0], [0.5, 3.0, 1.0], [1.5, 1.0, -7.0]];
+        let prep = Prepared::new(&m);
+        let holds = RowRelation {
+            terms: vec![(1, 1.0), (2, 1.0), (0, -2.0)],
+        };
+        let fails = RowRelation {
+            terms: vec![(0, 1.0), (1, 1.0)],
+        };
+        let r = Relations::new(&prep, std::slice::from_ref(&holds));
+        assert_eq!(r.list.len(), 1);
+        assert_eq!(r.of_row, vec![0, 0, 0]);
+        assert!(Relations::new(&prep, std::slice::from_ref(&fails)).is_empty());
+        // A failing relation takes no rows; a row already in a relation is not taken again.
+        let r = Relations::new(&prep, &[fails, holds.clone(), holds]);
+        assert_eq!(r.list.len(), 1);
+    }
+}
