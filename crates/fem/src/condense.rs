@@ -114,7 +114,7 @@ impl Model {
         asm.kii_triplets = Vec::new();
         let kzz = std::mem::replace(&mut asm.kzz, Mat::zeros(0, 0));
         let kii = asm.kii.take();
-        let (c, t_con) = timed(|| condense(&asm, kii.as_ref(), kzz, llt.as_ref()));
+        let (c, t_con) = timed(|| condense(&asm, kii.as_ref(), kzz, llt.as_ref(), lambda));
         drop(kii);
         let m = asm.map.m;
         let (case_rf, t_cases) = timed(|| case_vectors(&asm, &c.rf, llt.as_ref()));
