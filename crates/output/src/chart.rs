@@ -43,7 +43,28 @@ pub fn end_load(sol: &ContactSolution) -> Option<f64> {
 /// segment ([`ContactSolution::at_many`]). An error of the solution at a load is returned.
 /// Nothing is solved or prepared again.
 pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
-    let mut out = traced_samples(sol)?;
+    let mut out = match traced_samples(sol) {
+        // the product out of range where the solution is not (a friction coefficient near
+        // the end of the range): the solution at the breakpoints' loads
+        Err(ContactError::OutOfRange(_)) if sol.tightening == 0.0 => {
+            let loads: Vec<f64> = thin(
+                sol.path.breakpoints.iter().map(|b| b.p).collect(),
+                MAX_SAMPLES,
+            );
+            let mut out = PathSamples {
+                loads: Vec::new(),
+                pairs: Vec::new(),
+            };
+            for (p, at) in loads.iter().copied().zip(sol.at_many(&loads)?) {
+                if let Some((pairs, _)) = at {
+                    out.loads.push(p);
+                    out.pairs.push(pairs);
+                }
+            }
+            out
+        }
+        other => other?,
+    };
     if sol.tightening > 0.0 {
         return Ok(out);
     }

@@ -173,9 +173,22 @@ pub(crate) fn breakpoint_blocks(
     // the tightening they are the solution at the step's load (the path is continuous there),
     // and at a step after a turning point they are that step's point, not another point of
     // the path at the same load.
+    // Where the product leaves the floating-point range although the solution does not (a
+    // friction coefficient near the end of the range: `x_t± = f·x_n ± x_t`), a path without
+    // tightening is evaluated at the steps' loads instead, as its reported solution was.
     for block in sol.steps.chunks(BREAKPOINT_BLOCK) {
         let points: Vec<(usize, f64)> = block.iter().map(|st| (st.index, 0.0)).collect();
-        let at = sol.traced_on_segments(&points)?;
+        let at = match sol.traced_on_segments(&points) {
+            Err(unilateral_contact::ContactError::OutOfRange(_)) if sol.tightening == 0.0 => {
+                let loads: Vec<f64> = block.iter().map(|s| s.p).collect();
+                sol.at_many(&loads)?
+                    .into_iter()
+                    .zip(loads)
+                    .map(|(point, p)| point.map(|(pairs, _)| (p, pairs)))
+                    .collect()
+            }
+            other => other?,
+        };
         f(block, check(block, at)?)?;
     }
     Ok(())
