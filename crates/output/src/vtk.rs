@@ -312,30 +312,55 @@ fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
     // without c (the only one recovered) may show no change at all: its animation is the
     // start and the reported state; the physical path is animated by a run with c = 0.
     let tightened = a.solution.tightening > 0.0;
+    let bps = &a.solution.path.breakpoints;
+    // the settled start: the last breakpoint at p = 0
+    let start = bps
+        .iter()
+        .take_while(|b| same(b.p, 0.0))
+        .count()
+        .saturating_sub(1);
     let events = a
         .solution
         .steps
         .iter()
         .filter(|s| !tightened && !s.settling && !s.events.is_empty())
-        .map(|s| s.p);
-    let mut loads: Vec<f64> = std::iter::once(0.0)
+        .map(|s| (s.p, s.index));
+    // (load, breakpoint): breakpoint k is the point after step k
+    let mut frames: Vec<(f64, usize)> = std::iter::once((0.0, start))
         .chain(events)
-        .filter(|p| p.is_finite())
-        .filter(|&p| reported.is_none_or(|(end, _)| !same(p, end)))
+        .filter(|(p, _)| p.is_finite())
+        .filter(|&(p, _)| reported.is_none_or(|(end, _)| !same(p, end)))
         .collect();
-    loads.sort_by(f64::total_cmp);
-    loads.dedup_by(|x, y| same(*x, *y));
-    // One walk along the path for the pairs of all frames; their structures are recovered
-    // frame by frame as the files are made ([`Snapshot::pending`]).
-    let answers = a.solution.at_many(&loads).unwrap_or_default();
+    frames.sort_by(|x, y| x.0.total_cmp(&y.0));
+    frames.dedup_by(|x, y| same(x.0, y.0));
+    let loads: Vec<f64> = frames.iter().map(|f| f.0).collect();
+    // Without tightening the breakpoints are the solution at their loads: their pairs are
+    // read from the path (one product for all frames). With it, only the start is shown, the
+    // solution at p = 0 evaluated on the path; so is any frame where the product leaves the
+    // floating-point range although the solution does not. The structures are recovered frame
+    // by frame as the files are made ([`Snapshot::pending`]).
+    let at_loads = || -> Vec<Option<Vec<PairResult>>> {
+        a.solution.at_many(&loads).map_or_else(
+            |_| vec![None; loads.len()],
+            |v| v.into_iter().map(|x| x.map(|(pairs, _)| pairs)).collect(),
+        )
+    };
+    let answers: Vec<Option<Vec<PairResult>>> = if tightened || bps.is_empty() {
+        at_loads()
+    } else {
+        let points: Vec<(usize, f64)> = frames.iter().map(|&(_, k)| (k, 0.0)).collect();
+        match a.solution.traced_on_segments(&points) {
+            Ok(v) => v.into_iter().map(|x| x.map(|(_, pairs)| pairs)).collect(),
+            Err(_) => at_loads(),
+        }
+    };
     let mut out: Vec<Snapshot> = loads
         .into_iter()
         .zip(answers)
-        .filter_map(|(p, answer)| {
-            let (pairs, _) = answer?;
+        .filter_map(|(p, pairs)| {
             Some(Snapshot {
                 p,
-                pairs: Cow::Owned(pairs),
+                pairs: Cow::Owned(pairs?),
                 results: None,
                 reported: false,
                 pending: true,
