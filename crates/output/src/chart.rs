@@ -70,17 +70,34 @@ pub fn samples(sol: &ContactSolution) -> Result<PathSamples, ContactError> {
     }
     // Without tightening the breakpoints are the solution at their loads; the charts go on
     // to the end (on a ray, a little beyond the last event), a load past the last breakpoint.
+    // There the scheme of the last segment holds, the values are linear in p: the reported
+    // solution is that point when it lies at the end, and the end is on the straight line
+    // through the last breakpoint and the reported solution when that lies beyond it (no walk
+    // along the path and no fresh solve: on a path of thousands of steps either costs as much
+    // as the trace). Otherwise the curves end at the last breakpoint.
     let last = out.loads.last().copied().unwrap_or(0.0);
-    if let Some(e) = end_load(sol).filter(|&e| e > last * (1.0 + 1e-12)) {
-        if let Some(Some((pairs, _))) = sol.at_many(&[e])?.into_iter().next() {
+    let near = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1.0);
+    if let (Some(e), Some(p), Some(last_pairs)) = (end_load(sol), sol.p, out.pairs.last()) {
+        if e > last && !near(e, last) && p > last && !near(p, last) {
+            let pairs = if near(p, e) {
+                sol.pairs.clone()
+            } else {
+                let s = (e - last) / (p - last);
+                let lerp = |a: f64, b: f64| a + s * (b - a);
+                last_pairs
+                    .iter()
+                    .zip(&sol.pairs)
+                    .map(|(a, b)| PairResult {
+                        x_n: lerp(a.x_n, b.x_n),
+                        x_t: lerp(a.x_t, b.x_t),
+                        z_n: lerp(a.z_n, b.z_n),
+                        z_t: lerp(a.z_t, b.z_t),
+                        ..b.clone()
+                    })
+                    .collect()
+            };
             out.loads.push(e);
             out.pairs.push(pairs);
-        } else if sol
-            .p
-            .is_some_and(|q| (q - e).abs() <= 1e-12 * e.abs().max(1.0))
-        {
-            out.loads.push(e);
-            out.pairs.push(sol.pairs.clone());
         }
     }
     Ok(out)

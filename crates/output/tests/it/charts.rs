@@ -127,3 +127,63 @@ fn untightened_charts_are_the_solution() {
         }
     }
 }
+
+/// Beyond the last event of a ray the charts end a quarter further on, where the last scheme
+/// still holds: that point is on the straight line through the last breakpoint and the
+/// reported solution when the target lies between them (here the cantilever's ray from
+/// p = 1.2402, the target moved to 1.3, the end at 1.25·1.2402). Reference: the engine's
+/// solution at that load (`ContactSolution::at`, a fresh basis there).
+#[test]
+fn untightened_charts_end_on_the_ray() {
+    let pb =
+        match unilateral_io::read_problem(&examples().join("example2-cantilever.toml")).unwrap() {
+            Problem::Structural(pb) => pb,
+            Problem::ContactZone(_) => panic!("a structural model"),
+        };
+    let mut settings = pb.settings.clone();
+    settings.target = 1.3;
+    settings.follow = unilateral_contact::Follow::ToEnd;
+    let sol = unilateral_analysis::analyze(&pb.model, &settings)
+        .unwrap()
+        .solution;
+    let unilateral_contact::Outcome::Ray { p_from } = sol.outcome else {
+        panic!("a ray: {:?}", sol.outcome)
+    };
+    assert!(p_from < 1.3 && 1.3 < 1.25 * p_from, "p_from = {p_from}");
+    let s = unilateral_output::samples(&sol).unwrap();
+    let (&e, pairs) = (s.loads.last().unwrap(), s.pairs.last().unwrap());
+    assert_eq!(e, 1.25 * p_from);
+    let (want, _) = sol.at(e).unwrap().expect("on the ray");
+    let (fmax, dmax) = largest(&want);
+    for (a, b) in want.iter().zip(pairs) {
+        assert_eq!(a.state, b.state, "{}", a.name);
+        assert!(
+            (a.x_n - b.x_n).abs() <= 1e-9 * fmax,
+            "{}: {} vs {}",
+            a.name,
+            a.x_n,
+            b.x_n
+        );
+        assert!(
+            (a.x_t - b.x_t).abs() <= 1e-9 * fmax,
+            "{}: {} vs {}",
+            a.name,
+            a.x_t,
+            b.x_t
+        );
+        assert!(
+            (a.z_n - b.z_n).abs() <= 1e-9 * dmax,
+            "{}: {} vs {}",
+            a.name,
+            a.z_n,
+            b.z_n
+        );
+        assert!(
+            (a.z_t - b.z_t).abs() <= 1e-9 * dmax,
+            "{}: {} vs {}",
+            a.name,
+            a.z_t,
+            b.z_t
+        );
+    }
+}
