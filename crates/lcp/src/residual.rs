@@ -269,7 +269,7 @@ impl Residual {
     }
 
     /// The residuals from sums rescaled row by row by powers of two (exact whatever the
-    /// magnitudes), `M` read entry by entry.
+    /// magnitudes), `M` read entry by entry; the data as [`Residual::of_terms`] checked them.
     fn rescaled(
         m: &impl Fn(usize, usize) -> f64,
         shape: (usize, usize),
@@ -279,18 +279,7 @@ impl Residual {
         z: &[f64],
     ) -> Self {
         let (rows, cols) = (q.len(), z.len());
-        if w.iter()
-            .chain(z)
-            .chain(q)
-            .chain(size)
-            .any(|v| !v.is_finite())
-            || size.len() != rows
-            || shape.0 != rows
-            || shape.1 != cols
-            || w.len() != rows
-        {
-            return Self::unverifiable();
-        }
+        debug_assert_eq!(shape, (rows, cols));
         // Only the columns of non-zero `z` form terms of the residual: a pass over those alone
         // (the residual of a point on a long path is then `O(n·k)` to check, not `O(n²)`).
         if (0..cols).any(|j| z[j] != 0.0 && (0..rows).any(|i| !m(i, j).is_finite())) {

@@ -19,6 +19,7 @@
 //!   from the contact zone's matrices and loads (`x = R_c + p·R_v + R z`), each row against the
 //!   terms that form it.
 
+use crate::zone_rows::check_contact_conditions;
 use unilateral_analysis::analyze;
 use unilateral_contact::Outcome;
 use unilateral_io::{read_problem, Problem};
@@ -49,64 +50,5 @@ fn the_500_bearing_beam_is_traced_to_its_ray() {
 
     // The contact conditions at p = 1 from the zone: x_n = R_c,n + p R_v,n + Rnn z_n + Rnt z_t,
     // x_t likewise; each row measured against the size of its terms.
-    let z = &a.zone;
-    let pt = 1.0;
-    let (zn, zt): (Vec<f64>, Vec<f64>) = s.pairs.iter().map(|r| (r.z_n, r.z_t)).unzip();
-    let row = |i: usize, normal: bool| -> (f64, f64) {
-        let (load_c, load_v, rn, rt) = if normal {
-            (&z.constant.normal, &z.variable.normal, &z.rnn, &z.rnt)
-        } else {
-            (
-                &z.constant.tangential,
-                &z.variable.tangential,
-                &z.rtn,
-                &z.rtt,
-            )
-        };
-        let mut v = load_c[i] + pt * load_v[i];
-        let mut size = load_c[i].abs() + (pt * load_v[i]).abs();
-        for j in 0..M {
-            v += rn[(i, j)] * zn[j] + rt[(i, j)] * zt[j];
-            size += (rn[(i, j)] * zn[j]).abs() + (rt[(i, j)] * zt[j]).abs();
-        }
-        (v, size)
-    };
-    let tol = 1e-9;
-    for (i, r) in s.pairs.iter().enumerate() {
-        let f = z.friction[i];
-        let (xn, sn) = row(i, true);
-        let (xt, st) = row(i, false);
-        let (sn, st) = (sn.max(xn.abs()), st.max(xt.abs()));
-        assert!(
-            (xn - r.x_n).abs() <= tol * sn,
-            "pair {i}: x_n {} vs {xn}",
-            r.x_n
-        );
-        assert!(
-            (xt - r.x_t).abs() <= tol * st,
-            "pair {i}: x_t {} vs {xt}",
-            r.x_t
-        );
-        assert!(xn >= -tol * sn && r.z_n >= 0.0, "pair {i}: signs");
-        // Complementarity: an open pair carries no force, a closed one does not open.
-        assert!(
-            xn.abs() <= tol * sn || r.z_n == 0.0,
-            "pair {i}: x_n·z_n ≠ 0"
-        );
-        // Coulomb: |x_t| ≤ f x_n, and a slip opposes the force at its limit.
-        let limit = f * xn;
-        let slack = tol * (st + f * sn);
-        assert!(
-            xt.abs() <= limit + slack,
-            "pair {i}: |x_t| {xt} > f·x_n {limit}"
-        );
-        if r.z_t != 0.0 {
-            let at = -r.z_t.signum() * limit;
-            assert!(
-                (xt - at).abs() <= slack,
-                "pair {i}: slip {} with x_t {xt}",
-                r.z_t
-            );
-        }
-    }
+    check_contact_conditions(&a.zone, 1.0, &s.pairs);
 }

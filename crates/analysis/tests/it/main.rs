@@ -17,3 +17,4 @@ mod scale;
 mod surface;
 mod timings;
 mod triangle_block;
+mod zone_rows;

@@ -157,33 +157,13 @@ fn untightened_charts_end_on_the_ray() {
     let (fmax, dmax) = largest(&want);
     for (a, b) in want.iter().zip(pairs) {
         assert_eq!(a.state, b.state, "{}", a.name);
-        assert!(
-            (a.x_n - b.x_n).abs() <= 1e-9 * fmax,
-            "{}: {} vs {}",
-            a.name,
-            a.x_n,
-            b.x_n
-        );
-        assert!(
-            (a.x_t - b.x_t).abs() <= 1e-9 * fmax,
-            "{}: {} vs {}",
-            a.name,
-            a.x_t,
-            b.x_t
-        );
-        assert!(
-            (a.z_n - b.z_n).abs() <= 1e-9 * dmax,
-            "{}: {} vs {}",
-            a.name,
-            a.z_n,
-            b.z_n
-        );
-        assert!(
-            (a.z_t - b.z_t).abs() <= 1e-9 * dmax,
-            "{}: {} vs {}",
-            a.name,
-            a.z_t,
-            b.z_t
-        );
+        for (u, v, scale) in [
+            (a.x_n, b.x_n, fmax),
+            (a.x_t, b.x_t, fmax),
+            (a.z_n, b.z_n, dmax),
+            (a.z_t, b.z_t, dmax),
+        ] {
+            assert!((u - v).abs() <= 1e-9 * scale, "{}: {u} vs {v}", a.name);
+        }
     }
 }
