@@ -19,11 +19,8 @@
 //!   from the contact zone's matrices and loads (`x = R_c + p·R_v + R z`), each row against the
 //!   terms that form it.
 
-use crate::zone_rows::check_contact_conditions;
-use unilateral_analysis::analyze;
+use crate::zone_rows::{bearing_beam, check_contact_conditions};
 use unilateral_contact::Outcome;
-use unilateral_io::{read_problem, Problem};
-use unilateral_oracle::fixtures::bearings::beam_model;
 
 /// The path of the 500-bearing beam reaches its end without a numerical failure or a false
 /// mechanism, and the solution it reports at the target satisfies the contact conditions,
@@ -31,14 +28,7 @@ use unilateral_oracle::fixtures::bearings::beam_model;
 #[test]
 fn the_500_bearing_beam_is_traced_to_its_ray() {
     const M: usize = 500;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("beam500.toml");
-    std::fs::write(&path, beam_model(M)).unwrap();
-    let p = match read_problem(&path).unwrap() {
-        Problem::Structural(p) => p,
-        Problem::ContactZone(_) => panic!("a structural model"),
-    };
-    let a = analyze(&p.model, &p.settings).unwrap();
+    let a = bearing_beam(M);
     let s = &a.solution;
     assert!(
         matches!(s.outcome, Outcome::Ray { .. }),

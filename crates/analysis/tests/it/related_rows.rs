@@ -19,25 +19,15 @@
 //!   here from the contact zone's matrices and loads (`x = R_c + p·R_v + R z`), each row against
 //!   the terms that form it, and the vertical equilibrium `Σx_n` against the hand value above.
 
-use crate::zone_rows::check_contact_conditions;
-use unilateral_analysis::analyze;
+use crate::zone_rows::{bearing_beam, check_contact_conditions};
 use unilateral_contact::Outcome;
-use unilateral_io::{read_problem, Problem};
-use unilateral_oracle::fixtures::bearings::beam_model;
 
 /// The 700-bearing beam is traced to its ray, and its solutions at the target and beyond the
 /// last event satisfy the contact conditions, checked from the zone's data.
 #[test]
 fn the_700_bearing_beam_is_traced_to_its_ray() {
     const M: usize = 700;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("beam700.toml");
-    std::fs::write(&path, beam_model(M)).unwrap();
-    let p = match read_problem(&path).unwrap() {
-        Problem::Structural(p) => p,
-        Problem::ContactZone(_) => panic!("a structural model"),
-    };
-    let a = analyze(&p.model, &p.settings).unwrap();
+    let a = bearing_beam(M);
     let s = &a.solution;
     let Outcome::Ray { p_from } = s.outcome else {
         panic!(

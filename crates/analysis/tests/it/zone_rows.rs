@@ -1,7 +1,10 @@
 //! The contact conditions' rows evaluated from a contact zone's own matrices and loads, for the
 //! tests that check a reported solution against the zone rather than the engine's values.
 
+use unilateral_analysis::{analyze, Analysis};
 use unilateral_contact::{ContactZone, PairResult};
+use unilateral_io::{read_problem, Problem};
+use unilateral_oracle::fixtures::bearings::beam_model;
 
 /// `x_n` (`normal`) or `x_t` of pair `i` at load `p` for the mutual displacements `zn`, `zt`:
 /// `R_c + p·R_v + R z` (formulation.md §2), and the sum of the sizes of the terms that form it.
@@ -80,4 +83,17 @@ pub fn check_contact_conditions(z: &ContactZone, p: f64, pairs: &[PairResult]) -
         }
     }
     terms
+}
+
+/// The analysis of the whole-process benchmark's beam on `m` frictional elastic bearings
+/// (`unilateral_oracle::fixtures::bearings::beam_model`), read from its model file.
+pub fn bearing_beam(m: usize) -> Analysis {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(format!("beam{m}.toml"));
+    std::fs::write(&path, beam_model(m)).unwrap();
+    let p = match read_problem(&path).unwrap() {
+        Problem::Structural(p) => p,
+        Problem::ContactZone(_) => panic!("a structural model"),
+    };
+    analyze(&p.model, &p.settings).unwrap()
 }
