@@ -338,7 +338,7 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
     if let Some(p) = a.solution.p {
         progress.phase(unilateral_lcp::Phase::Recovering);
         let started = Instant::now();
-        let r = a.recover(p, &a.solution.pairs)?;
+        let r = a.recover_pairs(p, &a.solution.pairs)?;
         a.results = Some(r);
         a.timings.recover = Some(started.elapsed());
     }
@@ -549,10 +549,6 @@ impl Analysis {
     /// [`unilateral_contact::ContactSolution::at_many`] at many loads in one walk along the
     /// path): one solve with the bonded structure's factor, checked finite.
     pub fn recover_pairs(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
-        self.recover(p, pairs)
-    }
-
-    fn recover(&self, p: f64, pairs: &[PairResult]) -> Result<Results, AnalysisError> {
         let r = self
             .condensed
             .recover(&link_values(p, pairs))
@@ -565,22 +561,18 @@ impl Analysis {
     /// the engine's own failure) is [`AnalysisError::Contact`].
     pub fn results_at(&self, p: f64) -> Result<(Vec<PairResult>, Results), AnalysisError> {
         let Some((pairs, _)) = self.solution.at(p)? else {
-            return Err(self.not_on_path(p));
+            let end = match &self.solution.outcome {
+                Outcome::Ray { .. } => "infinity (ray)".to_string(),
+                _ => self
+                    .solution
+                    .steps
+                    .last()
+                    .map_or("p = 0".to_string(), |s| format!("p = {}", s.p)),
+            };
+            return Err(AnalysisError::NotOnPath { p, end });
         };
-        let r = self.recover(p, &pairs)?;
+        let r = self.recover_pairs(p, &pairs)?;
         Ok((pairs, r))
-    }
-
-    fn not_on_path(&self, p: f64) -> AnalysisError {
-        let end = match &self.solution.outcome {
-            Outcome::Ray { .. } => "infinity (ray)".to_string(),
-            _ => self
-                .solution
-                .steps
-                .last()
-                .map_or("p = 0".to_string(), |s| format!("p = {}", s.p)),
-        };
-        AnalysisError::NotOnPath { p, end }
     }
 
     /// The loads of the events along the path (one per step), in order.

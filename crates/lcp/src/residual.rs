@@ -230,9 +230,9 @@ impl Residual {
             wneg = wneg.max(rel((-w[i]).max(0.0), s[i]));
         }
         // The effect of each z_j on the rows it meets, relative to their scales.
-        let effect_of = |&j: &usize| -> f64 {
-            let mut col = vec![0.0; rows];
-            m.column_into(j, 0..rows, &mut col);
+        // One column buffer per thread (or one for the whole pass), not one per column.
+        let effect_of = |col: &mut Vec<f64>, &j: &usize| -> f64 {
+            m.column_into(j, 0..rows, col);
             let mut met = false;
             let mut best = 0.0f64;
             for (&mij, &si) in col.iter().zip(&s) {
@@ -248,9 +248,12 @@ impl Residual {
             }
         };
         let effects: Vec<f64> = if parallel {
-            nz.par_iter().map(effect_of).collect()
+            nz.par_iter()
+                .map_init(|| vec![0.0; rows], effect_of)
+                .collect()
         } else {
-            nz.iter().map(effect_of).collect()
+            let mut col = vec![0.0; rows];
+            nz.iter().map(|j| effect_of(&mut col, j)).collect()
         };
         let mut effect = vec![0.0; z.len()];
         for (&j, e) in nz.iter().zip(effects) {

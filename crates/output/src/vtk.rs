@@ -140,15 +140,14 @@ pub fn write_vtk_with(
             Ok(Some(files))
         })
         .collect();
-    let failed = made.iter().any(|m| m.is_err());
-    if failed {
+    if made.iter().any(Result::is_err) {
         for f in made.iter().flatten().flatten().flatten() {
             let _ = std::fs::remove_file(f);
         }
-        for m in made {
-            m?;
-        }
-        unreachable!("an error was found above");
+        return Err(made
+            .into_iter()
+            .find_map(Result::err)
+            .expect("one frame failed"));
     }
     let mut written = Vec::new();
     let mut k = 0usize;
