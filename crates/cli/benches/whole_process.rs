@@ -25,6 +25,8 @@
 //!   charts read the path's breakpoints; every ParaView frame is a recovered structure).
 //!
 //! `UNILATERAL_BENCH_CASES=beam` (a comma-separated list of the case names) runs only those.
+//! `UNILATERAL_BENCH_KEEP=DIR` writes the input files into `DIR/m{m}/` and keeps them (to
+//! profile one run by hand); otherwise they go to a temporary folder removed after each size.
 //!
 //! Every case writes `--json`; the column `solve s` is its `timings.solve`, the solve alone.
 //!
@@ -337,7 +339,13 @@ fn main() {
     );
     for m in sizes() {
         let dir = tempfile::tempdir().unwrap();
-        let d = dir.path();
+        let kept = std::env::var("UNILATERAL_BENCH_KEEP")
+            .ok()
+            .map(|k| Path::new(&k).join(format!("m{m}")));
+        if let Some(k) = &kept {
+            std::fs::create_dir_all(k).unwrap();
+        }
+        let d = kept.as_deref().unwrap_or(dir.path());
         let n = 3 * m;
         let lu = lu_seconds(n);
         let z = zone(m);

@@ -33,8 +33,9 @@ impl ContactLcp {
         let f = &zone.friction;
         let n = 3 * m;
         let mut mm = Mat::<f64>::zeros(n, n);
-        for i in 0..m {
-            for j in 0..m {
+        // Column by column (faer's storage order), so that every write is contiguous.
+        for j in 0..m {
+            for i in 0..m {
                 let (nn, nt, tn, tt) = (
                     zone.rnn[(i, j)],
                     zone.rnt[(i, j)],

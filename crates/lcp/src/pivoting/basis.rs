@@ -12,7 +12,8 @@ use faer::Mat;
 use rayon::prelude::*;
 
 use crate::pivoting::columns::Columns;
-use crate::pivoting::kernel::{dot, KernelInverse};
+use crate::pivoting::kernel::KernelInverse;
+use crate::pivoting::simd::{self, dot};
 
 /// Revised representation of a complementary basis.
 #[derive(Debug, Clone)]
@@ -407,35 +408,16 @@ fn add_columns_pooled(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64]) {
 }
 
 /// `out += Σ y_s S[offset.., s]` over `(s, y_s)` with `S` the stored columns of `M`, in the
-/// order of `zcols`, four columns to a partial sum: `out_i += (y_a S_ia + y_b S_ib + y_c S_ic +
-/// y_d S_id)` for each four in turn, then the left-over columns one by one. Two fours are
-/// taken per pass over `out` (eight columns read side by side, half the passes over `out`);
-/// the sums are formed exactly as one four at a time would form them.
+/// order of `zcols`, four columns to a partial sum ([`simd::add_columns`], compiled for the
+/// machine's widest vectors with the same bits).
 fn add_columns(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64], offset: usize) {
     let len = out.len();
-    let part = |s: usize| &cols.m.stored(s)[offset..offset + len];
-    let mut eights = zcols.chunks_exact(8);
-    for ch in &mut eights {
-        let c: [&[f64]; 8] = std::array::from_fn(|j| part(ch[j].0));
-        let y: [f64; 8] = std::array::from_fn(|j| ch[j].1);
-        let [c0, c1, c2, c3, c4, c5, c6, c7] = c;
-        for (i, t) in out.iter_mut().enumerate() {
-            let first = *t + (y[0] * c0[i] + y[1] * c1[i] + y[2] * c2[i] + y[3] * c3[i]);
-            *t = first + (y[4] * c4[i] + y[5] * c5[i] + y[6] * c6[i] + y[7] * c7[i]);
-        }
-    }
-    let rest = eights.remainder();
-    let mut fours = rest.chunks_exact(4);
-    for ch in &mut fours {
-        let (c0, c1, c2, c3) = (part(ch[0].0), part(ch[1].0), part(ch[2].0), part(ch[3].0));
-        let (y0, y1, y2, y3) = (ch[0].1, ch[1].1, ch[2].1, ch[3].1);
-        for ((((t, a0), a1), a2), a3) in out.iter_mut().zip(c0).zip(c1).zip(c2).zip(c3) {
-            *t += y0 * a0 + y1 * a1 + y2 * a2 + y3 * a3;
-        }
-    }
-    for &(j, y) in fours.remainder() {
-        crate::pivoting::kernel::axpy(out, y, part(j));
-    }
+    let parts: Vec<&[f64]> = zcols
+        .iter()
+        .map(|&(s, _)| &cols.m.stored(s)[offset..offset + len])
+        .collect();
+    let y: Vec<f64> = zcols.iter().map(|&(_, y)| y).collect();
+    simd::add_columns(&parts, &y, out);
 }
 
 #[cfg(test)]
