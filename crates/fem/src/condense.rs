@@ -75,6 +75,9 @@ pub struct Condensed {
     pub(crate) model: Model,
     pub(crate) asm: Assembled,
     pub(crate) llt: Option<Llt<usize, f64>>,
+    /// The elements' global stiffness matrices, kept from the second recovery on (a load path's
+    /// frames recover the structure thousands of times; one recovery keeps nothing).
+    pub(crate) element_k: crate::recover::ElementCache,
 }
 
 impl std::fmt::Debug for Condensed {
@@ -168,6 +171,7 @@ impl Model {
             model: self.clone(),
             asm,
             llt,
+            element_k: Default::default(),
         })
     }
 }

@@ -4,12 +4,38 @@
 
 use crate::condense::Condensed;
 use crate::elements::spring::{spring_force, spring_matrix};
-use crate::elements::{element_stiffness, unit as element_unit, Recovered};
+use crate::elements::{element_stiffness, unit as element_unit, ElemMat, Recovered};
 use crate::error::FemError;
 use crate::model::{ElementId, Endpoint, Load};
 use crate::results::{ratio, ContactLoadVector, Equilibrium, LinkValues, Reaction, Results};
 use faer::linalg::solvers::SolveCore;
 use faer::{Conj, Mat};
+
+/// The elements' global stiffness matrices of a condensed model, formed once the model is
+/// recovered a second time (the frames of a load path recover it thousands of times, and
+/// forming every element's matrix again each time cost more than the rest of a recovery).
+#[derive(Debug, Default)]
+pub(crate) struct ElementCache {
+    recoveries: std::sync::atomic::AtomicUsize,
+    k: std::sync::OnceLock<Vec<ElemMat>>,
+}
+
+impl ElementCache {
+    /// The matrices when they are kept (from the second call on), `None` at the first call.
+    fn get(&self, model: &crate::model::Model) -> Option<&[ElemMat]> {
+        use std::sync::atomic::Ordering;
+        if self.recoveries.fetch_add(1, Ordering::Relaxed) == 0 {
+            return None;
+        }
+        Some(self.k.get_or_init(|| {
+            model
+                .elements
+                .iter()
+                .map(|el| element_stiffness(model, el))
+                .collect()
+        }))
+    }
+}
 
 /// The applied load of one recovery: the generalized loads at the free DOFs, the prescribed
 /// values, the physical equivalent loads, and the factor of every load case (for the element
@@ -195,9 +221,17 @@ impl Condensed {
         let mut planes = Vec::new();
         let mut stress_sum: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
         let mut stress_cnt = vec![0usize; nn];
+        let kept = self.element_k.get(model);
         for (ei, el) in model.elements.iter().enumerate() {
             let unit = element_unit(el);
-            let em = element_stiffness(model, el);
+            let formed;
+            let em = match kept {
+                Some(k) => &k[ei],
+                None => {
+                    formed = element_stiffness(model, el);
+                    &formed
+                }
+            };
             let n = em.dofs.len();
             let ue: Vec<f64> = em.dofs.iter().map(|&d| u[d]).collect();
             for a in 0..n {

@@ -77,81 +77,105 @@ pub fn write_vtk_with(
     dir: &Path,
     format: VtkFormat,
 ) -> io::Result<Vec<PathBuf>> {
+    write_frames(analysis, dir, format, VTK_BLOCK)
+}
+
+/// [`write_vtk_with`], the frames' pairs read from the path `block` frames at a time.
+fn write_frames(
+    analysis: &Analysis,
+    dir: &Path,
+    format: VtkFormat,
+    block: usize,
+) -> io::Result<Vec<PathBuf>> {
     let model = analysis.condensed.model();
     crate::finite::analysis(analysis)?;
-    let snapshots = snapshots(analysis);
+    let plan = FramePlan::new(analysis);
     let mesh = MeshGeometry::new(model, format);
     let pairs = PairGeometry::new(model, analysis, format);
     std::fs::create_dir_all(dir)?;
-    let width = snapshots.len().saturating_sub(1).to_string().len().max(3);
+    // The width of the frame numbers as planned (the names in messages while the frames are
+    // made); the files get the width of the frames actually made when they are renamed.
+    let planned_width = plan.items().saturating_sub(1).to_string().len().max(3);
     let mut pvd = String::from(
         "<?xml version=\"1.0\"?>\n\
          <VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
          \x20 <Collection>\n",
     );
-    let empty;
-    let list: &[Snapshot] = if snapshots.is_empty() {
+    // Each frame is recovered, made and written on the thread pool into a `.part` file (each
+    // file's bytes do not depend on the number of threads). The frames' pairs are read from
+    // the path a block at a time ([`VTK_BLOCK`] frames), so that a path of thousands of frames
+    // holds one block of pairs and a structure per thread, not every frame at once. Only when
+    // every frame is made and checked are the files renamed, numbered in load order without
+    // the frames that could not be recovered, and the collection written.
+    let make = |i: usize, snap: &Snapshot| -> io::Result<Option<Vec<PathBuf>>> {
+        let recovered;
+        let snap = if snap.pending {
+            let Ok(r) = analysis.recover_pairs(snap.p, &snap.pairs) else {
+                return Ok(None);
+            };
+            recovered = Snapshot {
+                p: snap.p,
+                pairs: Cow::Borrowed(&snap.pairs),
+                results: Some(Cow::Owned(r)),
+                reported: snap.reported,
+                pending: false,
+            };
+            &recovered
+        } else {
+            snap
+        };
+        let mut files = Vec::with_capacity(2);
+        let name = format!("mesh_{i:0planned_width$}.vtu");
+        let text = mesh.vtu(model, snap).finish(&name)?;
+        files.push(write_file(dir, &part_name(i, 0), &text)?);
+        if pairs.m > 0 {
+            let name = format!("pairs_{i:0planned_width$}.vtu");
+            let text = pairs.vtu(snap).finish(&name)?;
+            files.push(write_file(dir, &part_name(i, 1), &text)?);
+        }
+        Ok(Some(files))
+    };
+    let mut made: Vec<(f64, io::Result<Option<Vec<PathBuf>>>)> = Vec::new();
+    let mut failed = false;
+    for block in plan.blocks(analysis, block) {
+        let first = made.len();
+        made.par_extend(
+            block
+                .par_iter()
+                .enumerate()
+                .map(|(j, snap)| (snap.p, make(first + j, snap))),
+        );
+        if made.iter().any(|(_, r)| r.is_err()) {
+            failed = true;
+            break;
+        }
+    }
+    if made.is_empty() && !failed {
         // No state of the path could be recovered: the geometry alone.
-        empty = [Snapshot {
+        let empty = Snapshot {
             p: 0.0,
             pairs: Cow::Borrowed(&[]),
             results: None,
             reported: false,
             pending: false,
-        }];
-        &empty
-    } else {
-        &snapshots
-    };
-    // The frames are recovered, made and written on the thread pool, each into a `.part`
-    // file (each file's bytes do not depend on the number of threads); only when every frame
-    // is made and checked are they renamed, numbered in load order without the frames that
-    // could not be recovered, and the collection written. A frame in memory at a time per
-    // thread, whatever the length of the path.
-    let made: Vec<io::Result<Option<Vec<PathBuf>>>> = list
-        .par_iter()
-        .enumerate()
-        .map(|(i, snap)| {
-            let recovered;
-            let snap = if snap.pending {
-                let Ok(r) = analysis.recover_pairs(snap.p, &snap.pairs) else {
-                    return Ok(None);
-                };
-                recovered = Snapshot {
-                    p: snap.p,
-                    pairs: Cow::Borrowed(&snap.pairs),
-                    results: Some(Cow::Owned(r)),
-                    reported: snap.reported,
-                    pending: false,
-                };
-                &recovered
-            } else {
-                snap
-            };
-            let mut files = Vec::with_capacity(2);
-            let name = format!("mesh_{i:0width$}.vtu");
-            let text = mesh.vtu(model, snap).finish(&name)?;
-            files.push(write_file(dir, &part_name(i, 0), &text)?);
-            if pairs.m > 0 {
-                let name = format!("pairs_{i:0width$}.vtu");
-                let text = pairs.vtu(snap).finish(&name)?;
-                files.push(write_file(dir, &part_name(i, 1), &text)?);
+        };
+        made.push((0.0, make(0, &empty)));
+    }
+    if made.iter().any(|(_, r)| r.is_err()) {
+        for (_, f) in &made {
+            for f in f.iter().flatten().flatten() {
+                let _ = std::fs::remove_file(f);
             }
-            Ok(Some(files))
-        })
-        .collect();
-    if made.iter().any(Result::is_err) {
-        for f in made.iter().flatten().flatten().flatten() {
-            let _ = std::fs::remove_file(f);
         }
         return Err(made
             .into_iter()
-            .find_map(Result::err)
+            .find_map(|(_, r)| r.err())
             .expect("one frame failed"));
     }
+    let width = made.len().saturating_sub(1).to_string().len().max(3);
     let mut written = Vec::new();
     let mut k = 0usize;
-    for (snap, files) in list.iter().zip(made) {
+    for (p, files) in made {
         let Some(files) = files? else { continue };
         for (part, file) in files.into_iter().enumerate() {
             let name = if part == 0 {
@@ -159,7 +183,7 @@ pub fn write_vtk_with(
             } else {
                 format!("pairs_{k:0width$}.vtu")
             };
-            dataset(&mut pvd, snap.p, part, &name);
+            dataset(&mut pvd, p, part, &name);
             let to = dir.join(&name);
             std::fs::rename(&file, &to)?;
             written.push(to);
@@ -171,6 +195,9 @@ pub fn write_vtk_with(
     written.push(write_file(dir, PVD_FILE, pvd.as_bytes())?);
     Ok(written)
 }
+
+/// Frames whose pairs are read from the path at once ([`FramePlan::blocks`]).
+const VTK_BLOCK: usize = 256;
 
 /// The temporary name of part `part` of frame `i` while the frames are made.
 fn part_name(i: usize, part: usize) -> String {
@@ -299,88 +326,136 @@ struct Snapshot<'a> {
     pending: bool,
 }
 
-/// The start, every step of the path that changes a pair's state (where recoverable; none for
-/// a path traced with the tightening) and the reported solution, sorted by load without
-/// repeats.
-fn snapshots(a: &Analysis) -> Vec<Snapshot<'_>> {
-    let same = |x: f64, y: f64| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0);
-    let reported = a.p().zip(a.results.as_ref());
-    // Frames where the working scheme changes: steps with events, not the pivots that only
-    // settle the starting scheme or trade an open pair's friction parts. A path traced with
-    // the paper's tightening has its events at loads that depend on c, where the structure
-    // without c (the only one recovered) may show no change at all: its animation is the
-    // start and the reported state; the physical path is animated by a run with c = 0.
-    let tightened = a.solution.tightening > 0.0;
-    let bps = &a.solution.path.breakpoints;
-    // the settled start: the last breakpoint at p = 0
-    let start = bps
-        .iter()
-        .take_while(|b| same(b.p, 0.0))
-        .count()
-        .saturating_sub(1);
-    let events = a
-        .solution
-        .steps
-        .iter()
-        .filter(|s| !tightened && !s.settling && !s.events.is_empty())
-        .map(|s| (s.p, s.index));
-    // (load, breakpoint): breakpoint k is the point after step k
-    let mut frames: Vec<(f64, usize)> = std::iter::once((0.0, start))
-        .chain(events)
-        .filter(|(p, _)| p.is_finite())
-        .filter(|&(p, _)| reported.is_none_or(|(end, _)| !same(p, end)))
-        .collect();
-    frames.sort_by(|x, y| x.0.total_cmp(&y.0));
-    frames.dedup_by(|x, y| same(x.0, y.0));
-    let loads: Vec<f64> = frames.iter().map(|f| f.0).collect();
-    // Without tightening the breakpoints are the solution at their loads: their pairs are
-    // read from the path (one product for all frames). With it, only the start is shown, the
-    // solution at p = 0 evaluated on the path; so is any frame where the product leaves the
-    // floating-point range although the solution does not. The structures are recovered frame
-    // by frame as the files are made ([`Snapshot::pending`]).
-    let at_loads = || -> Vec<Option<Vec<PairResult>>> {
-        a.solution.at_many(&loads).map_or_else(
-            |_| vec![None; loads.len()],
-            |v| v.into_iter().map(|x| x.map(|(pairs, _)| pairs)).collect(),
-        )
-    };
-    let answers: Vec<Option<Vec<PairResult>>> = if tightened || bps.is_empty() {
-        at_loads()
-    } else {
-        let points: Vec<(usize, f64)> = frames.iter().map(|&(_, k)| (k, 0.0)).collect();
-        match a.solution.traced_on_segments(&points) {
-            Ok(v) => v.into_iter().map(|x| x.map(|(_, pairs)| pairs)).collect(),
-            Err(_) => at_loads(),
+/// The frames of the animation: the start, every step of the path that changes a pair's state
+/// (where recoverable; none for a path traced with the tightening) and the reported solution,
+/// sorted by load without repeats. The pairs of the path's frames are read block by block
+/// ([`FramePlan::blocks`]).
+struct FramePlan<'a> {
+    /// (load, breakpoint) of the path's frames: breakpoint k is the point after step k.
+    frames: Vec<(f64, usize)>,
+    /// The frames' pairs are read from the path's breakpoints (one product a block), not
+    /// solved at their loads (a path traced with the tightening shows only the start, the
+    /// solution at p = 0 evaluated on the path).
+    from_breakpoints: bool,
+    /// The reported solution and its place among the frames (before `frames[at]`).
+    reported: Option<(f64, &'a Results, usize)>,
+}
+
+impl<'a> FramePlan<'a> {
+    fn new(a: &'a Analysis) -> Self {
+        let same = |x: f64, y: f64| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0);
+        let reported = a.p().zip(a.results.as_ref());
+        // Frames where the working scheme changes: steps with events, not the pivots that only
+        // settle the starting scheme or trade an open pair's friction parts. A path traced with
+        // the paper's tightening has its events at loads that depend on c, where the structure
+        // without c (the only one recovered) may show no change at all: its animation is the
+        // start and the reported state; the physical path is animated by a run with c = 0.
+        let tightened = a.solution.tightening > 0.0;
+        let bps = &a.solution.path.breakpoints;
+        // the settled start: the last breakpoint at p = 0
+        let start = bps
+            .iter()
+            .take_while(|b| same(b.p, 0.0))
+            .count()
+            .saturating_sub(1);
+        let events = a
+            .solution
+            .steps
+            .iter()
+            .filter(|s| !tightened && !s.settling && !s.events.is_empty())
+            .map(|s| (s.p, s.index));
+        let mut frames: Vec<(f64, usize)> = std::iter::once((0.0, start))
+            .chain(events)
+            .filter(|(p, _)| p.is_finite())
+            .filter(|&(p, _)| reported.is_none_or(|(end, _)| !same(p, end)))
+            .collect();
+        frames.sort_by(|x, y| x.0.total_cmp(&y.0));
+        frames.dedup_by(|x, y| same(x.0, y.0));
+        // The reported solution takes its place in load order (events beyond the target
+        // follow it).
+        let reported = reported.map(|(p, r)| (p, r, frames.partition_point(|f| f.0 < p)));
+        FramePlan {
+            frames,
+            from_breakpoints: !tightened && !bps.is_empty(),
+            reported,
         }
-    };
-    let mut out: Vec<Snapshot> = loads
-        .into_iter()
-        .zip(answers)
-        .filter_map(|(p, pairs)| {
-            Some(Snapshot {
-                p,
-                pairs: Cow::Owned(pairs?),
-                results: None,
-                reported: false,
-                pending: true,
-            })
-        })
-        .collect();
-    // The reported solution takes its place in load order (events beyond the target follow it).
-    if let Some((p, r)) = reported {
-        let at = out.partition_point(|s| s.p < p);
-        out.insert(
-            at,
-            Snapshot {
-                p,
-                pairs: Cow::Borrowed(&a.solution.pairs),
-                results: Some(Cow::Borrowed(r)),
-                reported: true,
-                pending: false,
-            },
-        );
     }
-    out
+
+    /// How many frames are planned (some may prove not to be on the path).
+    fn items(&self) -> usize {
+        self.frames.len() + usize::from(self.reported.is_some())
+    }
+
+    /// The frames in load order, `size` planned frames at a time: each block's pairs read
+    /// from the path's breakpoints by one product (or, with the tightening, or where the
+    /// product leaves the floating-point range although the solution does not, solved at the
+    /// frames' loads); the structures are recovered frame by frame as the files are made
+    /// ([`Snapshot::pending`]). Frames whose load is not on the path are left out.
+    fn blocks(&self, a: &'a Analysis, size: usize) -> impl Iterator<Item = Vec<Snapshot<'a>>> + '_ {
+        let n = self.frames.len();
+        let at = self.reported.map_or(n + 1, |(_, _, at)| at);
+        let size = size.max(1);
+        let mut start = 0usize;
+        let mut reported_done = self.reported.is_none();
+        std::iter::from_fn(move || {
+            if start >= n && reported_done {
+                return None;
+            }
+            let end = (start + size).min(n);
+            let part = &self.frames[start..end];
+            let loads: Vec<f64> = part.iter().map(|f| f.0).collect();
+            let at_loads = || -> Vec<Option<Vec<PairResult>>> {
+                a.solution.at_many(&loads).map_or_else(
+                    |_| vec![None; loads.len()],
+                    |v| v.into_iter().map(|x| x.map(|(pairs, _)| pairs)).collect(),
+                )
+            };
+            let answers: Vec<Option<Vec<PairResult>>> = if part.is_empty() {
+                Vec::new()
+            } else if self.from_breakpoints {
+                let points: Vec<(usize, f64)> = part.iter().map(|&(_, k)| (k, 0.0)).collect();
+                match a.solution.traced_on_segments(&points) {
+                    Ok(v) => v.into_iter().map(|x| x.map(|(_, pairs)| pairs)).collect(),
+                    Err(_) => at_loads(),
+                }
+            } else {
+                at_loads()
+            };
+            let mut out = Vec::with_capacity(part.len() + 1);
+            for (j, (p, pairs)) in loads.iter().zip(answers).enumerate() {
+                if !reported_done && start + j == at {
+                    out.push(self.reported_snapshot(a));
+                    reported_done = true;
+                }
+                if let Some(pairs) = pairs {
+                    out.push(Snapshot {
+                        p: *p,
+                        pairs: Cow::Owned(pairs),
+                        results: None,
+                        reported: false,
+                        pending: true,
+                    });
+                }
+            }
+            if !reported_done && at >= end && end == n {
+                out.push(self.reported_snapshot(a));
+                reported_done = true;
+            }
+            start = end;
+            Some(out)
+        })
+    }
+
+    fn reported_snapshot(&self, a: &'a Analysis) -> Snapshot<'a> {
+        let (p, r, _) = self.reported.expect("a reported solution");
+        Snapshot {
+            p,
+            pairs: Cow::Borrowed(&a.solution.pairs),
+            results: Some(Cow::Borrowed(r)),
+            reported: true,
+            pending: false,
+        }
+    }
 }
 
 /// The parts of a mesh file that do not change along the path.
@@ -1074,5 +1149,64 @@ mod tests {
         ] {
             assert_eq!(check_numbers("a.vtu", &text).unwrap_err().field, field);
         }
+    }
+}
+
+#[cfg(test)]
+mod block_tests {
+    use super::*;
+
+    /// The frames' pairs are read from the path a block at a time: whatever the block, the
+    /// same files with the same bytes, the reported solution in its place among the frames
+    /// (the bundled sheet pile wall is traced past its target: events follow the reported
+    /// load), numbered in load order.
+    #[test]
+    fn the_frames_do_not_depend_on_the_block() {
+        let file =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/sheet-pile-wall.toml");
+        let unilateral_io::Problem::Structural(problem) =
+            unilateral_io::read_problem(&file).unwrap()
+        else {
+            panic!("a structural model");
+        };
+        let a = unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap();
+        let plan = FramePlan::new(&a);
+        let (_, _, at) = plan.reported.expect("a reported solution");
+        assert!(
+            at > 0 && at < plan.frames.len(),
+            "reported at {at} of {}",
+            plan.frames.len()
+        );
+        let read = |block: usize| -> Vec<(String, Vec<u8>)> {
+            let dir = tempfile::tempdir().unwrap();
+            let files = write_frames(&a, dir.path(), VtkFormat::Binary, block).unwrap();
+            files
+                .iter()
+                .map(|f| {
+                    let name = f.file_name().unwrap().to_string_lossy().into_owned();
+                    (name, std::fs::read(f).unwrap())
+                })
+                .collect()
+        };
+        let whole = read(VTK_BLOCK);
+        // 31 frames (the start, 29 changes, the reported state), two files each, and the
+        // collection.
+        assert_eq!(whole.len(), 2 * 31 + 1);
+        for block in [1, 2, 5, 30] {
+            let got = read(block);
+            assert_eq!(got.len(), whole.len(), "block {block}");
+            for (g, w) in got.iter().zip(&whole) {
+                assert_eq!(g.0, w.0, "block {block}");
+                assert!(g.1 == w.1, "block {block}: {} differs", g.0);
+            }
+        }
+        // The reported state is the frame at its place in load order.
+        let pvd = String::from_utf8(whole.last().unwrap().1.clone()).unwrap();
+        let reported = format!("file=\"mesh_{at:03}.vtu\"");
+        let line = pvd
+            .lines()
+            .find(|l| l.contains(&reported))
+            .expect("the reported frame");
+        assert!(line.contains("timestep=\"1\""), "{line}");
     }
 }

@@ -23,6 +23,7 @@ use crate::model::{Element, ElementId, Load, Model, NodeId};
 use crate::results::{LineResult, PlaneResult};
 
 /// An element matrix in global physical DOFs.
+#[derive(Debug)]
 pub(crate) struct ElemMat {
     pub dofs: Vec<usize>,
     pub k: Vec<f64>,
