@@ -282,11 +282,25 @@ pub(crate) fn path_output_failure(e: unilateral_output::PathOutputError) -> Fail
 /// ([`unilateral_output::with_provenance`]): every document the program writes goes through
 /// here.
 pub(crate) fn write_json(out: &Path, value: serde_json::Value) -> Result<(), Failure> {
+    write_document(out, value.into())
+}
+
+/// [`write_json`] for a document whose values at the breakpoints are formed as it is written
+/// ([`unilateral_output::PathDocument`]). If forming them fails, the file is removed and the
+/// failure is that of the values (as [`path_output_failure`] says), not of the writing.
+pub(crate) fn write_document(
+    out: &Path,
+    doc: unilateral_output::PathDocument<'_>,
+) -> Result<(), Failure> {
     use std::io::Write;
-    let value = unilateral_output::with_provenance(value);
+    let doc = doc.map(unilateral_output::with_provenance);
+    let failed = |e: serde_json::Error, otherwise: &dyn Fn(&dyn std::fmt::Display) -> Failure| {
+        doc.take_error()
+            .map_or_else(|| otherwise(&e), path_output_failure)
+    };
     if out == Path::new("-") {
-        let text = serde_json::to_string_pretty(&value)
-            .map_err(|e| Failure::Internal(format!("JSON: {e}")))?;
+        let text = serde_json::to_string_pretty(&doc)
+            .map_err(|e| failed(e, &|e| Failure::Internal(format!("JSON: {e}"))))?;
         self::out(&format!("{text}\n"));
         return Ok(());
     }
@@ -295,7 +309,11 @@ pub(crate) fn write_json(out: &Path, value: serde_json::Value) -> Result<(), Fai
         |e: &dyn std::fmt::Display| Failure::Input(format!("cannot write {}: {e}", out.display()));
     let file = std::fs::File::create(out).map_err(|e| cannot(&e))?;
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
-    serde_json::to_writer_pretty(&mut w, &value).map_err(|e| cannot(&e))?;
+    if let Err(e) = serde_json::to_writer_pretty(&mut w, &doc) {
+        drop(w);
+        let _ = std::fs::remove_file(out);
+        return Err(failed(e, &cannot));
+    }
     w.write_all(b"\n")
         .and_then(|()| w.flush())
         .map_err(|e| cannot(&e))

@@ -316,21 +316,169 @@ fn path_document(
         }
     }
     if at.is_some() {
-        doc["step_pairs"] = if sol.tightening > 0.0 {
-            json!(format!(
-                "steps[k].pairs: every pair at the step's breakpoint of the path traced with the \
-                 tightening c = {}: these values, like the steps' events, depend on c (the \
-                 solution at the reported load, `pairs`, is free of it)",
-                sol.tightening
-            ))
-        } else {
-            json!(
-                "steps[k].pairs: every pair at the step's breakpoint of the path: the solution \
-                 at the step's p"
-            )
-        };
+        doc["step_pairs"] = step_pairs_label(sol);
     }
     Ok(with_provenance(doc))
+}
+
+/// What `steps[k].pairs` hold (`step_pairs` of a document with the values at the breakpoints).
+fn step_pairs_label(sol: &ContactSolution) -> Value {
+    if sol.tightening > 0.0 {
+        json!(format!(
+            "steps[k].pairs: every pair at the step's breakpoint of the path traced with the \
+             tightening c = {}: these values, like the steps' events, depend on c (the \
+             solution at the reported load, `pairs`, is free of it)",
+            sol.tightening
+        ))
+    } else {
+        json!(
+            "steps[k].pairs: every pair at the step's breakpoint of the path: the solution \
+             at the step's p"
+        )
+    }
+}
+
+/// A result document to be written, whose `steps[k].pairs` (the values of every pair at every
+/// breakpoint, on request) are formed and written a block of breakpoints at a time while the
+/// document is serialized, never all at once: a path of thousands of steps with hundreds of
+/// pairs is a document of hundreds of megabytes, and held whole (as [`contact_json_with`]
+/// returns it) it took several times that in memory. Serialized (`serde`), it is the same text
+/// as [`contact_json_with`]'s document with the same changes applied.
+///
+/// An error met while the values are formed (a number that is not finite, a point the engine
+/// cannot evaluate) makes the serialization fail; [`PathDocument::take_error`] then gives it.
+pub struct PathDocument<'a> {
+    /// The document without `steps[k].pairs`.
+    value: Value,
+    /// The solution whose breakpoints fill `steps[k].pairs`, when they are asked for.
+    breakpoints: Option<&'a ContactSolution>,
+    error: std::cell::RefCell<Option<PathOutputError>>,
+}
+
+impl From<Value> for PathDocument<'_> {
+    /// A document written as it is.
+    fn from(value: Value) -> Self {
+        Self {
+            value,
+            breakpoints: None,
+            error: Default::default(),
+        }
+    }
+}
+
+impl<'a> PathDocument<'a> {
+    /// The document of a contact solve with its options ([`contact_json_with`]), the values at
+    /// the breakpoints left to the serialization.
+    pub fn contact(
+        sol: &'a ContactSolution,
+        options: &PathJsonOptions,
+    ) -> Result<Self, PathOutputError> {
+        finite::contact_solution(sol)?;
+        let mut value = path_document(sol, None, &options.about)?;
+        if options.breakpoints {
+            value["step_pairs"] = step_pairs_label(sol);
+        }
+        Ok(Self {
+            value,
+            breakpoints: options.breakpoints.then_some(sol),
+            error: Default::default(),
+        })
+    }
+
+    /// The document of a structural analysis with its options ([`structural_json_with`]), the
+    /// values at the breakpoints left to the serialization.
+    pub fn structural(
+        a: &'a unilateral_analysis::Analysis,
+        options: &PathJsonOptions,
+    ) -> Result<Self, PathOutputError> {
+        finite::analysis(a)?;
+        Ok(Self::contact(&a.solution, options)?.map(|doc| with_results(a, doc)))
+    }
+
+    /// The document with `f` applied to its parts other than `steps[k].pairs` (such as
+    /// [`with_timings`], [`with_provenance`]).
+    pub fn map(mut self, f: impl FnOnce(Value) -> Value) -> Self {
+        self.value = f(self.value);
+        self
+    }
+
+    /// The error that made the last serialization fail, if the values at the breakpoints did.
+    pub fn take_error(&self) -> Option<PathOutputError> {
+        self.error.borrow_mut().take()
+    }
+}
+
+impl serde::Serialize for PathDocument<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let (Some(sol), Value::Object(obj)) = (self.breakpoints, &self.value) else {
+            return self.value.serialize(s);
+        };
+        let mut map = s.serialize_map(Some(obj.len()))?;
+        for (key, v) in obj {
+            if key == "steps" {
+                let steps = StepsWithPairs {
+                    steps: v,
+                    sol,
+                    error: &self.error,
+                };
+                map.serialize_entry(key, &steps)?;
+            } else {
+                map.serialize_entry(key, v)?;
+            }
+        }
+        map.end()
+    }
+}
+
+/// `steps` with every step's `pairs`, formed a block of breakpoints at a time
+/// ([`breakpoint_blocks`]) as the array is serialized.
+struct StepsWithPairs<'a> {
+    steps: &'a Value,
+    sol: &'a ContactSolution,
+    error: &'a std::cell::RefCell<Option<PathOutputError>>,
+}
+
+impl serde::Serialize for StepsWithPairs<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::{Error as _, SerializeSeq};
+        let Value::Array(steps) = self.steps else {
+            return self.steps.serialize(s);
+        };
+        let mut seq = s.serialize_seq(Some(steps.len()))?;
+        let mut failed: Option<S::Error> = None;
+        let mut k = 0usize;
+        let formed = breakpoint_blocks(self.sol, |_, block| {
+            for pairs in block {
+                let mut step = steps.get(k).cloned().unwrap_or(Value::Null);
+                k += 1;
+                if let Value::Object(o) = &mut step {
+                    let v = pairs.as_deref().map_or(Value::Null, pairs_json);
+                    o.insert("pairs".into(), v);
+                }
+                plain_zeros(&mut step);
+                if let Err(e) = seq.serialize_element(&step) {
+                    failed = Some(e);
+                    // Only a signal to stop: the serializer's error is the one returned.
+                    return Err(NonFiniteOutput {
+                        field: String::new(),
+                        value: 0.0,
+                    }
+                    .into());
+                }
+            }
+            Ok(())
+        });
+        if let Some(e) = failed {
+            return Err(e);
+        }
+        if let Err(e) = formed {
+            let text = e.to_string();
+            *self.error.borrow_mut() = Some(e);
+            return Err(S::Error::custom(text));
+        }
+        seq.end()
+    }
 }
 
 /// The result document of a plain LCP solve.

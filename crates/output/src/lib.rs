@@ -50,7 +50,7 @@ pub use finite::NonFiniteOutput;
 pub use json::{
     contact_json, contact_json_with, lcp_json, residual_json, structural_json,
     structural_json_with, tableaux_json, timings_json, with_provenance, with_timings, About,
-    PathJsonOptions, PathOutputError, SCHEMA,
+    PathDocument, PathJsonOptions, PathOutputError, SCHEMA,
 };
 pub use report::{
     report_html, write_path_report, write_report, write_report_for, write_structural_report,

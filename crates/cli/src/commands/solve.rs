@@ -17,7 +17,7 @@ use crate::failure::{
     analysis_failure, contact_failure, input_failure, outcome_failure, report_failure, Failure,
     ZoneOrigin,
 };
-use crate::output::{path_output_failure, report_files, write_json, Drawer};
+use crate::output::{path_output_failure, report_files, write_document, Drawer};
 use unilateral_lcp::Phase;
 use unilateral_output::{timings_summary, with_timings};
 
@@ -159,11 +159,11 @@ fn no_path_options(o: &Overrides) -> Result<(), Failure> {
 /// document with `timings.write` = the time spent on all of these (present only when something
 /// was written before the JSON). The JSON is written even when writing the other files failed;
 /// the first failure is the one returned.
-pub(crate) fn write_outputs(
+pub(crate) fn write_outputs<'a, D: Into<unilateral_output::PathDocument<'a>>>(
     args: &SolveArgs,
     mut timings: Timings,
     summary: impl FnOnce() -> Result<String, unilateral_output::NonFiniteOutput>,
-    json: impl FnOnce() -> Result<serde_json::Value, Failure>,
+    json: impl FnOnce() -> Result<D, Failure>,
     files: impl FnOnce() -> Result<(), Failure>,
 ) -> Result<(), Failure> {
     let started = Instant::now();
@@ -176,7 +176,8 @@ pub(crate) fn write_outputs(
         timings.write = Some(started.elapsed());
     }
     let json_written = match &args.json {
-        Some(out) => json().and_then(|doc| write_json(out, with_timings(doc, &timings))),
+        Some(out) => json()
+            .and_then(|doc| write_document(out, doc.into().map(|doc| with_timings(doc, &timings)))),
         None => Ok(()),
     };
     written.and(json_written)
@@ -220,7 +221,10 @@ fn contact_zone(
         args,
         timings,
         || unilateral_output::contact_summary_detail(&sol, &title, &about, detail),
-        || unilateral_output::contact_json_with(&sol, &json_options).map_err(path_output_failure),
+        || {
+            unilateral_output::PathDocument::contact(&sol, &json_options)
+                .map_err(path_output_failure)
+        },
         || {
             if let Some(dir) = &args.csv {
                 report_files(
@@ -271,7 +275,10 @@ fn structural(
         args,
         timings,
         || unilateral_output::structural_summary_detail(&a, &title, &about, detail),
-        || unilateral_output::structural_json_with(&a, &json_options).map_err(path_output_failure),
+        || {
+            unilateral_output::PathDocument::structural(&a, &json_options)
+                .map_err(path_output_failure)
+        },
         || {
             if let Some(dir) = &args.csv {
                 report_files(

@@ -4,6 +4,7 @@
 mod charts;
 mod examples;
 mod history;
+mod json_stream;
 mod structure_picture;
 mod units;
 mod vtk;
