@@ -22,7 +22,9 @@
 //!   sideways load (bearings lift and slide in turn: the long path), `solve --trace end`;
 //! * `beam+out`: the same with `--csv` and `--report`, and `beam+vtk` with `--vtk` (binary), for
 //!   sizes up to `UNILATERAL_BENCH_REPORT_MAX` (the path without tightening: its tables and
-//!   charts read the path's breakpoints; every ParaView frame is a recovered structure).
+//!   charts read the path's breakpoints; every ParaView frame is a recovered structure), and
+//!   `beam+bp` with `--json-breakpoints` (every pair at every breakpoint in the JSON, formed and
+//!   written a block at a time).
 //!
 //! `UNILATERAL_BENCH_CASES=beam` (a comma-separated list of the case names) runs only those.
 //! `UNILATERAL_BENCH_KEEP=DIR` writes the input files into `DIR/m{m}/` and keeps them (to
@@ -236,6 +238,8 @@ struct Run {
     solve: Option<f64>,
     /// The steps of the load path, from the JSON (when written).
     steps: Option<usize>,
+    /// The size of `out.json` (0 when none was written).
+    json_bytes: u64,
 }
 
 /// Runs the binary under `/usr/bin/time` and reads its figures.
@@ -272,6 +276,7 @@ fn run(args: &[&str], dir: &Path) -> Run {
         _ => (f64::NAN, f64::NAN),
     };
     let json = dir.join("out.json");
+    let json_bytes = std::fs::metadata(&json).map_or(0, |m| m.len());
     let doc = std::fs::read_to_string(&json)
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok());
@@ -287,6 +292,7 @@ fn run(args: &[&str], dir: &Path) -> Run {
         status,
         solve,
         steps,
+        json_bytes,
     }
 }
 
@@ -419,6 +425,16 @@ fn main() {
             println!(
                 "{m:>5} beam+vtk: {files} files, {:.0} MB",
                 bytes as f64 / 1e6
+            );
+        }
+        if m <= report_max() && selected("beam+bp") {
+            let mut a = beam_args.to_vec();
+            a.push("--json-breakpoints");
+            let r = run(&a, d);
+            row("beam+bp", &r);
+            println!(
+                "{m:>5} beam+bp: out.json {:.0} MB",
+                r.json_bytes as f64 / 1e6
             );
         }
     }

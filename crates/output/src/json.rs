@@ -450,13 +450,11 @@ impl serde::Serialize for StepsWithPairs<'_> {
         let mut k = 0usize;
         let formed = breakpoint_blocks(self.sol, |_, block| {
             for pairs in block {
-                let mut step = steps.get(k).cloned().unwrap_or(Value::Null);
+                let step = StepWithPairs {
+                    step: steps.get(k).unwrap_or(&Value::Null),
+                    pairs: pairs.as_deref(),
+                };
                 k += 1;
-                if let Value::Object(o) = &mut step {
-                    let v = pairs.as_deref().map_or(Value::Null, pairs_json);
-                    o.insert("pairs".into(), v);
-                }
-                plain_zeros(&mut step);
                 if let Err(e) = seq.serialize_element(&step) {
                     failed = Some(e);
                     // Only a signal to stop: the serializer's error is the one returned.
@@ -476,6 +474,74 @@ impl serde::Serialize for StepsWithPairs<'_> {
             let text = e.to_string();
             *self.error.borrow_mut() = Some(e);
             return Err(S::Error::custom(text));
+        }
+        seq.end()
+    }
+}
+
+/// One step of `steps` with its `pairs` inserted in their place among its keys (in order, as
+/// [`Value`]'s map keeps them), written straight from the pairs: the text of the step's
+/// [`Value`] with `pairs` = [`pairs_json`] and no negative zero, without building that value.
+struct StepWithPairs<'a> {
+    step: &'a Value,
+    pairs: Option<&'a [PairResult]>,
+}
+
+impl serde::Serialize for StepWithPairs<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let Value::Object(obj) = self.step else {
+            return self.step.serialize(s);
+        };
+        let pairs = PairRows(self.pairs);
+        let mut map = s.serialize_map(Some(obj.len() + 1))?;
+        let mut placed = false;
+        for (key, v) in obj {
+            if !placed && key.as_str() > "pairs" {
+                map.serialize_entry("pairs", &pairs)?;
+                placed = true;
+            }
+            let mut v = v.clone();
+            plain_zeros(&mut v);
+            map.serialize_entry(key, &v)?;
+        }
+        if !placed {
+            map.serialize_entry("pairs", &pairs)?;
+        }
+        map.end()
+    }
+}
+
+/// [`pairs_json`]'s array (or `null`), written straight from the pairs.
+struct PairRows<'a>(Option<&'a [PairResult]>);
+
+impl serde::Serialize for PairRows<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::{SerializeMap, SerializeSeq};
+        let Some(pairs) = self.0 else {
+            return s.serialize_none();
+        };
+        // `-0.0` as `0.0`, as `plain_zeros` writes it.
+        let plain = |v: f64| if v == 0.0 { 0.0 } else { v };
+        let mut seq = s.serialize_seq(Some(pairs.len()))?;
+        for (i, p) in pairs.iter().enumerate() {
+            struct Row<'b>(usize, &'b PairResult, fn(f64) -> f64);
+            impl serde::Serialize for Row<'_> {
+                fn serialize<T: serde::Serializer>(&self, s: T) -> Result<T::Ok, T::Error> {
+                    let (p, plain) = (self.1, self.2);
+                    // The keys in the order of `pairs_json`'s map (sorted).
+                    let mut m = s.serialize_map(Some(7))?;
+                    m.serialize_entry("name", &p.name)?;
+                    m.serialize_entry("pair", &(self.0 as u64 + 1))?;
+                    m.serialize_entry("state", p.state.as_str())?;
+                    m.serialize_entry("x_n", &plain(p.x_n))?;
+                    m.serialize_entry("x_t", &plain(p.x_t))?;
+                    m.serialize_entry("z_n", &plain(p.z_n))?;
+                    m.serialize_entry("z_t", &plain(p.z_t))?;
+                    m.end()
+                }
+            }
+            seq.serialize_element(&Row(i, p, plain))?;
         }
         seq.end()
     }
@@ -586,6 +652,48 @@ pub fn with_timings(mut doc: Value, t: &unilateral_analysis::Timings) -> Value {
 
 #[cfg(test)]
 mod tests {
+    /// A step written straight from its pairs is the text of the step's value with
+    /// `pairs_json` inserted and no negative zero (the reference: `serde_json`'s own writing of
+    /// that value), for negative zeros, a `null` for a load off the path, and keys on both sides
+    /// of `pairs`.
+    #[test]
+    fn a_step_written_from_its_pairs_is_its_value_written() {
+        use unilateral_contact::{PairResult, PairState};
+        let pairs = [
+            PairResult {
+                name: "Stütze \"1\"".into(),
+                x_n: -0.0,
+                x_t: 1.5e-300,
+                z_n: 2.0,
+                z_t: -0.0,
+                state: PairState::Open,
+            },
+            PairResult {
+                name: "b".into(),
+                x_n: 3.25,
+                x_t: -1.0 / 3.0,
+                z_n: 0.0,
+                z_t: 7e12,
+                state: PairState::SlipMinus,
+            },
+        ];
+        let step =
+            serde_json::json!({ "step": 3, "p": -0.0, "entering": "z_n 1", "turning": false });
+        for at in [Some(&pairs[..]), None] {
+            let mut want = step.clone();
+            want["pairs"] = at.map_or(serde_json::Value::Null, super::pairs_json);
+            super::plain_zeros(&mut want);
+            let got = super::StepWithPairs {
+                step: &step,
+                pairs: at,
+            };
+            assert_eq!(
+                serde_json::to_string_pretty(&got).unwrap(),
+                serde_json::to_string_pretty(&want).unwrap()
+            );
+        }
+    }
+
     use std::time::Duration;
 
     use crate::{timings_json, timings_summary, with_timings};
