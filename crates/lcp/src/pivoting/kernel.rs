@@ -61,12 +61,6 @@ impl KernelInverse {
     }
 
     #[inline]
-    fn col_mut(&mut self, b: usize) -> &mut [f64] {
-        let k = self.k;
-        &mut self.data[b * self.ld..b * self.ld + k]
-    }
-
-    #[inline]
     pub fn get(&self, a: usize, b: usize) -> f64 {
         self.data[b * self.ld + a]
     }
@@ -162,12 +156,12 @@ impl KernelInverse {
         let piv = self.get(a, b);
         let mut f: Vec<f64> = self.col(b).iter().map(|g| g / piv).collect();
         f[a] = 0.0;
-        for c in 0..k {
-            let ga = self.get(a, c);
+        self.update_columns(1, |_, col| {
+            let ga = col[a];
             if ga != 0.0 {
-                axpy(self.col_mut(c), -ga, &f);
+                axpy(&mut col[..k], -ga, &f);
             }
-        }
+        });
         let ld = self.ld;
         if b != k - 1 {
             self.data
@@ -184,33 +178,52 @@ impl KernelInverse {
     /// Replaces column `a` of `K` (row `a` of `G`) given `ũ = G u` for the new column.
     pub fn replace_column(&mut self, a: usize, ut: &[f64]) {
         let piv = ut[a];
-        for c in 0..self.k {
-            let ra = self.get(a, c) / piv;
+        let k = self.k;
+        self.update_columns(1, |_, col| {
+            let ra = col[a] / piv;
             if ra != 0.0 {
-                let col = self.col_mut(c);
-                axpy(col, -ra, ut);
+                axpy(&mut col[..k], -ra, ut);
                 col[a] = ra;
             }
-        }
+        });
     }
 
     /// Replaces row `b` of `K` by `v`, given `w = G e_b` (a copy); `ṽᵀ = vᵀ G` is formed column by
     /// column in the pass that updates it.
     pub fn replace_row(&mut self, b: usize, w: &[f64], v: &[f64]) {
         let vw = dot(v, w);
-        let k = self.k;
-        for c0 in (0..k).step_by(4) {
-            let group = c0..(c0 + 4).min(k);
+        let (k, ld) = (self.k, self.ld);
+        // Four columns at a time: their dot products side by side.
+        self.update_columns(4, |c0, cols| {
             let vc = {
-                let parts: Vec<&[f64]> = group.clone().map(|c| self.col(c)).collect();
+                let parts: Vec<&[f64]> = cols.chunks(ld).map(|c| &c[..k]).collect();
                 dots(v, &parts)
             };
-            for (c, vc) in group.zip(vc) {
-                let corr = (vc - if c == b { 1.0 } else { 0.0 }) / vw;
+            for (j, (col, vc)) in cols.chunks_mut(ld).zip(vc).enumerate() {
+                let corr = (vc - if c0 + j == b { 1.0 } else { 0.0 }) / vw;
                 if corr != 0.0 {
-                    axpy(self.col_mut(c), -corr, w);
+                    axpy(&mut col[..k], -corr, w);
                 }
             }
+        });
+    }
+
+    /// Applies `f(c, columns)` to the columns of `G` in runs of `group` (`c` the first column of
+    /// the run; each column `ld` long, its first `k` entries the matrix's; the last run may be
+    /// shorter), on the machine's thread pool when `G` is large. Each column's result depends
+    /// on that column alone, so it is the same whatever the threads.
+    fn update_columns(&mut self, group: usize, f: impl Fn(usize, &mut [f64]) + Sync + Send) {
+        let (k, ld) = (self.k, self.ld);
+        let data = &mut self.data[..k * ld];
+        if k < PARALLEL_K {
+            data.chunks_mut(group * ld)
+                .enumerate()
+                .for_each(|(i, cols)| f(i * group, cols));
+        } else {
+            data.par_chunks_mut(group * ld)
+                .with_min_len((PARALLEL_BLOCK / group).max(1))
+                .enumerate()
+                .for_each(|(i, cols)| f(i * group, cols));
         }
     }
 }
