@@ -304,19 +304,43 @@ pub(crate) fn write_document(
         self::out(&format!("{text}\n"));
         return Ok(());
     }
-    // Streamed to the file: a long path's document is not held twice more as text.
+    // Streamed to the file: a long path's document is not held twice more as text. The values
+    // at the breakpoints are formed while it is written, so a failure can come after the first
+    // byte: a regular file is written beside its place and renamed into it when complete, so
+    // that a failure leaves whatever was there before (a device or a pipe is written directly).
     let cannot =
         |e: &dyn std::fmt::Display| Failure::Input(format!("cannot write {}: {e}", out.display()));
-    let file = std::fs::File::create(out).map_err(|e| cannot(&e))?;
+    let direct = std::fs::metadata(out).is_ok_and(|m| !m.is_file());
+    let part = if direct {
+        out.to_path_buf()
+    } else {
+        let name = out.file_name().map_or_else(
+            || std::ffi::OsString::from("out.json"),
+            |n| n.to_os_string(),
+        );
+        let mut hidden = std::ffi::OsString::from(".");
+        hidden.push(&name);
+        hidden.push(format!(".{}.part", std::process::id()));
+        out.with_file_name(hidden)
+    };
+    let file = std::fs::File::create(&part).map_err(|e| cannot(&e))?;
     let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
-    if let Err(e) = serde_json::to_writer_pretty(&mut w, &doc) {
-        drop(w);
-        let _ = std::fs::remove_file(out);
-        return Err(failed(e, &cannot));
+    let written = match serde_json::to_writer_pretty(&mut w, &doc) {
+        Err(e) => Err(failed(e, &cannot)),
+        Ok(()) => w
+            .write_all(b"\n")
+            .and_then(|()| w.flush())
+            .map_err(|e| cannot(&e)),
+    };
+    drop(w);
+    if direct {
+        return written;
     }
-    w.write_all(b"\n")
-        .and_then(|()| w.flush())
-        .map_err(|e| cannot(&e))
+    let placed = written.and_then(|()| std::fs::rename(&part, out).map_err(|e| cannot(&e)));
+    if placed.is_err() {
+        let _ = std::fs::remove_file(&part);
+    }
+    placed
 }
 
 /// Writes `text` to stdout. A reader that closed the pipe early (`unilateral solve … | head`)

@@ -1506,6 +1506,38 @@ fn units_title_and_breakpoints_through_the_command_line() {
     );
 }
 
+/// The JSON is written beside its place and renamed into it when complete (the values at the
+/// breakpoints are formed while it is written, so a failure may come after the first byte):
+/// a file already there is replaced whole, nothing is left beside it, and a folder that does
+/// not exist is a clear error naming the file (exit 2).
+#[test]
+fn the_json_replaces_an_old_file_whole_and_leaves_nothing_beside_it() {
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .args(&["--json", "out.json", "--json-breakpoints"]);
+    std::fs::write(cmd.path("out.json"), "an old result ".repeat(100_000)).unwrap();
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("out.json");
+    assert_eq!(j["steps"].as_array().unwrap().len(), 39);
+    let names: Vec<String> = std::fs::read_dir(cmd.dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, vec!["out.json".to_string()], "{names:?}");
+
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .args(&["--json", "no/such/folder/out.json"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(
+        out.stderr.contains("cannot write no/such/folder/out.json"),
+        "{}",
+        out.stderr
+    );
+}
+
 /// The README's main job: the sheet pile wall with real loads (the soil's weight constant, the
 /// push growing). No tightening: every event is a change of the working scheme at a load
 /// p > 0, none settles the start; the path ends in a ray; the paper's method notes where its

@@ -386,15 +386,20 @@ impl<'a> FramePlan<'a> {
         self.frames.len() + usize::from(self.reported.is_some())
     }
 
-    /// The frames in load order, `size` planned frames at a time: each block's pairs read
+    /// The frames in load order, at most `size` planned frames at a time: each block's pairs read
     /// from the path's breakpoints by one product (or, with the tightening, or where the
     /// product leaves the floating-point range although the solution does not, solved at the
     /// frames' loads); the structures are recovered frame by frame as the files are made
-    /// ([`Snapshot::pending`]). Frames whose load is not on the path are left out.
+    /// ([`Snapshot::pending`]). Frames whose load is not on the path are left out. Where the
+    /// product fails, that block alone falls back to solving at its loads (and, where that
+    /// fails too, only that block's frames are left out).
     fn blocks(&self, a: &'a Analysis, size: usize) -> impl Iterator<Item = Vec<Snapshot<'a>>> + '_ {
         let n = self.frames.len();
         let at = self.reported.map_or(n + 1, |(_, _, at)| at);
-        let size = size.max(1);
+        // Blocks of equal size (within one), never a lone frame after full blocks: the product
+        // of one column is formed by another kernel than that of many, whose sums may differ
+        // in their last bits.
+        let size = n.div_ceil(n.div_ceil(size.max(1)).max(1)).max(1);
         let mut start = 0usize;
         let mut reported_done = self.reported.is_none();
         std::iter::from_fn(move || {

@@ -18,8 +18,11 @@
 
 use std::sync::OnceLock;
 
-/// The vector instructions a loop is compiled for.
+/// The vector instructions a loop is compiled for. Only [`level`] (and, in tests, `levels`)
+/// hands out a level, and only one the processor has: the `*_at` functions of this module,
+/// which run the loops compiled for the level they are given, are private to it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 pub(crate) enum Level {
     /// The target's baseline (SSE2 on `x86_64`).
     Plain,
@@ -76,8 +79,9 @@ macro_rules! at_level {
             $body($($arg),*)
         }
         match $level {
-            // SAFETY: `level()` returns these levels only where the processor reports the
-            // features (`detect`), and `levels()` only what `level()` allows.
+            // SAFETY: the levels reach these private functions only from `level()`, which
+            // returns them only where the processor reports the features (`detect`), or from
+            // the tests' `levels()`, which returns only what `level()` allows.
             #[cfg(target_arch = "x86_64")]
             Level::Avx512 => unsafe { avx512($($arg),*) },
             #[cfg(target_arch = "x86_64")]
@@ -93,7 +97,7 @@ pub(crate) fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
     axpy_at(level(), y, a, x)
 }
 
-pub(crate) fn axpy_at(level: Level, y: &mut [f64], a: f64, x: &[f64]) {
+fn axpy_at(level: Level, y: &mut [f64], a: f64, x: &[f64]) {
     at_level!(level, fn axpy(y: &mut [f64], a: f64, x: &[f64]) -> () = axpy_body)
 }
 
@@ -113,7 +117,7 @@ pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     dot_at(level(), a, b)
 }
 
-pub(crate) fn dot_at(level: Level, a: &[f64], b: &[f64]) -> f64 {
+fn dot_at(level: Level, a: &[f64], b: &[f64]) -> f64 {
     at_level!(level, fn dot(a: &[f64], b: &[f64]) -> f64 = dot_body)
 }
 
@@ -143,7 +147,7 @@ pub(crate) fn dots(a: &[f64], b: &[&[f64]]) -> [f64; 4] {
     dots_at(level(), a, b)
 }
 
-pub(crate) fn dots_at(level: Level, a: &[f64], b: &[&[f64]]) -> [f64; 4] {
+fn dots_at(level: Level, a: &[f64], b: &[&[f64]]) -> [f64; 4] {
     at_level!(level, fn dots(a: &[f64], b: &[&[f64]]) -> [f64; 4] = dots_body)
 }
 
@@ -191,7 +195,7 @@ pub(crate) fn add_columns(columns: &[&[f64]], y: &[f64], out: &mut [f64]) {
     add_columns_at(level(), columns, y, out)
 }
 
-pub(crate) fn add_columns_at(level: Level, columns: &[&[f64]], y: &[f64], out: &mut [f64]) {
+fn add_columns_at(level: Level, columns: &[&[f64]], y: &[f64], out: &mut [f64]) {
     at_level!(level, fn add(columns: &[&[f64]], y: &[f64], out: &mut [f64]) -> () = add_columns_body)
 }
 
@@ -275,6 +279,13 @@ mod tests {
                 for (got, v) in four.iter().zip([&b, &c, &d, &e]) {
                     let want = dot_at(Level::Plain, &a, v);
                     assert_eq!(got.to_bits(), want.to_bits(), "dots, {l:?}, length {len}");
+                }
+                // Vectors of other lengths: each over its common length with `a`, as `dot`.
+                let short = &b[..len / 2];
+                let mixed = dots_at(l, &a, &[&b, short, &d, &e]);
+                for (got, v) in mixed.iter().zip([&b[..], short, &d, &e]) {
+                    let want = dot_at(Level::Plain, &a, v);
+                    assert_eq!(got.to_bits(), want.to_bits(), "dots mixed, {l:?}, {len}");
                 }
                 let three = dots_at(l, &a, &[&b, &c, &d]);
                 assert_eq!(three[2].to_bits(), dot_at(Level::Plain, &a, &d).to_bits());
