@@ -113,6 +113,7 @@ impl<'a> Cursor<'a> {
     }
 
     /// A finite number of the data and its place; `key` names it in errors (e.g. `M[2][3]`).
+    #[inline]
     fn number(
         &mut self,
         key: impl Fn() -> String,
@@ -120,34 +121,28 @@ impl<'a> Cursor<'a> {
     ) -> Result<(f64, Pos), InputError> {
         let path = self.path;
         let Some(w) = self.words.next_word()? else {
-            if let Some(n) = &self.needed {
-                return Err(self.short_err(n.at, Some(n.count), &n.name, n.read));
-            }
-            return Err(self.end_err(&what()).with_key(key()));
+            return Err(self.no_number(&key, &what));
         };
         let pos = w.pos;
-        let v: f64 = w.text.parse().map_err(|_| {
-            InputError::at(
-                path,
-                Some(pos),
-                InputErrorKind::Syntax,
-                format!("expected a number, found `{}`", w.text),
-            )
-            .with_key(key())
-        })?;
-        if !v.is_finite() {
-            return Err(InputError::at(
-                path,
-                Some(pos),
-                InputErrorKind::Value,
-                format!("`{}` is not a finite number", w.text),
-            )
-            .with_key(key()));
+        match w.text.parse::<f64>() {
+            Ok(v) if v.is_finite() => {
+                if let Some(n) = &mut self.needed {
+                    n.read += 1;
+                }
+                Ok((v, pos))
+            }
+            parsed => Err(bad_number(path, w.text, pos, parsed.is_ok(), &key)),
         }
-        if let Some(n) = &mut self.needed {
-            n.read += 1;
+    }
+
+    /// The error of a file that ends where a number was expected.
+    #[cold]
+    #[inline(never)]
+    fn no_number(&self, key: &dyn Fn() -> String, what: &dyn Fn() -> String) -> InputError {
+        if let Some(n) = &self.needed {
+            return self.short_err(n.at, Some(n.count), &n.name, n.read);
         }
-        Ok((v, pos))
+        self.end_err(&what()).with_key(key())
     }
 
     /// Checks the header value `got` against `want`.
@@ -320,6 +315,34 @@ pub(crate) fn parse_fc2d(path: &Path, source: Source<'_>) -> Result<Fc2dProblem,
         .with_key(format!("mu[{}]", i + 1)));
     }
     Ok(Fc2dProblem { w, q, mu })
+}
+
+/// The error of a word that is not a finite number (`parsed`: it is a number, but not finite).
+#[cold]
+#[inline(never)]
+fn bad_number(
+    path: &Path,
+    text: &str,
+    pos: Pos,
+    parsed: bool,
+    key: &dyn Fn() -> String,
+) -> InputError {
+    if parsed {
+        InputError::at(
+            path,
+            Some(pos),
+            InputErrorKind::Value,
+            format!("`{text}` is not a finite number"),
+        )
+    } else {
+        InputError::at(
+            path,
+            Some(pos),
+            InputErrorKind::Syntax,
+            format!("expected a number, found `{text}`"),
+        )
+    }
+    .with_key(key())
 }
 
 #[cfg(test)]
