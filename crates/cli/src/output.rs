@@ -286,8 +286,8 @@ pub(crate) fn write_json(out: &Path, value: serde_json::Value) -> Result<(), Fai
 }
 
 /// [`write_json`] for a document whose values at the breakpoints are formed as it is written
-/// ([`unilateral_output::PathDocument`]). If forming them fails, the file is removed and the
-/// failure is that of the values (as [`path_output_failure`] says), not of the writing.
+/// ([`unilateral_output::PathDocument`]). If forming them fails, what was at `out` stays and
+/// the failure is that of the values (as [`path_output_failure`] says), not of the writing.
 pub(crate) fn write_document(
     out: &Path,
     doc: unilateral_output::PathDocument<'_>,

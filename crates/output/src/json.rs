@@ -93,8 +93,17 @@ pub fn with_provenance(mut doc: Value) -> Value {
     doc
 }
 
-/// Every `-0.0` of a document as `0.0` (the same number, without a sign a reader would
-/// misread).
+/// `-0.0` as `0.0` (the same number, without a sign a reader would misread), any other
+/// number as it is.
+fn plain_zero(v: f64) -> f64 {
+    if v == 0.0 {
+        0.0
+    } else {
+        v
+    }
+}
+
+/// Every `-0.0` of a document as `0.0` ([`plain_zero`]).
 fn plain_zeros(v: &mut Value) {
     match v {
         Value::Number(n) if n.is_f64() && n.as_f64() == Some(0.0) => *v = json!(0.0),
@@ -517,33 +526,35 @@ struct PairRows<'a>(Option<&'a [PairResult]>);
 
 impl serde::Serialize for PairRows<'_> {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        use serde::ser::{SerializeMap, SerializeSeq};
+        use serde::ser::SerializeSeq;
         let Some(pairs) = self.0 else {
             return s.serialize_none();
         };
-        // `-0.0` as `0.0`, as `plain_zeros` writes it.
-        let plain = |v: f64| if v == 0.0 { 0.0 } else { v };
         let mut seq = s.serialize_seq(Some(pairs.len()))?;
         for (i, p) in pairs.iter().enumerate() {
-            struct Row<'b>(usize, &'b PairResult, fn(f64) -> f64);
-            impl serde::Serialize for Row<'_> {
-                fn serialize<T: serde::Serializer>(&self, s: T) -> Result<T::Ok, T::Error> {
-                    let (p, plain) = (self.1, self.2);
-                    // The keys in the order of `pairs_json`'s map (sorted).
-                    let mut m = s.serialize_map(Some(7))?;
-                    m.serialize_entry("name", &p.name)?;
-                    m.serialize_entry("pair", &(self.0 as u64 + 1))?;
-                    m.serialize_entry("state", p.state.as_str())?;
-                    m.serialize_entry("x_n", &plain(p.x_n))?;
-                    m.serialize_entry("x_t", &plain(p.x_t))?;
-                    m.serialize_entry("z_n", &plain(p.z_n))?;
-                    m.serialize_entry("z_t", &plain(p.z_t))?;
-                    m.end()
-                }
-            }
-            seq.serialize_element(&Row(i, p, plain))?;
+            seq.serialize_element(&PairRow(i, p))?;
         }
         seq.end()
+    }
+}
+
+/// One object of [`pairs_json`] (pair `.0`, 0-based), written straight from the pair.
+struct PairRow<'a>(usize, &'a PairResult);
+
+impl serde::Serialize for PairRow<'_> {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let p = self.1;
+        // The keys in the order of `pairs_json`'s map (sorted).
+        let mut m = s.serialize_map(Some(7))?;
+        m.serialize_entry("name", &p.name)?;
+        m.serialize_entry("pair", &(self.0 as u64 + 1))?;
+        m.serialize_entry("state", p.state.as_str())?;
+        m.serialize_entry("x_n", &plain_zero(p.x_n))?;
+        m.serialize_entry("x_t", &plain_zero(p.x_t))?;
+        m.serialize_entry("z_n", &plain_zero(p.z_n))?;
+        m.serialize_entry("z_t", &plain_zero(p.z_t))?;
+        m.end()
     }
 }
 

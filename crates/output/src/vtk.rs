@@ -136,7 +136,6 @@ fn write_frames(
         Ok(Some(files))
     };
     let mut made: Vec<(f64, io::Result<Option<Vec<PathBuf>>>)> = Vec::new();
-    let mut failed = false;
     for block in plan.blocks(analysis, block) {
         let first = made.len();
         made.par_extend(
@@ -145,12 +144,11 @@ fn write_frames(
                 .enumerate()
                 .map(|(j, snap)| (snap.p, make(first + j, snap))),
         );
-        if made.iter().any(|(_, r)| r.is_err()) {
-            failed = true;
+        if made[first..].iter().any(|(_, r)| r.is_err()) {
             break;
         }
     }
-    if made.is_empty() && !failed {
+    if made.is_empty() {
         // No state of the path could be recovered: the geometry alone.
         let empty = Snapshot {
             p: 0.0,

@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-pub(crate) use crate::pivoting::simd::{axpy, dot, dots};
+use crate::pivoting::simd::{axpy, dot, dots};
 
 /// `G = K⁻¹`: rows follow the basic non-slack columns `S`, columns the rows `R`.
 #[derive(Debug, Clone, Default)]
@@ -114,13 +114,10 @@ impl KernelInverse {
         self.grow(k + 1);
         let ld = self.ld;
         let f: Vec<f64> = ut.iter().map(|u| u / sigma).collect();
-        // Columns are independent: update them four at a time (their dot products side by
-        // side), on the machine's thread pool.
-        let update = |cols: &mut [f64]| -> f64 {
-            let vb = {
-                let parts: Vec<&[f64]> = cols.chunks(ld).map(|c| &c[..k]).collect();
-                dots(v, &parts)
-            };
+        // The old columns, four at a time (their dot products side by side); the largest entry
+        // of the new row comes back.
+        let new_row = self.update_columns(4, |_, cols| {
+            let vb = group_dots(v, cols, ld, k);
             let mut top = 0.0f64;
             for (col, &vb) in cols.chunks_mut(ld).zip(&vb) {
                 let col = &mut col[..k + 1];
@@ -129,16 +126,7 @@ impl KernelInverse {
                 top = top.max(col[k].abs());
             }
             top
-        };
-        let old = &mut self.data[..k * ld];
-        let new_row = if k < PARALLEL_K {
-            old.chunks_mut(4 * ld).map(update).fold(0.0f64, f64::max)
-        } else {
-            old.par_chunks_mut(4 * ld)
-                .with_min_len(PARALLEL_BLOCK / 4)
-                .map(update)
-                .reduce(|| 0.0f64, f64::max)
-        };
+        });
         let col = &mut self.data[k * ld..k * ld + k + 1];
         for (c, fa) in col.iter_mut().zip(&f) {
             *c = -fa;
@@ -161,6 +149,7 @@ impl KernelInverse {
             if ga != 0.0 {
                 axpy(&mut col[..k], -ga, &f);
             }
+            0.0
         });
         let ld = self.ld;
         if b != k - 1 {
@@ -185,6 +174,7 @@ impl KernelInverse {
                 axpy(&mut col[..k], -ra, ut);
                 col[a] = ra;
             }
+            0.0
         });
     }
 
@@ -195,35 +185,52 @@ impl KernelInverse {
         let (k, ld) = (self.k, self.ld);
         // Four columns at a time: their dot products side by side.
         self.update_columns(4, |c0, cols| {
-            let vc = {
-                let parts: Vec<&[f64]> = cols.chunks(ld).map(|c| &c[..k]).collect();
-                dots(v, &parts)
-            };
+            let vc = group_dots(v, cols, ld, k);
             for (j, (col, vc)) in cols.chunks_mut(ld).zip(vc).enumerate() {
                 let corr = (vc - if c0 + j == b { 1.0 } else { 0.0 }) / vw;
                 if corr != 0.0 {
                     axpy(&mut col[..k], -corr, w);
                 }
             }
+            0.0
         });
     }
 
     /// Applies `f(c, columns)` to the columns of `G` in runs of `group` (`c` the first column of
     /// the run; each column `ld` long, its first `k` entries the matrix's; the last run may be
-    /// shorter), on the machine's thread pool when `G` is large. Each column's result depends
-    /// on that column alone, so it is the same whatever the threads.
-    fn update_columns(&mut self, group: usize, f: impl Fn(usize, &mut [f64]) + Sync + Send) {
+    /// shorter), on the machine's thread pool when `G` is large, and returns the largest value
+    /// `f` returned. Each column's result depends on that column alone, so it is the same
+    /// whatever the threads.
+    fn update_columns(
+        &mut self,
+        group: usize,
+        f: impl Fn(usize, &mut [f64]) -> f64 + Sync + Send,
+    ) -> f64 {
         let (k, ld) = (self.k, self.ld);
         let data = &mut self.data[..k * ld];
         if k < PARALLEL_K {
             data.chunks_mut(group * ld)
                 .enumerate()
-                .for_each(|(i, cols)| f(i * group, cols));
+                .map(|(i, cols)| f(i * group, cols))
+                .fold(0.0f64, f64::max)
         } else {
             data.par_chunks_mut(group * ld)
                 .with_min_len((PARALLEL_BLOCK / group).max(1))
                 .enumerate()
-                .for_each(|(i, cols)| f(i * group, cols));
+                .map(|(i, cols)| f(i * group, cols))
+                .reduce(|| 0.0f64, f64::max)
         }
     }
+}
+
+/// [`dots`] of `v` with the (up to four) columns of a run `cols` of columns `ld` long, over
+/// their first `k` entries.
+fn group_dots(v: &[f64], cols: &[f64], ld: usize, k: usize) -> [f64; 4] {
+    let mut parts: [&[f64]; 4] = [&[]; 4];
+    let mut count = 0;
+    for (p, c) in parts.iter_mut().zip(cols.chunks(ld)) {
+        *p = &c[..k];
+        count += 1;
+    }
+    dots(v, &parts[..count])
 }
