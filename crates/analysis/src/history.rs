@@ -14,7 +14,8 @@ use crate::{condensed_zone, contact_error, recover_at, AnalysisError, Timings};
 /// A finished history analysis of a structural model.
 #[derive(Debug)]
 pub struct HistoryAnalysis {
-    /// The contact zone of the model and the means of recovery.
+    /// The condensation of the model and the means of recovery; its contact stiffness blocks
+    /// are in [`HistoryAnalysis::zone`] (moved there, `0 × 0` here).
     pub condensed: Condensed,
     /// The same data as handed to the contact solver (with every load case).
     pub zone: ContactZone,

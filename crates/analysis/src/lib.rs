@@ -23,6 +23,7 @@ mod history;
 
 pub use history::{analyze_history, HistoryAnalysis};
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use unilateral_contact::{
@@ -296,10 +297,13 @@ impl Timings {
 /// ```
 #[derive(Debug)]
 pub struct Analysis {
-    /// The contact zone of the model (`R`, `R_c`, `R_v`) and the means of recovery.
+    /// The condensation of the model (`R_c`, `R_v`) and the means of recovery. Its blocks
+    /// `Rnn`, `Rnt`, `Rtn`, `Rtt` were moved into [`Analysis::zone`] (here they are `0 × 0`,
+    /// [`Condensed::take_blocks`]): a large zone is held once.
     pub condensed: Condensed,
-    /// The same data as handed to the contact solver.
-    pub zone: ContactZone,
+    /// The contact zone as handed to the contact solver, with the contact stiffness blocks;
+    /// shared with [`Analysis::solution`].
+    pub zone: Arc<ContactZone>,
     /// The load path, its events and the pair results at the reported load.
     pub solution: unilateral_contact::ContactSolution,
     /// Full results at the reported load (`None` when the path reports no solution).
@@ -317,10 +321,13 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
     progress.phase(unilateral_lcp::Phase::Condensing);
     let (condensed, zone, condense) = condensed_zone(model)?;
     let started = Instant::now();
-    let solution = unilateral_contact::solve(&zone, settings).map_err(contact_error)?;
+    // Shared with the solution, which keeps it: the zone is held once.
+    let zone = Arc::new(zone);
+    let solution =
+        unilateral_contact::solve_shared(Arc::clone(&zone), settings).map_err(contact_error)?;
     let solve = started.elapsed();
     if solution.outcome == Outcome::NoSolutionAtStart {
-        if let Some(e) = pulled_apart(&condensed) {
+        if let Some(e) = pulled_apart(&condensed, &zone) {
             return Err(e);
         }
     }
@@ -355,8 +362,9 @@ pub(crate) fn condensed_zone(
     let m = model.pairs().len();
     unilateral_fem::check_memory(&format!("{m} contact pairs"), analysis_bytes(m))
         .map_err(|e| fem_error(e, names))?;
-    let condensed = model.condense().map_err(|e| fem_error(e, names))?;
-    let zone = zone_of(&condensed);
+    let mut condensed = model.condense().map_err(|e| fem_error(e, names))?;
+    // The blocks move into the zone: at m = 2000 they are 128 MB, held once.
+    let zone = zone_from(&mut condensed);
     // The zone is computed by the program from a valid model: if the contact solver refuses
     // it, the program is at fault, and the user never wrote the matrix it would name.
     zone.validate().map_err(|e| AnalysisError::Internal {
@@ -368,7 +376,8 @@ pub(crate) fn condensed_zone(
 
 /// A model's contact zone: the model checked and condensed, the zone (`R`, every load case,
 /// friction, gaps, pair names) checked — for exporting it (`unilateral zone`) or printing the
-/// tableaux of its path, without following the path.
+/// tableaux of its path, without following the path. The blocks `Rnn`, `Rnt`, `Rtn`, `Rtt` are
+/// in the zone only (moved there: the condensation's are `0 × 0`, [`Condensed::take_blocks`]).
 pub fn contact_zone_of(model: &Model) -> Result<(Condensed, ContactZone), AnalysisError> {
     condensed_zone(model).map(|(c, z, _)| (c, z))
 }
@@ -398,12 +407,12 @@ pub fn analysis_bytes(m: usize) -> Option<u64> {
 
 /// The pairs the constant load alone pulls apart, when the path has no solution at `p = 0`:
 /// their normal force as rigid links under the constant load (`R_c − Rnn·η`) is a tension.
-fn pulled_apart(c: &Condensed) -> Option<AnalysisError> {
+fn pulled_apart(c: &Condensed, zone: &ContactZone) -> Option<AnalysisError> {
     let m = c.pairs();
     let mut pairs = Vec::new();
     let mut forces = Vec::new();
     for i in 0..m {
-        let x = c.constant.normal[i] - (0..m).map(|j| c.rnn[(i, j)] * c.gap[j]).sum::<f64>();
+        let x = c.constant.normal[i] - (0..m).map(|j| zone.rnn[(i, j)] * c.gap[j]).sum::<f64>();
         if x < 0.0 {
             pairs.push(c.pair_names[i].clone());
             forces.push(x);
@@ -467,11 +476,25 @@ pub fn recover_at(
 /// The contact zone of a condensed model, with every load case of the model
 /// ([`ContactZone::cases`], in the model's order).
 pub fn zone_of(c: &Condensed) -> ContactZone {
+    zone_with_blocks(
+        c,
+        [c.rnn.clone(), c.rnt.clone(), c.rtn.clone(), c.rtt.clone()],
+    )
+}
+
+/// [`zone_of`], the blocks moved out of `c` instead of copied ([`Condensed::take_blocks`]).
+fn zone_from(c: &mut Condensed) -> ContactZone {
+    let blocks = c.take_blocks();
+    zone_with_blocks(c, blocks)
+}
+
+/// The zone of `c` with the given blocks `[Rnn, Rnt, Rtn, Rtt]`.
+fn zone_with_blocks(c: &Condensed, [rnn, rnt, rtn, rtt]: [faer::Mat<f64>; 4]) -> ContactZone {
     ContactZone {
-        rnn: c.rnn.clone(),
-        rnt: c.rnt.clone(),
-        rtn: c.rtn.clone(),
-        rtt: c.rtt.clone(),
+        rnn,
+        rnt,
+        rtn,
+        rtt,
         friction: c.friction.clone(),
         gap: c.gap.clone(),
         constant: ContactLoad {

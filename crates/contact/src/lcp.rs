@@ -54,32 +54,8 @@ impl ContactLcp {
                 mm[(2 * m + i, 2 * m + j)] = -(fi * nt - tt) / 2.0;
             }
         }
-        let stack = |rn: &[f64], rt: &[f64]| -> Vec<f64> {
-            let mut v = Vec::with_capacity(n);
-            v.extend_from_slice(rn);
-            v.extend((0..m).map(|i| f[i] * rn[i] + rt[i]));
-            v.extend((0..m).map(|i| f[i] * rn[i] - rt[i]));
-            v
-        };
-        let d = stack(&zone.variable.normal, &zone.variable.tangential);
-        // Gaps: R_c ← R_c − R·η (normal and tangential link forces of the opened gaps).
-        let mut rcn = zone.constant.normal.clone();
-        let mut rct = zone.constant.tangential.clone();
-        for j in 0..m {
-            let eta = zone.gap[j];
-            if eta != 0.0 {
-                for i in 0..m {
-                    rcn[i] -= zone.rnn[(i, j)] * eta;
-                    rct[i] -= zone.rtn[(i, j)] * eta;
-                }
-            }
-        }
-        let q0 = stack(&rcn, &rct);
-        let mut dir = vec![1.0; n];
-        for i in 0..m {
-            dir[m + i] = f[i].max(1.0);
-            dir[2 * m + i] = f[i].max(1.0);
-        }
+        let (q0, d) = load_vectors(zone);
+        let dir = tightening_direction(f);
         let lexicographic_order = (m..n).chain(0..m).collect();
         Self {
             problem: ParametricLcp { m: mm, q0, d },
@@ -117,16 +93,61 @@ impl ContactLcp {
 
     /// The paper's label of an LCP variable: `x_n1`, `x_t1+`, `x_t1-`, `z_n1`, …, `p`.
     pub fn label(&self, var: Var) -> String {
-        let m = self.pairs;
-        let part = |i: usize| match i / m {
-            0 => format!("n{}", i % m + 1),
-            1 => format!("t{}+", i % m + 1),
-            _ => format!("t{}-", i % m + 1),
-        };
-        match var {
-            Var::X(i) => format!("x_{}", part(i)),
-            Var::Z(i) => format!("z_{}", part(i)),
-            Var::Driver => "p".to_string(),
+        label(self.pairs, var)
+    }
+}
+
+/// The paper's label of a variable of the `3m` LCP of `m` pairs: `x_n1`, `x_t1+`, `x_t1-`,
+/// `z_n1`, …, `p`.
+pub(crate) fn label(m: usize, var: Var) -> String {
+    let part = |i: usize| match i / m {
+        0 => format!("n{}", i % m + 1),
+        1 => format!("t{}+", i % m + 1),
+        _ => format!("t{}-", i % m + 1),
+    };
+    match var {
+        Var::X(i) => format!("x_{}", part(i)),
+        Var::Z(i) => format!("z_{}", part(i)),
+        Var::Driver => "p".to_string(),
+    }
+}
+
+/// `q_c` and `d` of the `3m` LCP of `zone` (`formulation.md` §3), without forming `M`: the
+/// friction rows `f·R_n ± R_t` stacked under the normal ones, the constant loads less the link
+/// forces `R·η` of the opened gaps. [`ContactLcp::build`] takes its vectors from here.
+pub(crate) fn load_vectors(zone: &ContactZone) -> (Vec<f64>, Vec<f64>) {
+    let m = zone.pairs();
+    let f = &zone.friction;
+    let stack = |rn: &[f64], rt: &[f64]| -> Vec<f64> {
+        let mut v = Vec::with_capacity(3 * m);
+        v.extend_from_slice(rn);
+        v.extend((0..m).map(|i| f[i] * rn[i] + rt[i]));
+        v.extend((0..m).map(|i| f[i] * rn[i] - rt[i]));
+        v
+    };
+    let d = stack(&zone.variable.normal, &zone.variable.tangential);
+    // Gaps: R_c ← R_c − R·η (normal and tangential link forces of the opened gaps).
+    let mut rcn = zone.constant.normal.clone();
+    let mut rct = zone.constant.tangential.clone();
+    for j in 0..m {
+        let eta = zone.gap[j];
+        if eta != 0.0 {
+            for i in 0..m {
+                rcn[i] -= zone.rnn[(i, j)] * eta;
+                rct[i] -= zone.rtn[(i, j)] * eta;
+            }
         }
     }
+    (stack(&rcn, &rct), d)
+}
+
+/// `[1; max(1, f); max(1, f)]`: the tightening per row (§3).
+pub(crate) fn tightening_direction(friction: &[f64]) -> Vec<f64> {
+    let m = friction.len();
+    let mut dir = vec![1.0; 3 * m];
+    for (i, f) in friction.iter().enumerate() {
+        dir[m + i] = f.max(1.0);
+        dir[2 * m + i] = f.max(1.0);
+    }
+    dir
 }

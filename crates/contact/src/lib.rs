@@ -38,6 +38,6 @@ pub use settings::SolveSettings;
 pub use solution::{
     pair_results, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult, PairState,
 };
-pub use solve::solve;
+pub use solve::{solve, solve_shared};
 pub use unilateral_lcp::Follow;
 pub use zone::{ContactLoad, ContactZone};

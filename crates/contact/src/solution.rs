@@ -2,13 +2,15 @@
 //! steps, the outcome, and the solution that answers for any load on its path.
 
 use std::fmt;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
-use unilateral_lcp::{LoadPath, PathOptions, PathPoint, PathSolver, PathStatus, Residual, Tableau};
+use unilateral_lcp::{
+    LoadPath, PathOptions, PathPoint, PathSolver, PathStatus, Residual, Tableau, Var,
+};
 
 use crate::lcp::ContactLcp;
 use crate::units::Units;
-use crate::{ContactError, SolveSettings};
+use crate::{ContactError, ContactZone, SolveSettings};
 
 /// The state of a contact pair in a solution.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -223,8 +225,11 @@ pub struct ContactSolution {
     pub notes: Vec<String>,
     /// Pivots spent removing the tightening from the reported solution.
     pub tightening_pivots: usize,
-    /// The LCP that was solved.
-    pub lcp: ContactLcp,
+    /// The zone that was solved, in the user's units (shared with the caller by
+    /// [`crate::solve_shared`]).
+    pub(crate) zone: Arc<ContactZone>,
+    /// The `3m` LCP in the user's units, formed on first use ([`ContactSolution::lcp`]).
+    pub(crate) lcp: OnceLock<ContactLcp>,
     /// The engine's load path (breakpoints and mechanism rates in the user's units).
     pub path: LoadPath,
     /// The prepared normalised problem that was solved, shared by the clones of the solution:
@@ -266,6 +271,30 @@ impl Engine {
 }
 
 impl ContactSolution {
+    /// The zone that was solved, in the user's units.
+    pub fn zone(&self) -> &ContactZone {
+        &self.zone
+    }
+
+    /// The number of contact pairs `m`.
+    pub fn pairs(&self) -> usize {
+        self.zone.pairs()
+    }
+
+    /// The paper's label of a variable of the `3m` LCP: `x_n1`, `x_t1+`, `z_t1-`, …, `p`.
+    pub fn label(&self, var: Var) -> String {
+        crate::lcp::label(self.pairs(), var)
+    }
+
+    /// The `3m` LCP that was solved, in the user's units ([`ContactLcp::build`] of
+    /// [`ContactSolution::zone`]). Its `M` is a dense `3m × 3m` matrix, formed on the first
+    /// call and kept: nothing the solve reports needs it (the engine holds the normalised
+    /// problem, and the traced path's forces are formed from the zone's blocks), so a large
+    /// solution holds it only if asked.
+    pub fn lcp(&self) -> &ContactLcp {
+        self.lcp.get_or_init(|| ContactLcp::build(&self.zone))
+    }
+
     /// Reads the normalised point `sol` as the reported solution.
     pub(crate) fn set_point(&mut self, sol: &PathPoint) -> Result<(), ContactError> {
         self.pairs = self.engine.read_point(sol)?;
@@ -325,7 +354,7 @@ impl ContactSolution {
         at: &[(usize, f64)],
     ) -> Result<Vec<Option<(f64, Vec<PairResult>)>>, ContactError> {
         let bps = &self.path.breakpoints;
-        let n = 3 * self.lcp.pairs;
+        let n = 3 * self.pairs();
         let mut loads = Vec::new();
         let mut cols: Vec<usize> = Vec::new();
         let mut zs: Vec<Vec<f64>> = Vec::new();
@@ -355,18 +384,46 @@ impl ContactSolution {
             loads.push(p);
             zs.push(z);
         }
-        let prob = &self.lcp.problem;
+        // `M`, `q_c`, `d` and `t` are those of `ContactLcp::build`, but `M` is never formed:
+        // its rows are the zone's blocks, `x_n = R_nn z_n + R_nt w + …` with
+        // `w = (z_t+ − z_t-)/2` and `x_t± = f·(x_n's product) ± (R_tn z_n + R_tt w) + …`, four
+        // `m × m` products instead of one `3m × 3m` one.
+        let zone = &*self.zone;
+        let m = zone.pairs();
+        let f = &zone.friction;
+        let (q0, d) = crate::lcp::load_vectors(zone);
+        let t = crate::lcp::tightening_direction(f);
         let c = self.tightening;
-        let t = &self.lcp.tightening_direction;
         // The rows `x_t± = f·x_n ± x_t` of a pair with a huge friction coefficient can leave
         // the floating-point range (or their partial sums can) although the pair's forces do
         // not. Everything is then formed times an exact power of two `2^-e` small enough for
         // every sum, and `x_t` is taken from the scaled rows before scaling back: the values
         // are the same, and an overflow left is one of the forces themselves.
         let p_big = loads.iter().fold(0.0f64, |a, p| a.max(p.abs()));
-        let m_big = (0..n)
-            .flat_map(|j| (0..n).map(move |i| (i, j)))
-            .fold(0.0f64, |a, (i, j)| a.max(prob.m[(i, j)].abs()));
+        // The largest entry of `M` and of the terms `f·R` its friction rows are formed from.
+        let mut m_big = 0.0f64;
+        for j in 0..m {
+            for (i, &fi) in f.iter().enumerate() {
+                let (nn, nt, tn, tt) = (
+                    zone.rnn[(i, j)],
+                    zone.rnt[(i, j)],
+                    zone.rtn[(i, j)],
+                    zone.rtt[(i, j)],
+                );
+                for v in [
+                    nn,
+                    nt / 2.0,
+                    fi * nn,
+                    fi * nt / 2.0,
+                    fi * nn + tn,
+                    fi * nn - tn,
+                    (fi * nt + tt) / 2.0,
+                    (fi * nt - tt) / 2.0,
+                ] {
+                    m_big = m_big.max(v.abs());
+                }
+            }
+        }
         let z_big = zs
             .iter()
             .flat_map(|z| z.iter())
@@ -374,10 +431,7 @@ impl ContactSolution {
         // log2 of a bound of every term and partial sum (each factor finite, as read).
         let log2 = |v: f64| if v > 0.0 { v.log2() } else { f64::NEG_INFINITY };
         let terms = (0..n).fold(f64::NEG_INFINITY, |a, i| {
-            a.max(
-                log2(prob.q0[i].abs() / 4.0 + c / 4.0 * t[i].abs() + p_big / 4.0 * prob.d[i].abs())
-                    + 2.0,
-            )
+            a.max(log2(q0[i].abs() / 4.0 + c / 4.0 * t[i].abs() + p_big / 4.0 * d[i].abs()) + 2.0)
         });
         let bound = terms.max(log2(m_big) + log2(z_big) + 2.0) + log2(n as f64).max(0.0);
         // At most 2^-1000, a normal number: a bound beyond that is an overflow of the forces.
@@ -387,8 +441,13 @@ impl ContactSolution {
             (bound - 1000.0).ceil().min(1000.0) as i32
         };
         let down = 2f64.powi(-e);
-        let zmat = faer::Mat::from_fn(n, zs.len(), |i, j| zs[j][i] * down);
-        let mz = &prob.m * &zmat;
+        let k = zs.len();
+        let zn = faer::Mat::from_fn(m, k, |i, j| zs[j][i] * down);
+        let w = faer::Mat::from_fn(m, k, |i, j| {
+            (zs[j][m + i] * down - zs[j][2 * m + i] * down) / 2.0
+        });
+        let normal = &zone.rnn * &zn + &zone.rnt * &w;
+        let tangential = &zone.rtn * &zn + &zone.rtt * &w;
         let (fs, ds) = (
             self.engine.units.user_force(1.0),
             self.engine.units.user_displacement(1.0),
@@ -400,8 +459,16 @@ impl ContactSolution {
                 continue;
             }
             let p = loads[j];
+            let mz = |i: usize| {
+                let r = i % m;
+                match i / m {
+                    0 => normal[(r, j)],
+                    1 => f[r] * normal[(r, j)] + tangential[(r, j)],
+                    _ => f[r] * normal[(r, j)] - tangential[(r, j)],
+                }
+            };
             let mut x: Vec<f64> = (0..n)
-                .map(|i| prob.q0[i] * down + c * down * t[i] + p * down * prob.d[i] + mz[(i, j)])
+                .map(|i| q0[i] * down + c * down * t[i] + p * down * d[i] + mz(i))
                 .collect();
             // Complementary to a non-zero `z_i`, `x_i` is not basic on the segment: it is
             // zero exactly (the product leaves the round-off of its terms there: an open pair
@@ -412,7 +479,6 @@ impl ContactSolution {
                 }
             }
             if e > 0 {
-                let m = n / 3;
                 for i in 0..m {
                     let x_t = (x[m + i] - x[2 * m + i]) / 2.0 / down;
                     x[i] /= down;
@@ -475,16 +541,15 @@ impl ContactSolution {
     /// user's units, which is checked on the way ([`ContactError::Engine`] if the engine
     /// refuses it).
     pub fn tableaux(&self, max_steps: Option<usize>) -> Result<Vec<Tableau>, ContactError> {
+        // Formed here and dropped after (not kept as [`ContactSolution::lcp`]): the solver
+        // takes its `M`.
+        let lcp = ContactLcp::build(&self.zone);
         let options = PathOptions {
             target: self.settings.target,
             follow: self.settings.follow,
-            tightening: self.lcp.tightening(self.settings.tightening),
+            tightening: lcp.tightening(self.settings.tightening),
         };
-        let solver = PathSolver::new(
-            self.lcp.problem.clone(),
-            options,
-            self.engine.solver.settings().clone(),
-        )?;
+        let solver = PathSolver::new(lcp.problem, options, self.engine.solver.settings().clone())?;
         Ok(solver.tableaux(&self.path, max_steps)?)
     }
 }
@@ -624,13 +689,13 @@ mod tests {
             ..Default::default()
         };
         let sol = solve(&zone, &settings).unwrap();
-        let lcp = &sol.lcp.problem;
+        let lcp = &sol.lcp().problem;
         let n = lcp.q0.len();
         let m: Vec<Vec<f64>> = (0..n)
             .map(|i| (0..n).map(|j| lcp.m[(i, j)]).collect())
             .collect();
         let q0c: Vec<f64> = (0..n)
-            .map(|i| lcp.q0[i] + c * sol.lcp.tightening_direction[i])
+            .map(|i| lcp.q0[i] + c * sol.lcp().tightening_direction[i])
             .collect();
         let k = sol.path.breakpoints.len();
         assert!(k >= 2, "the example has events");

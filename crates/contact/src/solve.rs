@@ -1,11 +1,11 @@
 //! Solving a contact zone along the load path: the normalised `3m` LCP handed to the engine,
 //! and the engine's path read as pair states and events ([`ContactSolution`]).
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use unilateral_lcp::{PathOptions, PathSolver, PathStatus, Settings, Var};
 
-use crate::lcp::ContactLcp;
+use crate::lcp::{label, load_vectors, ContactLcp};
 use crate::solution::Engine;
 use crate::units::Units;
 use crate::{
@@ -46,16 +46,29 @@ fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
 /// assert!((sol.pairs[0].z_n - 0.5).abs() < 1e-12);
 /// assert!((sol.pairs[1].x_n - 0.5).abs() < 1e-12);
 /// ```
+///
+/// The solution keeps a copy of the zone ([`ContactSolution::zone`]); [`solve_shared`] shares
+/// the caller's instead.
 pub fn solve(
     zone: &ContactZone,
+    settings: &SolveSettings,
+) -> Result<ContactSolution, ContactError> {
+    solve_shared(Arc::new(zone.clone()), settings)
+}
+
+/// [`solve`] on a zone the solution shares with the caller: the solution keeps the zone (its
+/// blocks are what the traced path's forces are formed from) and no copy of it is made, so a
+/// large zone is held once.
+pub fn solve_shared(
+    zone: Arc<ContactZone>,
     settings: &SolveSettings,
 ) -> Result<ContactSolution, ContactError> {
     zone.validate()?;
     settings.validate()?;
     // The LCP that is solved: normalised by powers of two (module `units`), so that neither the
     // states nor the events depend on the units of the data.
-    let units = Units::of(zone, settings.tightening);
-    let normalised = ContactLcp::build(&units.normalise(zone));
+    let units = Units::of(&zone, settings.tightening);
+    let normalised = ContactLcp::build(&units.normalise(&zone));
     let nm = &normalised.problem;
     for j in 0..nm.m.ncols() {
         for i in 0..nm.m.nrows() {
@@ -87,8 +100,7 @@ pub fn solve(
     // pivoting's kernel matrices never meet a second `n × n` matrix.
     let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
     let mut path = solver.follow();
-    let lcp = ContactLcp::build(zone);
-    let m = lcp.pairs;
+    let m = zone.pairs();
     let names = zone.pair_names.clone();
     // Which pairs are open, followed along the path, to read friction events of open pairs.
     let mut open = vec![false; m];
@@ -124,8 +136,8 @@ pub fn solve(
                 index: s.index,
                 settling: s.p.abs() <= 1e-12 * settings.target.abs().max(1.0),
                 p: s.p,
-                entering: lcp.label(s.entering),
-                leaving: lcp.label(s.leaving),
+                entering: label(m, s.entering),
+                leaving: label(m, s.leaving),
                 events,
                 turning: s.turning,
             }
@@ -174,7 +186,7 @@ pub fn solve(
     };
     let mut notes = Vec::new();
     if outcome == Outcome::NoSolutionAtStart {
-        notes.extend(start_diagnosis(&lcp));
+        notes.extend(start_diagnosis(&zone));
     }
     let no_constant = zone.constant.normal.iter().all(|&v| v == 0.0)
         && zone.constant.tangential.iter().all(|&v| v == 0.0)
@@ -246,7 +258,8 @@ pub fn solve(
         residual: None,
         notes,
         tightening_pivots: 0,
-        lcp,
+        zone,
+        lcp: OnceLock::new(),
         path,
         engine: Arc::new(Engine {
             solver,
@@ -290,9 +303,9 @@ fn first_slip_decrease(path: &unilateral_lcp::LoadPath, m: usize) -> Option<(f64
 
 /// Why p = 0 may have no solution: the pairs whose normal link the constant load (with the
 /// gaps) puts in tension in the bonded structure, with those forces.
-fn start_diagnosis(lcp: &ContactLcp) -> Option<String> {
-    let m = lcp.pairs;
-    let q0 = &lcp.problem.q0;
+fn start_diagnosis(zone: &ContactZone) -> Option<String> {
+    let m = zone.pairs();
+    let (q0, _) = load_vectors(zone);
     let pulled: Vec<String> = (0..m)
         .filter(|&i| q0[i] < 0.0)
         .map(|i| format!("pair {} ({:.6e})", i + 1, q0[i]))

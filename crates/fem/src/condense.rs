@@ -247,6 +247,21 @@ impl Condensed {
         }
     }
 
+    /// Moves the four blocks `Rnn`, `Rnt`, `Rtn`, `Rtt` out, leaving `0 × 0` matrices in their
+    /// place: for a caller that hands them on whole (the structural analysis moves them into
+    /// its contact zone, so that the `4m²` numbers are held once). Nothing else of the
+    /// condensation reads them: recovery and [`Condensed::pairs`] work as before;
+    /// [`Condensed::csm`] is then empty.
+    pub fn take_blocks(&mut self) -> [Mat<f64>; 4] {
+        let take = |b: &mut Mat<f64>| std::mem::replace(b, Mat::new());
+        [
+            take(&mut self.rnn),
+            take(&mut self.rnt),
+            take(&mut self.rtn),
+            take(&mut self.rtt),
+        ]
+    }
+
     /// The full contact stiffness matrix `[[Rnn, Rnt], [Rtn, Rtt]]` (2m × 2m).
     pub fn csm(&self) -> Mat<f64> {
         let m = self.pairs();

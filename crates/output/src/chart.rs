@@ -408,7 +408,7 @@ pub fn chart(
         if let (Some(last), Some(var), Some(&(_, true, _, _))) =
             (s.pairs.last(), sol.path.last_entering, segments(sol).last())
         {
-            growing(&mut st, last, var, sol.lcp.pairs);
+            growing(&mut st, last, var, sol.pairs());
         }
         st
     } else {
@@ -642,7 +642,7 @@ pub fn scheme_columns(sol: &ContactSolution) -> Result<Vec<SchemeColumn>, Contac
         .iter()
         .map(|&(k, fin, _, _)| (k, if fin { 0.0 } else { 0.5 }))
         .collect();
-    let m = sol.lcp.pairs;
+    let m = sol.pairs();
     let mut out = Vec::with_capacity(segs.len());
     for (&(k, fin, p_from, p_to), v) in segs.iter().zip(sol.traced_on_segments(&at)?) {
         let Some((_, pairs)) = v else { continue };
@@ -954,7 +954,7 @@ impl Names for ContactSolution {
         if !self.pairs.is_empty() {
             return self.pairs.iter().map(|r| r.name.clone()).collect();
         }
-        (0..self.lcp.pairs).map(|i| (i + 1).to_string()).collect()
+        (0..self.pairs()).map(|i| (i + 1).to_string()).collect()
     }
 }
 

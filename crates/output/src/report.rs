@@ -233,7 +233,7 @@ pub fn report_html(
     if let Some(u) = &options.units {
         row("Units", u.clone());
     }
-    row("Contact pairs", sol.lcp.pairs.to_string());
+    row("Contact pairs", sol.pairs().to_string());
     row(
         "Status",
         format!(

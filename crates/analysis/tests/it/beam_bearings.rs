@@ -162,12 +162,13 @@ fn analysis() -> unilateral_analysis::Analysis {
 fn the_condensed_zone_is_the_hand_zone() {
     let a = analysis();
     let c = &a.condensed;
+    let z = &a.zone;
     let hz = hand_zone();
     let blocks = [
-        (&c.rnn, 0, 0, "Rnn"),
-        (&c.rnt, 0, M, "Rnt"),
-        (&c.rtn, M, 0, "Rtn"),
-        (&c.rtt, M, M, "Rtt"),
+        (&z.rnn, 0, 0, "Rnn"),
+        (&z.rnt, 0, M, "Rnt"),
+        (&z.rtn, M, 0, "Rtn"),
+        (&z.rtt, M, M, "Rtt"),
     ];
     // scale of each block: its largest entry; the coupling blocks (zero for a straight beam:
     // axial and bending decoupled) against the geometric mean of the two diagonal blocks

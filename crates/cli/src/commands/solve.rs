@@ -201,7 +201,9 @@ fn contact_zone(
         args.report_args.check(&problem.zone.pair_names)?;
     }
     let started = Instant::now();
-    let sol = unilateral_contact::solve(&problem.zone, &problem.settings)
+    // The solution keeps the zone: handed over, not copied (the zone of m pairs is 4m² numbers).
+    let zone = std::sync::Arc::new(problem.zone);
+    let sol = unilateral_contact::solve_shared(zone, &problem.settings)
         .map_err(|e| contact_failure(file, &e, ZoneOrigin::File))?;
     drawer.phase(Phase::Writing);
     let timings = Timings {
@@ -213,7 +215,7 @@ fn contact_zone(
         "unilateral {} — {} (contact zone, {} pairs)",
         env!("CARGO_PKG_VERSION"),
         file.display(),
-        problem.zone.pairs()
+        sol.pairs()
     );
     let (about, json_options, detail) =
         writer_options(args, problem.title.clone(), problem.units.clone());

@@ -47,7 +47,7 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
     let tables = sol
         .tableaux(steps)
         .map_err(|e| contact_failure(&file, &e, origin))?;
-    let label = |v| sol.lcp.label(v);
+    let label = |v| sol.label(v);
     if let Some(out) = &json {
         write_json(out, unilateral_output::tableaux_json(&tables, &label)?)?;
     }

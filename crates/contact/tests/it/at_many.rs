@@ -108,3 +108,96 @@ fn breakpoints_without_tightening_are_the_solutions_at_the_steps() {
         assert!(open > 0, "m = {m}: some pair opens on the path");
     }
 }
+
+/// The traced path's forces are formed from the zone's four blocks (`M` is never built):
+/// against `x = q_c + c·t + p·d + M z` formed independently with the dense `M`, `q_c`, `d` and
+/// `t` of `ContactLcp::build` (the formulation's LCP, itself checked against the paper), at
+/// every breakpoint and in the middle of every segment. The zones have coupling blocks
+/// `Rnt`, `Rtn`, gaps (`q_c` carries `R·η`), constant loads and friction above 1 (`t` has
+/// `max(1, f)`), and the path is traced with a tightening, so every term of `x` is there.
+#[test]
+fn traced_forces_from_the_blocks_are_those_of_the_dense_lcp() {
+    use unilateral_contact::{pair_results, ContactLcp};
+    let mut checked = 0;
+    for (m, seed) in [(3usize, 7u64), (5, 11), (8, 13)] {
+        let mut rng = unilateral_oracle::fixtures::random::Lcg::new(seed);
+        let b: Vec<f64> = (0..4 * m * m).map(|_| rng.uniform(-1.0, 1.0)).collect();
+        let friction: Vec<f64> = (0..m).map(|i| [0.3, 1.6, 0.0][i % 3]).collect();
+        let gaps: Vec<f64> = (0..m)
+            .map(|i| if i % 2 == 0 { 0.01 } else { 0.0 })
+            .collect();
+        let loads: Vec<f64> = (0..4 * m).map(|_| rng.uniform(-1.0, 1.0)).collect();
+        let zone = crate::common::definite_zone(
+            m,
+            |i, j| b[i * 2 * m + j],
+            friction,
+            gaps,
+            |kind, i| loads[kind * m + i] + if kind == 0 { 2.0 } else { 0.0 },
+        );
+        for c in [0.0, 0.7] {
+            let settings = SolveSettings {
+                tightening: c,
+                follow: Follow::ToEnd,
+                ..Default::default()
+            };
+            let sol = solve(&zone, &settings).unwrap();
+            let lcp = ContactLcp::build(&zone);
+            let (prob, t) = (&lcp.problem, &lcp.tightening_direction);
+            let n = 3 * m;
+            let k = sol.path.breakpoints.len();
+            let mut at: Vec<(usize, f64)> = (0..k).map(|j| (j, 0.0)).collect();
+            at.extend((0..k.saturating_sub(1)).map(|j| (j, 0.5)));
+            let got = sol.traced_on_segments(&at).unwrap();
+            for (&(j, s), g) in at.iter().zip(&got) {
+                let (p, pairs) = g.as_ref().expect("on the path");
+                // z on the segment, from the breakpoints themselves
+                let mut z = vec![0.0; n];
+                for &(i, v) in &sol.path.breakpoints[j].z {
+                    z[i] += (1.0 - s) * v;
+                }
+                if s > 0.0 {
+                    for &(i, v) in &sol.path.breakpoints[j + 1].z {
+                        z[i] += s * v;
+                    }
+                }
+                let x: Vec<f64> = (0..n)
+                    .map(|i| {
+                        let mz: f64 = (0..n).map(|l| prob.m[(i, l)] * z[l]).sum();
+                        let xi = prob.q0[i] + c * t[i] + p * prob.d[i] + mz;
+                        if z[i] != 0.0 {
+                            0.0
+                        } else {
+                            xi
+                        }
+                    })
+                    .collect();
+                let want = pair_results(&x, &z, &zone.pair_names);
+                let scale = want
+                    .iter()
+                    .flat_map(|r| [r.x_n, r.x_t, r.z_n, r.z_t])
+                    .fold(1.0f64, |a, v| a.max(v.abs()));
+                for (a, w) in pairs.iter().zip(&want) {
+                    assert_eq!(a.state, w.state, "m = {m}, c = {c}, ({j}, {s}): {}", a.name);
+                    for (u, v) in [
+                        (a.x_n, w.x_n),
+                        (a.x_t, w.x_t),
+                        (a.z_n, w.z_n),
+                        (a.z_t, w.z_t),
+                    ] {
+                        assert!(
+                            (u - v).abs() <= 1e-12 * scale,
+                            "m = {m}, c = {c}, ({j}, {s}), {}: {u} vs {v}",
+                            a.name
+                        );
+                    }
+                }
+                checked += 1;
+            }
+            // The LCP in the user's units, formed on request, is the zone's.
+            assert_eq!(sol.lcp().problem.m, lcp.problem.m);
+            assert_eq!(sol.lcp().problem.q0, lcp.problem.q0);
+            assert_eq!(sol.label(unilateral_lcp::Var::Z(m + 1)), "z_t2+");
+        }
+    }
+    assert!(checked > 30, "{checked} points");
+}

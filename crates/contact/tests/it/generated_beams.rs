@@ -49,7 +49,7 @@ fn paths_to_the_end_verify_and_never_end_in_a_false_mechanism() {
         );
         if let Outcome::Mechanism { p_limit, .. } = sol.outcome {
             let beyond =
-                solve_lcp(&lcp_at(&sol.lcp, p_limit * 1.001), &Settings::default()).unwrap();
+                solve_lcp(&lcp_at(sol.lcp(), p_limit * 1.001), &Settings::default()).unwrap();
             assert_ne!(
                 beyond.status,
                 LcpStatus::Solved,

@@ -60,13 +60,13 @@ fn tightened_charts_are_the_traced_path() {
         s.loads.iter().all(|p| bp_loads.contains(p)),
         "breakpoint loads only"
     );
-    let lcp = &sol.lcp.problem;
+    let lcp = &sol.lcp().problem;
     let n = lcp.q0.len();
     let names: Vec<String> = sol.pairs.iter().map(|r| r.name.clone()).collect();
     let mut differs = false;
     for (p, pairs) in s.loads.iter().zip(&s.pairs).step_by(4) {
         let q: Vec<f64> = (0..n)
-            .map(|i| lcp.q0[i] + c * sol.lcp.tightening_direction[i] + p * lcp.d[i])
+            .map(|i| lcp.q0[i] + c * sol.lcp().tightening_direction[i] + p * lcp.d[i])
             .collect();
         let std = solve_lcp(
             &Lcp {

@@ -1002,7 +1002,7 @@ fn paraview_files_over_the_history() {
     let gaps = a.zone.gap.clone();
     let ha = HistoryAnalysis {
         condensed: a.condensed,
-        zone: a.zone,
+        zone: std::sync::Arc::unwrap_or_clone(a.zone),
         history: HistorySolution {
             cases: vec!["variable".into()],
             names: names.clone(),
@@ -1103,7 +1103,7 @@ fn structural_history_document_matches_the_structural_document() {
     let names: Vec<String> = pairs.iter().map(|p| p.name.clone()).collect();
     let ha = HistoryAnalysis {
         condensed: a.condensed,
-        zone: a.zone,
+        zone: std::sync::Arc::unwrap_or_clone(a.zone),
         history: HistorySolution {
             cases: vec!["variable".into()],
             names,
