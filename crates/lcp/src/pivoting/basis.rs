@@ -7,7 +7,6 @@
 //! updates `K⁻¹` by a rank-one formula in `O(k²)`. `K⁻¹` is recomputed from the data by a
 //! fresh LU factorisation (`faer`) every few pivots and whenever its accuracy degrades.
 
-use faer::linalg::solvers::DenseSolveCore;
 use faer::Mat;
 use rayon::prelude::*;
 
@@ -100,21 +99,39 @@ impl Basis {
             self.kinv.clear();
             return Ok(());
         }
-        let kmat = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
-        let lu = kmat.partial_piv_lu();
-        // The factors are a copy: free K before the inverse is formed.
-        drop(kmat);
-        let u = lu.U();
-        let umax = (0..k).map(|i| u[(i, i)].abs()).fold(0.0f64, f64::max);
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::factor;
+        // Factorised in place by faer's LU with partial pivoting (what `partial_piv_lu` runs on
+        // a copy, then splits into separate `L` and `U`); the inverse is formed from the
+        // factors straight into the kernel inverse's buffer. At the refactorisation's peak
+        // `K`'s factors, the old inverse's buffer and faer's scratch: three `k × k` matrices
+        // instead of five.
+        let mut lu = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
+        let par = faer::get_global_parallelism();
+        let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
+        let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
+            k,
+            k,
+            par,
+            Default::default(),
+        ));
+        let (_, perm) = factor::lu_in_place(
+            lu.as_mut(),
+            &mut fwd,
+            &mut bwd,
+            par,
+            MemStack::new(&mut scratch),
+            Default::default(),
+        );
+        let umax = (0..k).map(|i| lu[(i, i)].abs()).fold(0.0f64, f64::max);
         let umin = (0..k)
-            .map(|i| u[(i, i)].abs())
+            .map(|i| lu[(i, i)].abs())
             .fold(f64::INFINITY, f64::min);
         if umin.is_nan() || umin <= umax * 1e-14 || !umin.is_finite() {
             return Err(SingularBasis);
         }
-        let inv = lu.inverse();
         // K⁻¹ has rows indexed like the columns of K (S) and columns like its rows (R).
-        self.kinv.assign(k, |a, b| inv[(a, b)]);
+        self.kinv.assign_lu_inverse(lu.as_ref(), perm);
         Ok(())
     }
 

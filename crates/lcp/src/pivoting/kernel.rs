@@ -30,8 +30,42 @@ impl KernelInverse {
         self.gmax
     }
 
-    /// Replaces the content by the `k × k` matrix `f(a, b)`.
-    pub fn assign(&mut self, k: usize, f: impl Fn(usize, usize) -> f64) {
+    /// Replaces the content by the inverse of the `k × k` matrix whose LU factors with partial
+    /// pivoting `lu` and `perm` hold, as faer's `lu_in_place` leaves them (`L` unit lower
+    /// below the diagonal, `U` on and above it). The inverse is formed by faer's own
+    /// `inverse` directly in this buffer: the same bits as `PartialPivLu::inverse`, without
+    /// its separate `L`, `U` and result (two `k × k` matrices fewer at the refactorisation's
+    /// peak, test `in_place_inverse_is_faers`).
+    pub fn assign_lu_inverse(
+        &mut self,
+        lu: faer::MatRef<'_, f64>,
+        perm: faer::perm::PermRef<'_, usize>,
+    ) {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::inverse;
+        let k = lu.nrows();
+        self.reserve(k);
+        let par = faer::get_global_parallelism();
+        let mut scratch = MemBuffer::new(inverse::inverse_scratch::<usize, f64>(k, par));
+        let out = faer::MatMut::from_column_major_slice_with_stride_mut(
+            &mut self.data[..],
+            k,
+            k,
+            self.ld,
+        );
+        inverse::inverse(out, lu, lu, perm, par, MemStack::new(&mut scratch));
+        drop(scratch);
+        let mut gmax = 0.0f64;
+        for b in 0..k {
+            for v in &self.data[b * self.ld..b * self.ld + k] {
+                gmax = gmax.max(v.abs());
+            }
+        }
+        self.gmax = gmax;
+    }
+
+    /// Order `k` with a buffer of room for it (the content is left as it is).
+    fn reserve(&mut self, k: usize) {
         self.k = k;
         self.ld = k.max(self.ld).max(8);
         // Entries beyond `k` are never read: keep the buffer when it is large enough.
@@ -40,15 +74,6 @@ impl KernelInverse {
             self.data = Vec::new();
             self.data = vec![0.0; self.ld * self.ld];
         }
-        let mut gmax = 0.0f64;
-        for b in 0..k {
-            for a in 0..k {
-                let v = f(a, b);
-                gmax = gmax.max(v.abs());
-                self.data[b * self.ld + a] = v;
-            }
-        }
-        self.gmax = gmax;
     }
 
     pub fn clear(&mut self) {
@@ -233,4 +258,64 @@ fn group_dots(v: &[f64], cols: &[f64], ld: usize, k: usize) -> [f64; 4] {
         count += 1;
     }
     dots(v, &parts[..count])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::linalg::solvers::DenseSolveCore;
+    use faer::Mat;
+
+    /// Factorised in place as `Basis::refactor` does.
+    fn factor(a: &Mat<f64>) -> (Mat<f64>, Vec<usize>, Vec<usize>) {
+        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::linalg::lu::partial_pivoting::factor;
+        let k = a.nrows();
+        let mut lu = a.clone();
+        let par = faer::get_global_parallelism();
+        let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
+        let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
+            k,
+            k,
+            par,
+            Default::default(),
+        ));
+        factor::lu_in_place(
+            lu.as_mut(),
+            &mut fwd,
+            &mut bwd,
+            par,
+            MemStack::new(&mut scratch),
+            Default::default(),
+        );
+        (lu, fwd, bwd)
+    }
+
+    // Reference: faer's `PartialPivLu::inverse` (the refactorisation before: the matrix copied,
+    // factorised, split into `L` and `U`, inverted into a new matrix), bit for bit, for orders
+    // on both sides of faer's blocking and parallel thresholds, and into a buffer left larger
+    // by an earlier, larger order (a leading dimension above `k`).
+    #[test]
+    fn in_place_inverse_is_faers() {
+        let mut g = KernelInverse::default();
+        for k in [1usize, 2, 7, 33, 130, 300, 520, 64, 5] {
+            let a = Mat::<f64>::from_fn(k, k, |i, j| {
+                ((i * 31 + j * 17 + k) as f64).sin() + if i == j { 0.5 } else { 0.0 }
+            });
+            let want = a.partial_piv_lu().inverse();
+            let (lu, fwd, bwd) = factor(&a);
+            let perm = unsafe { faer::perm::PermRef::new_unchecked(&fwd, &bwd, k) };
+            g.assign_lu_inverse(lu.as_ref(), perm);
+            assert_eq!(g.k, k);
+            let mut gmax = 0.0f64;
+            for j in 0..k {
+                for i in 0..k {
+                    let (w, v) = (want[(i, j)], g.col(j)[i]);
+                    assert_eq!(w.to_bits(), v.to_bits(), "k = {k}, ({i}, {j}): {w} vs {v}");
+                    gmax = gmax.max(w.abs());
+                }
+            }
+            assert_eq!(g.max_entry(), gmax, "k = {k}");
+        }
+    }
 }
