@@ -222,6 +222,9 @@ impl Condensed {
         let mut stress_sum: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
         let mut stress_cnt = vec![0usize; nn];
         let kept = self.element_k.get(model);
+        // One buffer for every element's displacements (a path's frames recover thousands of
+        // times).
+        let mut ue: Vec<f64> = Vec::with_capacity(12);
         for (ei, el) in model.elements.iter().enumerate() {
             let unit = element_unit(el);
             let formed;
@@ -233,7 +236,8 @@ impl Condensed {
                 }
             };
             let n = em.dofs.len();
-            let ue: Vec<f64> = em.dofs.iter().map(|&d| u[d]).collect();
+            ue.clear();
+            ue.extend(em.dofs.iter().map(|&d| u[d]));
             for a in 0..n {
                 let fa = (0..n).map(|b| em.k[a * n + b] * ue[b]).sum::<f64>();
                 r[em.dofs[a]] += fa;

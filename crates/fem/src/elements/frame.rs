@@ -48,18 +48,21 @@ impl Line<'_> {
     }
 
     /// Local stiffness after releases (6 × 6 or 4 × 4), with (L, c, s).
-    fn local_k(&self, model: &Model) -> (Vec<f64>, usize, f64, f64, f64) {
+    ///
+    /// On the stack: a structure's frames are recovered at every frame of a load path.
+    fn local_k(&self, model: &Model) -> ([f64; 36], usize, f64, f64, f64) {
         let (nodes, section) = (self.nodes, self.section);
         let (l, c, s) = line_geometry(model, nodes[0].0, nodes[1].0);
         match self.releases {
             Some(releases) => {
                 let mut k = frame_local_k(section.e, section.area, section.inertia, l);
-                condense_dofs(&mut k, 6, None, &release_dofs(releases));
+                let (drop, nd) = release_dofs(releases);
+                condense_dofs(&mut k, 6, None, &drop[..nd]);
                 (k, 6, l, c, s)
             }
             None => {
                 let ea = section.e * section.area / l;
-                let mut k = vec![0.0; 16];
+                let mut k = [0.0; 36];
                 k[0] = ea;
                 k[2] = -ea;
                 k[2 * 4] = -ea;
@@ -85,14 +88,21 @@ impl Line<'_> {
 
     fn stiffness(&self, model: &Model) -> Vec<f64> {
         let (k, n, _, c, s) = self.local_k(model);
-        to_global_mat(&k, n, c, s)
+        to_global_mat(&k[..n * n], n, c, s)
     }
 
     fn equivalent_load(&self, model: &Model, load: &Load) -> Option<Vec<f64>> {
+        self.equivalent_load_array(model, load)
+            .map(|(f, n)| f[..n].to_vec())
+    }
+
+    /// [`Line::equivalent_load`] on the stack: the global vector (6 for a frame, 4 for a bar)
+    /// in the first `n` entries.
+    fn equivalent_load_array(&self, model: &Model, load: &Load) -> Option<([f64; 6], usize)> {
         let section = self.section;
         let is_frame = self.is_frame();
         let (l, c, s) = line_geometry(model, self.nodes[0].0, self.nodes[1].0);
-        let mut f = vec![0.0; 6];
+        let mut f = [0.0; 6];
         if let Some((q1, q2)) = line_local_intensity(load, c, s) {
             // 3-point Gauss on [0, 1]: exact for linear load × cubic shape.
             let g = (0.6f64).sqrt();
@@ -132,16 +142,17 @@ impl Line<'_> {
         } else {
             return None;
         }
-        let mut fl = if is_frame {
-            f
+        let (mut fl, n) = if is_frame {
+            (f, 6)
         } else {
-            vec![f[0], f[1], f[3], f[4]]
+            ([f[0], f[1], f[3], f[4], 0.0, 0.0], 4)
         };
         if let Some(releases) = self.releases {
             let mut k0 = frame_local_k(section.e, section.area, section.inertia, l);
-            condense_dofs(&mut k0, 6, Some(&mut fl), &release_dofs(releases));
+            let (drop, nd) = release_dofs(releases);
+            condense_dofs(&mut k0, 6, Some(&mut fl[..n]), &drop[..nd]);
         }
-        Some(to_global_vec(&fl, c, s))
+        Some((to_global_vec(&fl[..n], c, s), n))
     }
 
     fn recover(
@@ -151,18 +162,20 @@ impl Line<'_> {
         ue: &[f64],
         loads: &[(f64, &Load)],
     ) -> Recovered {
+        // Every temporary on the stack: a load path's frames recover every element thousands
+        // of times.
         let (k, n, l, c, s) = self.local_k(model);
         let ul = to_local_vec(ue, c, s);
-        let mut fl = vec![0.0; n];
+        let mut fl = [0.0; 6];
         for (fc, load) in loads {
-            if let Some(fe) = self.equivalent_load(model, load) {
-                let fe = to_local_vec(&fe, c, s);
+            if let Some((fe, _)) = self.equivalent_load_array(model, load) {
+                let fe = to_local_vec(&fe[..n], c, s);
                 for a in 0..n {
                     fl[a] += fc * fe[a];
                 }
             }
         }
-        let mut end = vec![0.0; n];
+        let mut end = [0.0; 6];
         for a in 0..n {
             end[a] = (0..n).map(|b| k[a * n + b] * ul[b]).sum::<f64>() - fl[a];
         }
@@ -171,15 +184,14 @@ impl Line<'_> {
         } else {
             [end[0], end[1], 0.0, end[2], end[3], 0.0]
         };
-        let intens: Vec<(f64, [f64; 2], [f64; 2])> = loads
+        let intens = loads
             .iter()
-            .filter_map(|(fc, ld)| line_local_intensity(ld, c, s).map(|(a, b)| (*fc, a, b)))
-            .collect();
+            .filter_map(|(fc, ld)| line_local_intensity(ld, c, s).map(|(a, b)| (*fc, a, b)));
         let diagram = (0..DIAGRAM_SAMPLES)
             .map(|i| {
                 let x = l * i as f64 / (DIAGRAM_SAMPLES - 1) as f64;
                 let (mut ia, mut it, mut im) = (0.0, 0.0, 0.0);
-                for (fc, q1, q2) in &intens {
+                for (fc, q1, q2) in intens.clone() {
                     // ∫0^x q, ∫0^x q(x − s) ds for linear q
                     let da = (q2[0] - q1[0]) / l;
                     let dt = (q2[1] - q1[1]) / l;
@@ -265,8 +277,8 @@ pub(crate) fn line_geometry(model: &Model, a: usize, b: usize) -> (f64, f64, f64
 }
 
 /// Local frame stiffness (u1, v1, θ1, u2, v2, θ2), before releases.
-fn frame_local_k(e: f64, a: f64, i: f64, l: f64) -> Vec<f64> {
-    let mut k = vec![0.0; 36];
+fn frame_local_k(e: f64, a: f64, i: f64, l: f64) -> [f64; 36] {
+    let mut k = [0.0; 36];
     let ea = e * a / l;
     let (b1, b2, b3, b4) = (
         12.0 * e * i / l.powi(3),
@@ -294,20 +306,26 @@ fn frame_local_k(e: f64, a: f64, i: f64, l: f64) -> Vec<f64> {
     k
 }
 
-fn release_dofs(r: Releases) -> Vec<usize> {
-    let mut d = Vec::new();
+/// The released rotations of a frame, in the first `nd` entries.
+fn release_dofs(r: Releases) -> ([usize; 2], usize) {
+    let mut d = [0; 2];
+    let mut nd = 0;
     if r.start {
-        d.push(2);
+        d[nd] = 2;
+        nd += 1;
     }
     if r.end {
-        d.push(5);
+        d[nd] = 5;
+        nd += 1;
     }
-    d
+    (d, nd)
 }
 
-/// Rotates a local 6-vector (frame) or 4-vector (bar) to global.
-fn to_global_vec(v: &[f64], c: f64, s: f64) -> Vec<f64> {
-    let mut g = v.to_vec();
+/// Rotates a local 6-vector (frame) or 4-vector (bar) to global (in the first `v.len()`
+/// entries).
+fn to_global_vec(v: &[f64], c: f64, s: f64) -> [f64; 6] {
+    let mut g = [0.0; 6];
+    g[..v.len()].copy_from_slice(v);
     let step = if v.len() == 6 { 3 } else { 2 };
     for node in 0..2 {
         let o = node * step;
@@ -317,9 +335,11 @@ fn to_global_vec(v: &[f64], c: f64, s: f64) -> Vec<f64> {
     g
 }
 
-/// Rotates a global 6-vector (frame) or 4-vector (bar) to local.
-pub(crate) fn to_local_vec(v: &[f64], c: f64, s: f64) -> Vec<f64> {
-    let mut g = v.to_vec();
+/// Rotates a global 6-vector (frame) or 4-vector (bar) to local (in the first `v.len()`
+/// entries).
+pub(crate) fn to_local_vec(v: &[f64], c: f64, s: f64) -> [f64; 6] {
+    let mut g = [0.0; 6];
+    g[..v.len()].copy_from_slice(v);
     let step = if v.len() == 6 { 3 } else { 2 };
     for node in 0..2 {
         let o = node * step;
