@@ -199,18 +199,31 @@ impl Condensed {
             .map(|i| [u[3 * i], u[3 * i + 1], u[3 * i + 2]])
             .collect();
 
-        // element loads per element
-        let mut loads_of: Vec<Vec<(f64, &Load)>> = vec![Vec::new(); model.elements.len()];
-        for (g, l) in &model.loads {
-            match l {
-                Load::Distributed { element, .. }
-                | Load::BodyForce { element, .. }
-                | Load::Temperature { element, .. } => {
-                    loads_of[element.0].push((applied.case_factor[g.0], l))
-                }
-                _ => {}
-            }
+        // element loads per element, in the model's order: one list with each element's range
+        // (`start[e]..start[e + 1]`), not a vector per element
+        let element_of = |l: &Load| match l {
+            Load::Distributed { element, .. }
+            | Load::BodyForce { element, .. }
+            | Load::Temperature { element, .. } => Some(element.0),
+            _ => None,
+        };
+        // a stable sort keeps each element's loads in the model's order
+        let mut by_element: Vec<(usize, f64, &Load)> = model
+            .loads
+            .iter()
+            .filter_map(|(g, l)| element_of(l).map(|e| (e, applied.case_factor[g.0], l)))
+            .collect();
+        by_element.sort_by_key(|&(e, _, _)| e);
+        let mut start = vec![0usize; model.elements.len() + 1];
+        for &(e, _, _) in &by_element {
+            start[e + 1] += 1;
         }
+        for e in 0..model.elements.len() {
+            start[e + 1] += start[e];
+        }
+        let element_loads: Vec<(f64, &Load)> =
+            by_element.into_iter().map(|(_, k, l)| (k, l)).collect();
+        let loads_of = |e: usize| &element_loads[start[e]..start[e + 1]];
 
         // residual r = K u − f, element by element
         let f = &applied.f;
@@ -243,7 +256,7 @@ impl Condensed {
                 r[em.dofs[a]] += fa;
                 r_mag[em.dofs[a]] += fa.abs();
             }
-            match unit.recover(model, ElementId(ei), &ue, &loads_of[ei]) {
+            match unit.recover(model, ElementId(ei), &ue, loads_of(ei)) {
                 Recovered::Line(line) => lines.push(line),
                 Recovered::Plane { result, at_nodes } => {
                     for (nd, s) in unit.nodes().iter().zip(&at_nodes) {
