@@ -9,15 +9,18 @@
 //!   (frames and bars as `VTK_LINE`, quadrilaterals as `VTK_QUAD`, triangles as
 //!   `VTK_TRIANGLE`).
 //!   Point data: `displacement` (`ux, uy, 0`, for *Warp By Vector*), `rotation` (`rz`),
-//!   `nodal_stress` (`sxx, syy, txy` extrapolated from the Gauss points and averaged over the
-//!   plane elements at the node; 0 at nodes without one) and `nodal_von_mises`.
+//!   and, when the model has plane elements, `nodal_stress` (`sxx, syy, txy` extrapolated
+//!   from the Gauss points and averaged over the plane elements at the node; 0 at nodes
+//!   without one) and `nodal_von_mises`.
 //!   Cell data: `kind` (1 frame, 2 bar, 3 quadrilateral, 4 triangle), `material` (0-based number of the distinct
-//!   section or plane material, in order of first use), `element` (0-based element index),
-//!   `stress` (`sxx, syy, txy` averaged over the 4 Gauss points, a triangle's constant
-//!   stress; 0 for lines), `szz`,
-//!   `von_mises` (of the averaged stress), `axial_force` (the signed `N` of largest magnitude
-//!   along a frame or bar, tension positive), `max_abs_moment` and `max_abs_shear` (0 for
-//!   plane elements).
+//!   section or plane material, in order of first use), `element` (0-based element index);
+//!   when the model has plane elements, `stress` (`sxx, syy, txy` averaged over the 4 Gauss
+//!   points, a triangle's constant stress; 0 for lines), `szz` and `von_mises` (of the
+//!   averaged stress); when it has frames or bars, `axial_force` (the signed `N` of largest
+//!   magnitude along a frame or bar, tension positive), `max_abs_moment` and `max_abs_shear`
+//!   (0 for plane elements). An array that the model's kinds of element would leave zero in
+//!   every cell or point is not written: a frame model's files hold no stresses (on the
+//!   1000-bearing beam of the benchmark, 37 % of each mesh file's bytes).
 //! * `pairs_NNN.vtu` — one cell per contact pair, in pair order: a `VTK_VERTEX` at node B for a
 //!   pair with the ground, a `VTK_LINE` from A to B for a node-to-node pair. Points `0..m` are
 //!   the B nodes of the pairs; the A nodes of node-to-node pairs follow.
@@ -469,6 +472,27 @@ struct MeshGeometry {
     grid: Body,
     /// Cell arrays `kind`, `material`, `element`.
     cell_ids: Body,
+    /// Which result arrays the model's elements can make non-zero.
+    kinds: ElementKinds,
+}
+
+/// Whether a model has plane elements (quadrilaterals, triangles) and line elements (frames,
+/// bars): the stress arrays are written only with the first, the section-force arrays only
+/// with the second (each would be zero everywhere otherwise).
+#[derive(Debug, Clone, Copy)]
+struct ElementKinds {
+    plane: bool,
+    line: bool,
+}
+
+impl ElementKinds {
+    fn of(model: &Model) -> Self {
+        let is_line = |e: &Element| matches!(e, Element::Frame { .. } | Element::Bar { .. });
+        Self {
+            plane: model.elements().iter().any(|e| !is_line(e)),
+            line: model.elements().iter().any(is_line),
+        }
+    }
 }
 
 impl MeshGeometry {
@@ -542,19 +566,20 @@ impl MeshGeometry {
             n_cells: elements.len(),
             grid,
             cell_ids,
+            kinds: ElementKinds::of(model),
         }
     }
 
     fn vtu(&self, model: &Model, snap: &Snapshot) -> Body {
         let mut s = header(self.grid.format, snap, self.n_points, self.n_cells);
         if let Some(r) = snap.results.as_deref() {
-            point_results(&mut s, r);
+            point_results(&mut s, r, self.kinds);
         }
         s.append(&self.grid);
         s.push_str("      <CellData Scalars=\"kind\">\n");
         s.append(&self.cell_ids);
         if let Some(r) = snap.results.as_deref() {
-            cell_results(&mut s, model, r);
+            cell_results(&mut s, model, r, self.kinds);
         }
         s.push_str("      </CellData>\n");
         s.push_str(FOOTER);
@@ -568,7 +593,7 @@ fn section_key(s: &unilateral_fem::FrameSection) -> Vec<f64> {
     vec![s.e, s.area, s.inertia, s.depth, s.alpha]
 }
 
-fn point_results(s: &mut Body, r: &Results) {
+fn point_results(s: &mut Body, r: &Results, kinds: ElementKinds) {
     s.push_str("      <PointData Vectors=\"displacement\">\n");
     f64_array(
         s,
@@ -577,6 +602,10 @@ fn point_results(s: &mut Body, r: &Results) {
         r.displacements.iter().map(|d| [d[0], d[1], 0.0]),
     );
     f64_array(s, "rotation", &[], r.displacements.iter().map(|d| [d[2]]));
+    if !kinds.plane {
+        s.push_str("      </PointData>\n");
+        return;
+    }
     let nodal = |n: &Option<[f64; 4]>| n.unwrap_or([0.0; 4]);
     f64_array(
         s,
@@ -596,41 +625,45 @@ fn point_results(s: &mut Body, r: &Results) {
     s.push_str("      </PointData>\n");
 }
 
-fn cell_results(s: &mut Body, model: &Model, r: &Results) {
+fn cell_results(s: &mut Body, model: &Model, r: &Results, kinds: ElementKinds) {
     let n = model.elements().len();
-    let mut stress = vec![[0.0; 4]; n];
-    for pl in &r.planes {
-        let mut avg = [0.0; 4];
-        for g in &pl.stress {
-            for (a, v) in avg.iter_mut().zip(g) {
-                *a += v / pl.stress.len() as f64;
+    if kinds.plane {
+        let mut stress = vec![[0.0; 4]; n];
+        for pl in &r.planes {
+            let mut avg = [0.0; 4];
+            for g in &pl.stress {
+                for (a, v) in avg.iter_mut().zip(g) {
+                    *a += v / pl.stress.len() as f64;
+                }
             }
+            stress[pl.element.0] = avg;
         }
-        stress[pl.element.0] = avg;
+        f64_array(
+            s,
+            "stress",
+            &["sxx", "syy", "txy"],
+            stress.iter().map(|t| [t[0], t[1], t[2]]),
+        );
+        f64_array(s, "szz", &[], stress.iter().map(|t| [t[3]]));
+        f64_array(s, "von_mises", &[], stress.iter().map(|&t| [von_mises(t)]));
     }
-    let mut line = vec![[0.0; 3]; n];
-    for l in &r.lines {
-        let mut v = [0.0f64; 3];
-        for pt in &l.diagram {
-            if pt.n.abs() > v[0].abs() {
-                v[0] = pt.n;
+    if kinds.line {
+        let mut line = vec![[0.0; 3]; n];
+        for l in &r.lines {
+            let mut v = [0.0f64; 3];
+            for pt in &l.diagram {
+                if pt.n.abs() > v[0].abs() {
+                    v[0] = pt.n;
+                }
+                v[1] = v[1].max(pt.m.abs());
+                v[2] = v[2].max(pt.q.abs());
             }
-            v[1] = v[1].max(pt.m.abs());
-            v[2] = v[2].max(pt.q.abs());
+            line[l.element.0] = v;
         }
-        line[l.element.0] = v;
+        f64_array(s, "axial_force", &[], line.iter().map(|v| [v[0]]));
+        f64_array(s, "max_abs_moment", &[], line.iter().map(|v| [v[1]]));
+        f64_array(s, "max_abs_shear", &[], line.iter().map(|v| [v[2]]));
     }
-    f64_array(
-        s,
-        "stress",
-        &["sxx", "syy", "txy"],
-        stress.iter().map(|t| [t[0], t[1], t[2]]),
-    );
-    f64_array(s, "szz", &[], stress.iter().map(|t| [t[3]]));
-    f64_array(s, "von_mises", &[], stress.iter().map(|&t| [von_mises(t)]));
-    f64_array(s, "axial_force", &[], line.iter().map(|v| [v[0]]));
-    f64_array(s, "max_abs_moment", &[], line.iter().map(|v| [v[1]]));
-    f64_array(s, "max_abs_shear", &[], line.iter().map(|v| [v[2]]));
 }
 
 /// The parts of a pairs file that do not change along the path.
