@@ -394,10 +394,11 @@ pub(crate) fn contact_error(e: ContactError) -> AnalysisError {
     }
 }
 
-/// Bytes of the dense matrices an analysis of `m` contact pairs holds at once (an estimate
+/// Bytes of the dense matrices an analysis of `m` contact pairs holds at most (an estimate
 /// made before anything is allocated): the condensation's (2m)² stiffness and its four m×m
-/// blocks, the contact zone handed to the solver (4 m²), and the solver's 3m×3m LCP matrix
-/// with about three more of its size for the basis and its factors. `None` on overflow.
+/// blocks, a contact zone (4 m²) and a 3m×3m LCP matrix with about three more of its size for
+/// the basis and its factors. A conservative bound: the blocks are moved into the zone, not
+/// copied, and the LCP is formed once, in the solver's units. `None` on overflow.
 pub fn analysis_bytes(m: usize) -> Option<u64> {
     let fem = unilateral_fem::dense_condensation_bytes(m, 0)?;
     let m = m as u64;
@@ -474,7 +475,9 @@ pub fn recover_at(
 }
 
 /// The contact zone of a condensed model, with every load case of the model
-/// ([`ContactZone::cases`], in the model's order).
+/// ([`ContactZone::cases`], in the model's order). `c` must still hold its blocks: the
+/// condensation an [`Analysis`] keeps has given them to its zone ([`Condensed::take_blocks`];
+/// that zone is [`Analysis::zone`]).
 pub fn zone_of(c: &Condensed) -> ContactZone {
     zone_with_blocks(
         c,

@@ -40,7 +40,9 @@ use std::time::Instant;
 /// assert!(r.equilibrium.relative() < 1e-12);
 /// ```
 pub struct Condensed {
-    /// Normal–normal block `Rnn` (m × m), symmetric positive semidefinite.
+    /// Normal–normal block `Rnn` (m × m), symmetric positive semidefinite. The four blocks are
+    /// `0 × 0` after [`Condensed::take_blocks`] (the condensation an analysis keeps: its
+    /// contact zone holds them).
     pub rnn: Mat<f64>,
     /// `Rnt`: normal force from a tangential dislocation.
     pub rnt: Mat<f64>,
@@ -251,7 +253,7 @@ impl Condensed {
     /// place: for a caller that hands them on whole (the structural analysis moves them into
     /// its contact zone, so that the `4m²` numbers are held once). Nothing else of the
     /// condensation reads them: recovery and [`Condensed::pairs`] work as before;
-    /// [`Condensed::csm`] is then empty.
+    /// [`Condensed::csm`] is then `0 × 0`.
     pub fn take_blocks(&mut self) -> [Mat<f64>; 4] {
         let take = |b: &mut Mat<f64>| std::mem::replace(b, Mat::new());
         [
@@ -262,9 +264,13 @@ impl Condensed {
         ]
     }
 
-    /// The full contact stiffness matrix `[[Rnn, Rnt], [Rtn, Rtt]]` (2m × 2m).
+    /// The full contact stiffness matrix `[[Rnn, Rnt], [Rtn, Rtt]]` (2m × 2m); `0 × 0` when
+    /// the blocks were taken ([`Condensed::take_blocks`]).
     pub fn csm(&self) -> Mat<f64> {
         let m = self.pairs();
+        if self.rnn.nrows() != m {
+            return Mat::new();
+        }
         Mat::from_fn(2 * m, 2 * m, |i, j| match (i < m, j < m) {
             (true, true) => self.rnn[(i, j)],
             (true, false) => self.rnt[(i, j - m)],

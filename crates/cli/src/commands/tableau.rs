@@ -42,7 +42,7 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
             }
         };
     let problem = Problem { settings };
-    let sol = unilateral_contact::solve(&zone, &problem.settings)
+    let sol = unilateral_contact::solve_shared(std::sync::Arc::new(zone), &problem.settings)
         .map_err(|e| contact_failure(&file, &e, origin))?;
     let tables = sol
         .tableaux(steps)

@@ -162,8 +162,9 @@ impl Line<'_> {
         ue: &[f64],
         loads: &[(f64, &Load)],
     ) -> Recovered {
-        // Every temporary on the stack: a load path's frames recover every element thousands
-        // of times.
+        // The element's matrix and vectors on the stack (a hinged frame's condensation and the
+        // diagram still allocate): a load path's frames recover every element thousands of
+        // times.
         let (k, n, l, c, s) = self.local_k(model);
         let ul = to_local_vec(ue, c, s);
         let mut fl = [0.0; 6];

@@ -201,6 +201,32 @@ fn max_abs(m: &Mat<f64>) -> f64 {
     a
 }
 
+/// The blocks moved out whole (what an analysis does with them) are the blocks of `csm`, and
+/// what is left recovers as before: the same displacements, and an empty `csm` instead of a
+/// panic on the `0 × 0` blocks.
+#[test]
+fn taken_blocks_are_the_csm_and_leave_the_recovery() {
+    let (linked, pairs) = model(true, true);
+    let m = pairs.len();
+    let mut c = linked.condense().unwrap();
+    let r = c.csm();
+    let before = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
+    let blocks = c.take_blocks();
+    for (b, (r0, c0)) in blocks.iter().zip([(0, 0), (0, m), (m, 0), (m, m)]) {
+        assert_eq!((b.nrows(), b.ncols()), (m, m));
+        for j in 0..m {
+            for i in 0..m {
+                assert_eq!(b[(i, j)], r[(r0 + i, c0 + j)]);
+            }
+        }
+    }
+    assert_eq!((c.rnn.nrows(), c.rtt.ncols()), (0, 0));
+    assert_eq!(c.pairs(), m);
+    assert_eq!(c.csm().nrows(), 0);
+    let after = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
+    assert_eq!(before.displacements, after.displacements);
+}
+
 #[test]
 fn csm_equals_inverse_flexibility_and_clv_matches() {
     let (linked, pairs) = model(true, true);

@@ -11,7 +11,7 @@ use faer::Mat;
 use rayon::prelude::*;
 
 use crate::pivoting::columns::Columns;
-use crate::pivoting::kernel::KernelInverse;
+use crate::pivoting::kernel::{lu_in_place, KernelInverse};
 use crate::pivoting::simd::{self, dot};
 
 /// Revised representation of a complementary basis.
@@ -99,30 +99,13 @@ impl Basis {
             self.kinv.clear();
             return Ok(());
         }
-        use faer::dyn_stack::{MemBuffer, MemStack};
-        use faer::linalg::lu::partial_pivoting::factor;
-        // Factorised in place by faer's LU with partial pivoting (what `partial_piv_lu` runs on
-        // a copy, then splits into separate `L` and `U`); the inverse is formed from the
-        // factors straight into the kernel inverse's buffer. At the refactorisation's peak
+        // Factorised in place by faer's LU with partial pivoting; the inverse is formed from
+        // the factors straight into the kernel inverse's buffer. At the refactorisation's peak
         // `K`'s factors, the old inverse's buffer and faer's scratch: three `k × k` matrices
-        // instead of five.
+        // instead of the five of `partial_piv_lu` and `inverse`.
         let mut lu = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
-        let par = faer::get_global_parallelism();
-        let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
-        let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
-            k,
-            k,
-            par,
-            Default::default(),
-        ));
-        let (_, perm) = factor::lu_in_place(
-            lu.as_mut(),
-            &mut fwd,
-            &mut bwd,
-            par,
-            MemStack::new(&mut scratch),
-            Default::default(),
-        );
+        let (fwd, bwd) = lu_in_place(&mut lu);
+        let perm = faer::perm::PermRef::new_checked(&fwd, &bwd, k);
         let umax = (0..k).map(|i| lu[(i, i)].abs()).fold(0.0f64, f64::max);
         let umin = (0..k)
             .map(|i| lu[(i, i)].abs())

@@ -11,7 +11,7 @@ pub(crate) struct KernelInverse {
     k: usize,
     ld: usize,
     data: Vec<f64>,
-    /// A scale of `|G|` for tolerances: `max |G|` at the last `assign`, raised by the new row
+    /// A scale of `|G|` for tolerances: `max |G|` at the last `assign_lu_inverse`, raised by the new row
     /// and column of every `border` (the other updates change entries by round-off-sized
     /// corrections relative to this scale, or shrink the matrix).
     gmax: f64,
@@ -23,6 +23,33 @@ const PARALLEL_K: usize = 384;
 
 /// Columns per task of the parallel passes.
 pub(crate) const PARALLEL_BLOCK: usize = 64;
+
+/// `a` factorised in place by faer's LU with partial pivoting (`lu_in_place`, what
+/// `partial_piv_lu` runs on a copy before splitting it into separate `L` and `U`): the unit
+/// lower and upper factors in `a`, and the row permutation's forward and inverse indices for
+/// [`KernelInverse::assign_lu_inverse`].
+pub(crate) fn lu_in_place(a: &mut faer::Mat<f64>) -> (Vec<usize>, Vec<usize>) {
+    use faer::dyn_stack::{MemBuffer, MemStack};
+    use faer::linalg::lu::partial_pivoting::factor;
+    let k = a.nrows();
+    let par = faer::get_global_parallelism();
+    let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
+    let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
+        k,
+        k,
+        par,
+        Default::default(),
+    ));
+    factor::lu_in_place(
+        a.as_mut(),
+        &mut fwd,
+        &mut bwd,
+        par,
+        MemStack::new(&mut scratch),
+        Default::default(),
+    );
+    (fwd, bwd)
+}
 
 impl KernelInverse {
     /// A scale of the entries of `G` (see the field), `O(1)`.
@@ -266,34 +293,9 @@ mod tests {
     use faer::linalg::solvers::DenseSolveCore;
     use faer::Mat;
 
-    /// Factorised in place as `Basis::refactor` does.
-    fn factor(a: &Mat<f64>) -> (Mat<f64>, Vec<usize>, Vec<usize>) {
-        use faer::dyn_stack::{MemBuffer, MemStack};
-        use faer::linalg::lu::partial_pivoting::factor;
-        let k = a.nrows();
-        let mut lu = a.clone();
-        let par = faer::get_global_parallelism();
-        let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
-        let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
-            k,
-            k,
-            par,
-            Default::default(),
-        ));
-        factor::lu_in_place(
-            lu.as_mut(),
-            &mut fwd,
-            &mut bwd,
-            par,
-            MemStack::new(&mut scratch),
-            Default::default(),
-        );
-        (lu, fwd, bwd)
-    }
-
     // Reference: faer's `PartialPivLu::inverse` (the refactorisation before: the matrix copied,
     // factorised, split into `L` and `U`, inverted into a new matrix), bit for bit, for orders
-    // on both sides of faer's blocking and parallel thresholds, and into a buffer left larger
+    // on both sides of faer's blocking thresholds, and into a buffer left larger
     // by an earlier, larger order (a leading dimension above `k`).
     #[test]
     fn in_place_inverse_is_faers() {
@@ -303,8 +305,10 @@ mod tests {
                 ((i * 31 + j * 17 + k) as f64).sin() + if i == j { 0.5 } else { 0.0 }
             });
             let want = a.partial_piv_lu().inverse();
-            let (lu, fwd, bwd) = factor(&a);
-            let perm = unsafe { faer::perm::PermRef::new_unchecked(&fwd, &bwd, k) };
+            // factorised by what `Basis::refactor` runs
+            let mut lu = a.clone();
+            let (fwd, bwd) = lu_in_place(&mut lu);
+            let perm = faer::perm::PermRef::new_checked(&fwd, &bwd, k);
             g.assign_lu_inverse(lu.as_ref(), perm);
             assert_eq!(g.k, k);
             let mut gmax = 0.0f64;
