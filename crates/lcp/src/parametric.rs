@@ -432,7 +432,7 @@ fn remove_tightening(
     let zero_g = vec![0.0; n];
     let cols = prep.columns(q, &zero_g);
     let basis = Basis::from_slots(&cols, slots.clone()).ok()?;
-    let beta = basis.solve(&cols, &cols.h);
+    let beta = basis.solve_refined(&cols, &cols.h);
     let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
     if beta.iter().all(|&b| b >= -1e-12 * hmax) {
         let (x, z) = prep.unscale(&slots, &cols.values(&clamp(&beta)));
@@ -449,7 +449,7 @@ fn remove_tightening(
     let (reached, spent) = drive_to_zero(&cols_c, basis, c0, settings, n);
     let final_slots = reached?;
     let basis = Basis::from_slots(&cols, final_slots.clone()).ok()?;
-    let beta = basis.solve(&cols, &cols.h);
+    let beta = basis.solve_refined(&cols, &cols.h);
     let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp(&beta)));
     nonnegative(x, z, spent)
 }

@@ -128,6 +128,38 @@ impl Basis {
         self.scatter(&ys, &tmp, n)
     }
 
+    /// `y = B⁻¹ v` with the kernel part refined from the data: two steps of
+    /// `y_S += K⁻¹ (v_R − K y_S)` in working precision (`O(k²)` each, `K`'s entries read from
+    /// the columns). A product with the explicit inverse is not backward stable: on a large,
+    /// badly conditioned kernel (the 700-bearing beam far along its path) the rows of `K y = v`
+    /// it leaves are off by `10⁻¹⁰` of their terms, and a reported solution measured row by row
+    /// can then fail its verification; refined, they are off by round-off (`10⁻¹⁵`). For the
+    /// values a fresh basis is formed to report; the path's own solves are not refined.
+    pub fn solve_refined(&self, cols: &Columns, v: &[f64]) -> Vec<f64> {
+        let n = self.n;
+        let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r]).collect();
+        let mut ys = self.kernel_solve(&vr);
+        for _ in 0..2 {
+            let mut r = vr.clone();
+            for (&c, &y) in self.s_cols.iter().zip(&ys) {
+                if y != 0.0 {
+                    for (ra, &row) in r.iter_mut().zip(&self.r_rows) {
+                        *ra -= cols.entry(row, c) * y;
+                    }
+                }
+            }
+            if r.iter().all(|&v| v == 0.0) {
+                break;
+            }
+            for (y, d) in ys.iter_mut().zip(self.kernel_solve(&r)) {
+                *y += d;
+            }
+        }
+        let mut tmp = v.to_vec();
+        self.subtract_kernel_columns(cols, &ys, &mut tmp);
+        self.scatter(&ys, &tmp, n)
+    }
+
     /// `(B⁻¹ v)` at the given slots only: the kernel solve `O(k²)`, then `O(k)` per slack row.
     pub fn values_at(&self, cols: &Columns, v: &[f64], slots: &[usize]) -> Vec<f64> {
         let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r]).collect();
