@@ -38,8 +38,9 @@ pub use unilateral_contact::{Outcome, PairState};
 /// [`Model::names`]).
 pub use unilateral_fem::Names;
 
-/// Largest relative out-of-balance force accepted in the recovered results.
-pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-6;
+/// Largest relative out-of-balance force accepted in the recovered results (the recovery
+/// refines its displacements when it is exceeded, [`unilateral_fem::EQUILIBRIUM_ACCEPT`]).
+pub const EQUILIBRIUM_TOLERANCE: f64 = unilateral_fem::EQUILIBRIUM_ACCEPT;
 
 /// What can go wrong in an analysis.
 #[derive(Debug, Clone, thiserror::Error)]

@@ -77,6 +77,7 @@ pub use model::{
     SpringKind, SupportDof,
 };
 pub use names::Names;
+pub use recover::EQUILIBRIUM_ACCEPT;
 pub use results::{
     ContactLoadVector, DiagramPoint, Equilibrium, LineResult, LinkValues, PlaneResult, Reaction,
     Results, DIAGRAM_SAMPLES,
