@@ -12,7 +12,10 @@
 //! tightening driven out, on a copy, for at most [`TIGHTENING_PIVOTS`] pivots. Every point is
 //! verified from the original data; anything the sweep cannot settle cheaply (a singular or
 //! inaccurate update, a longer removal of the tightening, a residual that does not verify) is
-//! answered by `solution_at`'s own procedure, so the answers are those of `solution_at`.
+//! answered by `solution_at`'s own procedure, so the answers are those of `solution_at` (the
+//! same scheme and verified residuals; not the same last bits: `solution_at` refines its
+//! kernel values from a fresh factorisation, `Basis::solve_refined`, and the sweep's quick
+//! points come from the updated inverse).
 
 use crate::parametric::{clamp, solution_on_segment};
 use crate::pivoting::basis::Basis;

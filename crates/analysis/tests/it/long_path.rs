@@ -105,7 +105,11 @@ fn the_1000_bearing_beam_is_reported_and_in_balance_far_along_its_path() {
     assert_eq!(s.p, Some(P), "{:?}", s.outcome);
     let r = s.residual.expect("a verified solution");
     assert!(r.max() <= 1e-13, "{r:?}");
+    // What the recovery's refinement fixed: the resultant of applied loads, reactions, contact
+    // and spring forces, 1.3e-6 of the applied loads from the Cholesky solve alone (`analyze`
+    // itself refuses a relative residual above 1e-6, so its success is the coarser check).
     let eq = &a.results.as_ref().expect("recovered results").equilibrium;
-    assert!(eq.relative() <= 1e-6, "{eq:?}");
+    let resultant = eq.resultant.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    assert!(resultant <= 1e-9 * eq.scale, "{eq:?}");
     check_contact_conditions(&a.zone, P, &s.pairs);
 }
