@@ -128,9 +128,9 @@ impl Basis {
         self.scatter(&ys, &tmp, n)
     }
 
-    /// `y = B⁻¹ v` with the kernel part refined from the data: two steps of
+    /// `y = B⁻¹ v` with the kernel part refined from the data: up to two steps of
     /// `y_S += K⁻¹ (v_R − K y_S)` in working precision (`O(k²)` each, `K`'s entries read from
-    /// the columns). A product with the explicit inverse is not backward stable: on a large,
+    /// the columns), each kept only if it leaves a smaller residual. A product with the explicit inverse is not backward stable: on a large,
     /// badly conditioned kernel (the 700-bearing beam far along its path) the rows of `K y = v`
     /// it leaves are off by `10⁻¹⁰` of their terms, and a reported solution measured row by row
     /// can then fail its verification; refined, they are off by round-off (`10⁻¹⁵`). For the
@@ -138,22 +138,37 @@ impl Basis {
     pub fn solve_refined(&self, cols: &Columns, v: &[f64]) -> Vec<f64> {
         let n = self.n;
         let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r]).collect();
-        let mut ys = self.kernel_solve(&vr);
-        for _ in 0..2 {
+        let residual = |ys: &[f64]| -> Vec<f64> {
             let mut r = vr.clone();
-            for (&c, &y) in self.s_cols.iter().zip(&ys) {
+            for (&c, &y) in self.s_cols.iter().zip(ys) {
                 if y != 0.0 {
                     for (ra, &row) in r.iter_mut().zip(&self.r_rows) {
                         *ra -= cols.entry(row, c) * y;
                     }
                 }
             }
-            if r.iter().all(|&v| v == 0.0) {
+            r
+        };
+        let largest = |r: &[f64]| r.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let mut ys = self.kernel_solve(&vr);
+        let mut r = residual(&ys);
+        // Each step is kept only if it leaves a smaller residual (a kernel too badly
+        // conditioned for the inverse's corrections would otherwise wander).
+        for _ in 0..2 {
+            let before = largest(&r);
+            if before == 0.0 || !r.iter().all(|v| v.is_finite()) {
                 break;
             }
-            for (y, d) in ys.iter_mut().zip(self.kernel_solve(&r)) {
-                *y += d;
+            let next: Vec<f64> = ys
+                .iter()
+                .zip(self.kernel_solve(&r))
+                .map(|(y, d)| y + d)
+                .collect();
+            let r_next = residual(&next);
+            if !r_next.iter().all(|v| v.is_finite()) || largest(&r_next) >= before {
+                break;
             }
+            (ys, r) = (next, r_next);
         }
         let mut tmp = v.to_vec();
         self.subtract_kernel_columns(cols, &ys, &mut tmp);
