@@ -19,7 +19,7 @@
 //!   from the contact zone's matrices and loads (`x = R_c + p·R_v + R z`), each row against the
 //!   terms that form it.
 
-use crate::zone_rows::{bearing_beam, check_contact_conditions};
+use crate::zone_rows::{bearing_beam, bearing_beam_to, check_contact_conditions};
 use unilateral_contact::Outcome;
 
 /// The path of the 500-bearing beam reaches its end without a numerical failure or a false
@@ -53,19 +53,8 @@ fn the_500_bearing_beam_is_traced_to_its_ray() {
 /// conditions from the zone's matrices.
 #[test]
 fn the_solution_far_along_the_700_bearing_beam_is_exact_to_round_off() {
-    use unilateral_io::{read_problem, Problem};
-    use unilateral_lcp::Follow;
-    const M: usize = 700;
     const P: f64 = 20.0;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("beam.toml");
-    std::fs::write(&path, unilateral_oracle::fixtures::bearings::beam_model(M)).unwrap();
-    let Problem::Structural(mut p) = read_problem(&path).unwrap() else {
-        panic!("a structural model")
-    };
-    p.settings.target = P;
-    p.settings.follow = Follow::ToTarget;
-    let a = unilateral_analysis::analyze(&p.model, &p.settings).unwrap();
+    let a = bearing_beam_to(700, P);
     let s = &a.solution;
     assert_eq!(s.p, Some(P), "{:?}", s.outcome);
     assert!(
@@ -88,19 +77,8 @@ fn the_solution_far_along_the_700_bearing_beam_is_exact_to_round_off() {
 /// the contact conditions from the zone's matrices.
 #[test]
 fn the_1000_bearing_beam_is_reported_and_in_balance_far_along_its_path() {
-    use unilateral_io::{read_problem, Problem};
-    use unilateral_lcp::Follow;
-    const M: usize = 1000;
     const P: f64 = 40.0;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("beam.toml");
-    std::fs::write(&path, unilateral_oracle::fixtures::bearings::beam_model(M)).unwrap();
-    let Problem::Structural(mut p) = read_problem(&path).unwrap() else {
-        panic!("a structural model")
-    };
-    p.settings.target = P;
-    p.settings.follow = Follow::ToTarget;
-    let a = unilateral_analysis::analyze(&p.model, &p.settings).unwrap();
+    let a = bearing_beam_to(1000, P);
     let s = &a.solution;
     assert_eq!(s.p, Some(P), "{:?}", s.outcome);
     let r = s.residual.expect("a verified solution");

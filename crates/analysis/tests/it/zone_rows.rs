@@ -88,12 +88,28 @@ pub fn check_contact_conditions(z: &ContactZone, p: f64, pairs: &[PairResult]) -
 /// The analysis of the whole-process benchmark's beam on `m` frictional elastic bearings
 /// (`unilateral_oracle::fixtures::bearings::beam_model`), read from its model file.
 pub fn bearing_beam(m: usize) -> Analysis {
+    bearing_beam_with(m, |_| {})
+}
+
+/// [`bearing_beam`] traced to the target `p` only (the model file's path goes to its end).
+pub fn bearing_beam_to(m: usize, p: f64) -> Analysis {
+    bearing_beam_with(m, |s| {
+        s.target = p;
+        s.follow = unilateral_lcp::Follow::ToTarget;
+    })
+}
+
+fn bearing_beam_with(
+    m: usize,
+    settings: impl FnOnce(&mut unilateral_contact::SolveSettings),
+) -> Analysis {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join(format!("beam{m}.toml"));
     std::fs::write(&path, beam_model(m)).unwrap();
-    let p = match read_problem(&path).unwrap() {
+    let mut p = match read_problem(&path).unwrap() {
         Problem::Structural(p) => p,
         Problem::ContactZone(_) => panic!("a structural model"),
     };
+    settings(&mut p.settings);
     analyze(&p.model, &p.settings).unwrap()
 }

@@ -120,35 +120,42 @@ impl Basis {
 
     /// `y = B⁻¹ v`, indexed by slot.
     pub fn solve(&self, cols: &Columns, v: &[f64]) -> Vec<f64> {
-        let n = self.n;
         let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r]).collect();
         let ys = self.kernel_solve(&vr);
+        self.with_slack_rows(cols, v, &ys)
+    }
+
+    /// `B⁻¹ v` by slot from its kernel part `y_S`: the slack rows `v − A[:, S] y_S`.
+    fn with_slack_rows(&self, cols: &Columns, v: &[f64], ys: &[f64]) -> Vec<f64> {
         let mut tmp = v.to_vec();
-        self.subtract_kernel_columns(cols, &ys, &mut tmp);
-        self.scatter(&ys, &tmp, n)
+        self.subtract_kernel_columns(cols, ys, &mut tmp);
+        self.scatter(ys, &tmp, self.n)
+    }
+
+    /// `v_R − K y_S` from the data (`O(k²)`).
+    fn kernel_residual(&self, cols: &Columns, vr: &[f64], ys: &[f64]) -> Vec<f64> {
+        let mut r = vr.to_vec();
+        for (&c, &y) in self.s_cols.iter().zip(ys) {
+            if y != 0.0 {
+                for (ra, &row) in r.iter_mut().zip(&self.r_rows) {
+                    *ra -= cols.entry(row, c) * y;
+                }
+            }
+        }
+        r
     }
 
     /// `y = B⁻¹ v` with the kernel part refined from the data: up to two steps of
     /// `y_S += K⁻¹ (v_R − K y_S)` in working precision (`O(k²)` each, `K`'s entries read from
-    /// the columns), each kept only if it leaves a smaller residual. A product with the explicit inverse is not backward stable: on a large,
-    /// badly conditioned kernel (the 700-bearing beam far along its path) the rows of `K y = v`
-    /// it leaves are off by `10⁻¹⁰` of their terms, and a reported solution measured row by row
-    /// can then fail its verification; refined, they are off by round-off (`10⁻¹⁵`). For the
-    /// values a fresh basis is formed to report; the path's own solves are not refined.
+    /// the columns), each kept only if it leaves a smaller residual. A product with the explicit
+    /// inverse is not backward stable: on a large, badly conditioned kernel (the 700-bearing
+    /// beam far along its path) the rows of `K y = v` it leaves are off by `10⁻¹⁰` of their
+    /// terms, and a reported solution measured row by row can then fail its verification;
+    /// refined, they are off by round-off (`10⁻¹⁵`). For the values a fresh basis is formed to
+    /// report; the path's own solves are not refined.
     pub fn solve_refined(&self, cols: &Columns, v: &[f64]) -> Vec<f64> {
-        let n = self.n;
         let vr: Vec<f64> = self.r_rows.iter().map(|&r| v[r]).collect();
-        let residual = |ys: &[f64]| -> Vec<f64> {
-            let mut r = vr.clone();
-            for (&c, &y) in self.s_cols.iter().zip(ys) {
-                if y != 0.0 {
-                    for (ra, &row) in r.iter_mut().zip(&self.r_rows) {
-                        *ra -= cols.entry(row, c) * y;
-                    }
-                }
-            }
-            r
-        };
+        let residual = |ys: &[f64]| self.kernel_residual(cols, &vr, ys);
         let largest = |r: &[f64]| r.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         let mut ys = self.kernel_solve(&vr);
         let mut r = residual(&ys);
@@ -170,9 +177,7 @@ impl Basis {
             }
             (ys, r) = (next, r_next);
         }
-        let mut tmp = v.to_vec();
-        self.subtract_kernel_columns(cols, &ys, &mut tmp);
-        self.scatter(&ys, &tmp, n)
+        self.with_slack_rows(cols, v, &ys)
     }
 
     /// `(B⁻¹ v)` at the given slots only: the kernel solve `O(k²)`, then `O(k)` per slack row.
@@ -314,15 +319,9 @@ impl Basis {
             return None;
         }
         let y = self.kinv.col(b).to_vec();
-        let mut res = vec![0.0; y.len()];
-        res[b] = 1.0;
-        for (&c, &yc) in self.s_cols.iter().zip(&y) {
-            if yc != 0.0 {
-                for (ra, &row) in res.iter_mut().zip(&self.r_rows) {
-                    *ra -= cols.entry(row, c) * yc;
-                }
-            }
-        }
+        let mut unit = vec![0.0; y.len()];
+        unit[b] = 1.0;
+        let res = self.kernel_residual(cols, &unit, &y);
         let corr = self.kernel_solve(&res);
         Some(y.iter().zip(&corr).map(|(a, c)| a + c).collect())
     }
