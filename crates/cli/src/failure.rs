@@ -137,13 +137,24 @@ pub(crate) fn report_failure(e: &unilateral_output::ReportError) -> Failure {
 }
 
 /// How a load path ended: every ending is an answer except a numerical failure, which is the
-/// program's fault. What was computed before it is still printed and written; then the run
-/// exits 1.
+/// program's fault, and a solution that should be reported and could not be verified
+/// ([`unilateral_contact::ContactSolution::unreported_is_failure`]). What was computed before
+/// it is still printed and written; then the run exits 1.
 pub(crate) fn outcome_failure(
     file: &Path,
     sol: &unilateral_contact::ContactSolution,
 ) -> Option<Failure> {
-    ending_failure(file, &sol.outcome, sol.steps.len())
+    ending_failure(file, &sol.outcome, sol.steps.len()).or_else(|| {
+        sol.unreported_is_failure().then(|| {
+            Failure::Internal(format!(
+                "{}: {} — a numerical failure of the program, not a fault of the model; the \
+                 output holds the events of the path",
+                file.display(),
+                sol.unreported()
+                    .unwrap_or_else(|| "no solution is reported".into())
+            ))
+        })
+    })
 }
 
 /// [`outcome_failure`] for an outcome reached after `steps` steps.

@@ -106,6 +106,56 @@ fn solve_example1_reports_the_papers_answer() {
     assert!(j["p_limit"].is_null());
 }
 
+/// Where the ending has a load to report a solution at and none can be given, the output says
+/// why. Two pairs of a floating body (`R_n` singular), the first pulled off by the load, with
+/// the paper's tightening c = 1: the tightened path ends in a mechanism at p = 2 (by hand:
+/// `x_n1 = 1 − p + z_n1` opens pair 1 at p = 1, then `z_n1 = p − 1` and `x_n2 = 1 − z_n1 = 2 − p`
+/// open pair 2 at p = 2), and the real problem, pulled with nothing to hold it, has no solution
+/// there: removing
+/// the tightening and a fresh solve both fail, which is an answer (exit 0), not a fault.
+#[test]
+fn a_missing_solution_is_explained() {
+    let cmd = TestCommand::new(&["solve", "pulled.toml", "--json", "out.json"]);
+    std::fs::write(
+        cmd.path("pulled.toml"),
+        "[contact_zone]\nfriction = 0.5\nRnn = [[1.0, -1.0], [-1.0, 1.0]]\n\
+         Rtt = [[1.0, -1.0], [-1.0, 1.0]]\n[load.variable]\nnormal = [-1.0, 0.0]\n\
+         tangential = [0.0, 0.0]\n[solve]\ntightening = 1.0\ntarget = 3.0\ntrace = \"end\"\n",
+    )
+    .unwrap();
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    assert!(
+        out.stdout.contains("mechanism at p_lim = 2.000000"),
+        "{}",
+        out.stdout
+    );
+    assert!(
+        out.stdout
+            .contains("no solution to report (why: in the notes at the end)"),
+        "{}",
+        out.stdout
+    );
+    let j = cmd.json("out.json");
+    assert!(j["p"].is_null());
+    let notes: Vec<&str> = j["notes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|n| n.as_str())
+        .collect();
+    let why = notes
+        .iter()
+        .find(|n| n.starts_with("no solution is reported at p = 2:"))
+        .unwrap_or_else(|| panic!("no reason among {notes:?}"));
+    assert!(
+        why.contains("the tightening could not be removed")
+            && why.contains("a fresh solve at that load found no solution"),
+        "{why}"
+    );
+    assert!(out.stdout.contains(why), "{}", out.stdout);
+}
+
 #[test]
 fn default_trace_stops_at_the_target_with_the_same_answer() {
     let cmd = TestCommand::new(&["solve"])

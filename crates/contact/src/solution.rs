@@ -295,6 +295,30 @@ impl ContactSolution {
         self.lcp.get_or_init(|| ContactLcp::build(&self.zone))
     }
 
+    /// Why no solution is reported although the ending has a load to report it at, for the
+    /// reader (the same sentence is among [`ContactSolution::notes`]); `None` when a solution is
+    /// reported or the ending has no such load.
+    pub fn unreported(&self) -> Option<String> {
+        self.path
+            .unreported
+            .as_ref()
+            .filter(|_| self.p.is_none())
+            .map(|why| crate::solve::unreported_note(why, self.pairs(), &self.engine.names))
+    }
+
+    /// Whether the missing solution ([`ContactSolution::unreported`]) is the program's failure
+    /// rather than an answer: the path's own working scheme should have been the solution there
+    /// (no tightening to remove), or the fresh solve at that load failed numerically. Only a
+    /// tightened path whose real problem Lemke's method ends without a solution is an answer.
+    pub fn unreported_is_failure(&self) -> bool {
+        self.p.is_none()
+            && self
+                .path
+                .unreported
+                .as_ref()
+                .is_some_and(|why| crate::solve::unreported_is_failure(why, self.tightening))
+    }
+
     /// Reads the normalised point `sol` as the reported solution.
     pub(crate) fn set_point(&mut self, sol: &PathPoint) -> Result<(), ContactError> {
         self.pairs = self.engine.read_point(sol)?;

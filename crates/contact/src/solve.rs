@@ -3,7 +3,9 @@
 
 use std::sync::{Arc, OnceLock};
 
-use unilateral_lcp::{PathOptions, PathSolver, PathStatus, Settings, Var};
+use unilateral_lcp::{
+    BasisVerdict, LcpStatus, PathOptions, PathSolver, PathStatus, Settings, Unreported, Var,
+};
 
 use crate::lcp::{label, load_vectors, ContactLcp};
 use crate::solution::Engine;
@@ -156,6 +158,18 @@ pub fn solve_shared(
             *v = units.user_stiffness(*v);
         }
     }
+    if let Some(BasisVerdict::Negative {
+        var,
+        value,
+        largest,
+    }) = path.unreported.as_mut().map(|u| &mut u.path_basis)
+    {
+        let user = |v: f64| match var {
+            Var::X(_) => units.user_force(v),
+            _ => units.user_displacement(v),
+        };
+        (*value, *largest) = (user(*value), user(*largest));
+    }
     if let Some(sol) = &mut path.solution {
         sol.x.iter_mut().for_each(|v| *v = units.user_force(*v));
         sol.z
@@ -228,6 +242,9 @@ pub fn solve_shared(
             names[pair]
         ));
     }
+    if let Some(why) = &path.unreported {
+        notes.push(unreported_note(why, m, &names));
+    }
     let solution = normalised_solution;
     if let Some(p_art) = path.artificial_mechanism {
         notes.push(format!(
@@ -271,6 +288,70 @@ pub fn solve_shared(
         out.set_point(&sol)?;
     }
     Ok(out)
+}
+
+/// Why no solution is reported at `why.p`, for the reader: what the traced working scheme gave
+/// there and how the fresh solve ended (values in the model's units).
+pub(crate) fn unreported_note(why: &Unreported, m: usize, names: &[String]) -> String {
+    let basis = match &why.path_basis {
+        BasisVerdict::Singular => {
+            "the working scheme traced there is numerically singular on the data".to_string()
+        }
+        BasisVerdict::Negative {
+            var,
+            value,
+            largest,
+        } => {
+            let (pair, what) = match *var {
+                Var::X(i) => (i % m, "forces"),
+                Var::Z(i) => (i % m, "displacements"),
+                Var::Driver => (0, "values"),
+            };
+            format!(
+                "the working scheme traced there is not a solution of the data: {} of pair {} is \
+                 {value:.6e}, negative beyond round-off ({what} there up to {largest:.3e}) — the \
+                 path passed an event that the data put before this load, or the structure is \
+                 too close to a mechanism for the working precision to decide",
+                label(m, *var),
+                names.get(pair).map_or("?", |s| s.as_str()),
+            )
+        }
+        BasisVerdict::TighteningNotRemoved { pivots } => format!(
+            "the tightening could not be removed from the working scheme traced there (the drive \
+             stopped after {pivots} pivot{})",
+            if *pivots == 1 { "" } else { "s" }
+        ),
+        BasisVerdict::Unverified { residual } => format!(
+            "the point of the working scheme traced there fails verification (residuals: \
+             equation {:.3e}, sign {:.3e}, complementarity {:.3e}; accepted up to {:.0e})",
+            residual.equation,
+            residual.feasibility,
+            residual.complementarity,
+            unilateral_lcp::ACCEPT_RESIDUAL
+        ),
+    };
+    let fresh = match why.fresh {
+        Some(LcpStatus::Ray) => "found no solution (Lemke's method ended on a ray with every \
+                                 covering vector)"
+            .to_string(),
+        Some(LcpStatus::IterationLimit) => "reached its pivot cap".to_string(),
+        Some(LcpStatus::NumericalFailure) | Some(LcpStatus::Solved) => {
+            "could not produce a verified point (numerical_failure)".to_string()
+        }
+        None => "refused the data".to_string(),
+    };
+    format!(
+        "no solution is reported at p = {}: {basis}; a fresh solve at that load {fresh}",
+        why.p
+    )
+}
+
+/// Whether the missing solution of `why` is the program's failure rather than an answer: the
+/// path's own working scheme (without a tightening to remove) should be the solution there, or
+/// the fresh solve failed numerically. Only a tightened path whose real problem Lemke's method
+/// finds without a solution is an answer.
+pub(crate) fn unreported_is_failure(why: &Unreported, tightening: f64) -> bool {
+    tightening <= 0.0 || !matches!(why.fresh, Some(LcpStatus::Ray | LcpStatus::IterationLimit))
 }
 
 /// The first breakpoint (load, pair) at which a slip part `z_t±` of the traced path is smaller
@@ -359,5 +440,90 @@ mod tests {
             note.contains("at \\\n"),
             "continuation backslash lost: {note}"
         );
+    }
+
+    use super::{unreported_is_failure, unreported_note};
+    use unilateral_lcp::{BasisVerdict, LcpStatus, Residual, Unreported, Var};
+
+    fn why(path_basis: BasisVerdict, fresh: Option<LcpStatus>) -> Unreported {
+        Unreported {
+            p: 1500.0,
+            path_basis,
+            fresh,
+        }
+    }
+
+    /// Each reason for a missing solution reads as one sentence (no runs of spaces from
+    /// continuation lines) that names the load, the variable with its pair's name, the values
+    /// and how the fresh solve ended.
+    #[test]
+    fn a_missing_solution_says_why() {
+        let names: Vec<String> = ["left", "middle", "right"].map(String::from).to_vec();
+        let negative = BasisVerdict::Negative {
+            var: Var::Z(3 + 2),
+            value: -1.25e-3,
+            largest: 3.0e8,
+        };
+        let note = unreported_note(
+            &why(negative.clone(), Some(LcpStatus::NumericalFailure)),
+            3,
+            &names,
+        );
+        for part in [
+            "no solution is reported at p = 1500",
+            "z_t3+ of pair right is -1.250000e-3",
+            "displacements there up to 3.000e8",
+            "could not produce a verified point (numerical_failure)",
+        ] {
+            assert!(note.contains(part), "{part:?} not in {note}");
+        }
+        let residual = Residual {
+            equation: 2.5e-7,
+            feasibility: 0.0,
+            complementarity: 1e-12,
+        };
+        let notes = [
+            unreported_note(&why(negative, None), 3, &names),
+            unreported_note(
+                &why(BasisVerdict::Singular, Some(LcpStatus::Ray)),
+                3,
+                &names,
+            ),
+            unreported_note(
+                &why(
+                    BasisVerdict::TighteningNotRemoved { pivots: 7 },
+                    Some(LcpStatus::IterationLimit),
+                ),
+                3,
+                &names,
+            ),
+            unreported_note(&why(BasisVerdict::Unverified { residual }, None), 3, &names),
+        ];
+        assert!(notes[1].contains("numerically singular") && notes[1].contains("ray"));
+        assert!(notes[2].contains("after 7 pivots") && notes[2].contains("pivot cap"));
+        assert!(notes[3].contains("equation 2.500e-7"), "{}", notes[3]);
+        for n in notes.iter().chain([&note]) {
+            assert!(!n.contains("  "), "a run of spaces: {n}");
+        }
+    }
+
+    /// Without a tightening the traced working scheme is the solution at its load: failing to
+    /// verify it is the program's failure whatever the fresh solve says. With one, the fresh
+    /// solve's ray (no solution found for the real problem) is an answer; its numerical failure
+    /// is not.
+    #[test]
+    fn a_missing_solution_is_a_failure_unless_the_real_problem_has_none() {
+        let singular = |fresh| why(BasisVerdict::Singular, fresh);
+        assert!(unreported_is_failure(&singular(Some(LcpStatus::Ray)), 0.0));
+        assert!(!unreported_is_failure(&singular(Some(LcpStatus::Ray)), 1.0));
+        assert!(!unreported_is_failure(
+            &singular(Some(LcpStatus::IterationLimit)),
+            1.0
+        ));
+        assert!(unreported_is_failure(
+            &singular(Some(LcpStatus::NumericalFailure)),
+            1.0
+        ));
+        assert!(unreported_is_failure(&singular(None), 1.0));
     }
 }

@@ -61,8 +61,8 @@ pub use evolution::{
 };
 pub use lemke::solve_lcp;
 pub use path::{
-    Breakpoint, Follow, LoadPath, MechanismMode, PathOptions, PathPoint, PathStatus, Step,
-    Tightening,
+    BasisVerdict, Breakpoint, Follow, LoadPath, MechanismMode, PathOptions, PathPoint, PathStatus,
+    Step, Tightening, Unreported,
 };
 pub use problem::{Lcp, ParametricLcp};
 pub use progress::{Phase, Progress, Snapshot};

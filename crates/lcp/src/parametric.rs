@@ -9,8 +9,9 @@ use crate::pivoting::enumerate::enumerate_first;
 use crate::pivoting::pivot::{max_abs, Ending, PivotRecord, Pivoter, Tolerances};
 use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
 use crate::{
-    Breakpoint, Follow, Lcp, LcpError, LcpStatus, LoadPath, MechanismMode, ParametricLcp,
-    PathOptions, PathPoint, PathSolver, PathStatus, Settings, SettingsError, Step, Var,
+    BasisVerdict, Breakpoint, Follow, Lcp, LcpError, LcpStatus, LoadPath, MechanismMode,
+    ParametricLcp, PathOptions, PathPoint, PathSolver, PathStatus, Settings, SettingsError, Step,
+    Unreported, Var,
 };
 
 /// Checks the problem, the settings and the options; returns the order `n`.
@@ -86,6 +87,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 start_pivots,
                 refactorizations: 0,
                 artificial_mechanism: None,
+                unreported: None,
                 start_slots: (0..n).collect(),
                 records: vec![],
                 target_segment: None,
@@ -154,6 +156,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         start_pivots,
         refactorizations: piv.refactorizations,
         artificial_mechanism: None,
+        unreported: None,
         start_slots,
         records: pivots,
         target_segment: crossed,
@@ -218,7 +221,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     };
     if let (PathStatus::Mechanism, Some(p_lim)) = (path.status, path.p_limit) {
         if c0 > 0.0 && p_lim < options.target {
-            if let Some(pt) = fresh_solution(solver, options.target) {
+            if let Ok(pt) = fresh_solution(solver, options.target) {
                 path.status = PathStatus::TargetReached;
                 path.artificial_mechanism = Some(p_lim);
                 path.solution = Some(pt);
@@ -230,7 +233,10 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         // Only verified, finite points are reported (`solution_on_segment`); none at all when
         // the real problem (without tightening) has no solution there.
         progress.phase(crate::Phase::Tightening);
-        path.solution = solution_on_segment(solver, &path, seg, p);
+        match solution_on_segment(solver, &path, seg, p) {
+            Ok(pt) => path.solution = Some(pt),
+            Err(why) => path.unreported = Some(why),
+        }
         progress.pivots(path.solution.as_ref().map_or(0, |s| s.tightening_pivots));
     }
     path
@@ -360,66 +366,81 @@ pub(crate) fn mechanism_mode(
     }
 }
 
-/// The solution at `p` on segment `seg` without the tightening.
+/// The solution at `p` on segment `seg` without the tightening, or why there is none: the
+/// segment's basis evaluated from the data, then a fresh standard solve at `p`.
 pub(crate) fn solution_on_segment(
     solver: &PathSolver,
     path: &LoadPath,
     seg: usize,
     p: f64,
-) -> Option<PathPoint> {
+) -> Result<PathPoint, Unreported> {
     let (prep, settings) = (&solver.prep, solver.settings());
     let (c0, cov) = (solver.c0, &solver.cov[..]);
     let n = prep.n;
     let driver = 2 * n;
     let mut slots = path.slots_after(seg);
     if let Some(ds) = slots.iter().position(|&v| v == driver) {
-        let e = path.segment_entering(seg, n)?;
+        // A segment without an entering column is the end of the record: nothing to evaluate.
+        let Some(e) = path.segment_entering(seg, n) else {
+            return Err(Unreported {
+                p,
+                path_basis: BasisVerdict::Singular,
+                fresh: None,
+            });
+        };
         slots[ds] = e;
     }
     let q_real: Vec<f64> = solver.q_at(p);
-    match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
-        Some((x, z, pivots)) => {
+    let path_basis = match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
+        Ok((x, z, pivots)) => {
             let residual = solver.residual(p, &x, &z);
-            if !residual.accepts(&x, &z) {
-                return fresh_solution(solver, p);
+            if residual.accepts(&x, &z) {
+                return Ok(PathPoint {
+                    p,
+                    x,
+                    z,
+                    residual,
+                    tightening_pivots: pivots,
+                    fallback: false,
+                });
             }
-            Some(PathPoint {
-                p,
-                x,
-                z,
-                residual,
-                tightening_pivots: pivots,
-                fallback: false,
-            })
+            BasisVerdict::Unverified { residual }
         }
-        None => fresh_solution(solver, p),
-    }
+        Err(verdict) => verdict,
+    };
+    fresh_solution(solver, p).map_err(|fresh| Unreported {
+        p,
+        path_basis,
+        fresh,
+    })
 }
 
-/// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified.
-fn fresh_solution(solver: &PathSolver, p: f64) -> Option<PathPoint> {
+/// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified; else how
+/// that solve ended (`None`: it refused the data).
+fn fresh_solution(solver: &PathSolver, p: f64) -> Result<PathPoint, Option<LcpStatus>> {
     let lcp = Lcp {
         m: solver.prep.original_matrix(),
         q: solver.q_at(p),
     };
-    let sol = solve_lcp(&lcp, solver.settings()).ok()?;
-    if sol.status != LcpStatus::Solved {
-        return None;
+    let sol = solve_lcp(&lcp, solver.settings()).map_err(|_| None)?;
+    let status = sol.status;
+    match (status, sol.point) {
+        (LcpStatus::Solved, Some(pt)) => Ok(PathPoint {
+            p,
+            x: pt.w,
+            z: pt.z,
+            residual: pt.residual,
+            tightening_pivots: sol.pivots,
+            fallback: true,
+        }),
+        (LcpStatus::Solved, None) => Err(Some(LcpStatus::NumericalFailure)),
+        (other, _) => Err(Some(other)),
     }
-    let pt = sol.point?;
-    Some(PathPoint {
-        p,
-        x: pt.w,
-        z: pt.z,
-        residual: pt.residual,
-        tightening_pivots: sol.pivots,
-        fallback: true,
-    })
 }
 
 /// Evaluates the complementary basis `slots` at `x = q + M z` (no tightening). If it is not
 /// feasible, drives the tightening `c` from `c0` down to zero by complementary pivots at fixed
-/// load. Returns unscaled `(x, z)` and the pivots spent.
+/// load. Returns unscaled `(x, z)` and the pivots spent, or what went wrong.
 fn remove_tightening(
     prep: &Prepared,
     q: &[f64],
@@ -427,11 +448,11 @@ fn remove_tightening(
     c0: f64,
     cov: &[f64],
     settings: &Settings,
-) -> Option<(Vec<f64>, Vec<f64>, usize)> {
+) -> Result<(Vec<f64>, Vec<f64>, usize), BasisVerdict> {
     let n = prep.n;
     let zero_g = vec![0.0; n];
     let cols = prep.columns(q, &zero_g);
-    let basis = Basis::from_slots(&cols, slots.clone()).ok()?;
+    let basis = Basis::from_slots(&cols, slots.clone()).map_err(|_| BasisVerdict::Singular)?;
     let beta = basis.solve_refined(&cols, &cols.h);
     let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
     if beta.iter().all(|&b| b >= -1e-12 * hmax) {
@@ -439,19 +460,38 @@ fn remove_tightening(
         return nonnegative(x, z, 0);
     }
     if c0 <= 0.0 {
-        return None;
+        let (x, z) = prep.unscale(&slots, &cols.values(&beta));
+        return Err(most_negative(&x, &z));
     }
     // x = (q + c0·cov) − cov·t + M z with t = c0 − c going from 0 to c0.
     let h: Vec<f64> = q.iter().zip(cov).map(|(a, c)| a + c0 * c).collect();
     let g: Vec<f64> = cov.iter().map(|c| -c).collect();
     let cols_c = prep.columns(&h, &g);
-    let basis = Basis::from_slots(&cols_c, slots).ok()?;
+    let basis = Basis::from_slots(&cols_c, slots).map_err(|_| BasisVerdict::Singular)?;
     let (reached, spent) = drive_to_zero(&cols_c, basis, c0, settings, n);
-    let final_slots = reached?;
-    let basis = Basis::from_slots(&cols, final_slots.clone()).ok()?;
+    let final_slots = reached.ok_or(BasisVerdict::TighteningNotRemoved { pivots: spent })?;
+    let basis =
+        Basis::from_slots(&cols, final_slots.clone()).map_err(|_| BasisVerdict::Singular)?;
     let beta = basis.solve_refined(&cols, &cols.h);
     let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp(&beta)));
     nonnegative(x, z, spent)
+}
+
+/// The variable most negative against the largest of its kind (`x` or `z`).
+fn most_negative(x: &[f64], z: &[f64]) -> BasisVerdict {
+    let (xmax, zmax) = (max_abs(x), max_abs(z));
+    let rel = |v: f64, top: f64| if top > 0.0 { v / top } else { v };
+    let xs = x.iter().enumerate().map(|(i, &v)| (Var::X(i), v, xmax));
+    let zs = z.iter().enumerate().map(|(i, &v)| (Var::Z(i), v, zmax));
+    let (var, value, largest) = xs
+        .chain(zs)
+        .min_by(|a, b| rel(a.1, a.2).total_cmp(&rel(b.1, b.2)))
+        .unwrap_or((Var::Driver, 0.0, 0.0));
+    BasisVerdict::Negative {
+        var,
+        value,
+        largest,
+    }
 }
 
 /// Drives the auxiliary variable of `cols` (the driver, index `2n`, whose column is `g`) from
@@ -510,11 +550,15 @@ pub(crate) fn clamp(beta: &[f64]) -> Vec<f64> {
 }
 
 /// The point if it satisfies the sign conditions (the residuals are computed by the caller).
-fn nonnegative(x: Vec<f64>, z: Vec<f64>, pivots: usize) -> Option<(Vec<f64>, Vec<f64>, usize)> {
+fn nonnegative(
+    x: Vec<f64>,
+    z: Vec<f64>,
+    pivots: usize,
+) -> Result<(Vec<f64>, Vec<f64>, usize), BasisVerdict> {
     if x.iter().chain(&z).any(|&v| v < 0.0) {
-        return None;
+        return Err(most_negative(&x, &z));
     }
-    Some((x, z, pivots))
+    Ok((x, z, pivots))
 }
 
 /// The solution without tightening at `p` on a traced path (see [`PathSolver::solution_at`]).
@@ -527,5 +571,63 @@ pub(crate) fn point_at(solver: &PathSolver, path: &LoadPath, p: f64) -> Option<P
         (path.status == PathStatus::Ray && p >= path.breakpoints.last().map_or(0.0, |b| b.p))
             .then_some(path.records.len())
     });
-    seg.and_then(|j| solution_on_segment(solver, path, j, p))
+    seg.and_then(|j| solution_on_segment(solver, path, j, p).ok())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::Mat;
+
+    fn prepared(rows: &[[f64; 3]]) -> Prepared {
+        Prepared::new(&Mat::from_fn(3, 3, |i, j| rows[i][j]))
+    }
+
+    /// A basis that is not a solution at the load is diagnosed by the variable most negative
+    /// against the largest of its kind, in the problem's units. By hand, for
+    /// `M = [[2, 1, 0], [1, 3, 0], [0, 0, 1]]`, `q = (−2, 1, 3)` and the basis `{x1, z2, x3}`:
+    /// `x2 = 1 + 3·z2 = 0` gives `z2 = −1/3`, then `x1 = −2 + z2 = −7/3` and `x3 = 3`. Against
+    /// the largest of their kinds, `x1/3 = −0.78` and `z2/(1/3) = −1`: `z2` is named.
+    #[test]
+    fn a_basis_that_is_not_a_solution_names_its_most_negative_variable() {
+        let prep = prepared(&[[2.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 0.0, 1.0]]);
+        let q = [-2.0, 1.0, 3.0];
+        let settings = Settings::default();
+        let cov = [0.0; 3];
+        let verdict = remove_tightening(&prep, &q, vec![0, 4, 2], 0.0, &cov, &settings)
+            .expect_err("the basis {x1, z2, x3} is infeasible at q");
+        let BasisVerdict::Negative {
+            var,
+            value,
+            largest,
+        } = verdict
+        else {
+            panic!("{verdict:?}");
+        };
+        assert_eq!(var, Var::Z(1));
+        assert!((value + 1.0 / 3.0).abs() < 1e-15, "{value}");
+        assert!((largest - 1.0 / 3.0).abs() < 1e-15, "{largest}");
+        // The solution's basis {z1, x2, x3} (z1 = 1, x2 = 2, x3 = 3) is accepted as it is.
+        let (x, z, pivots) = remove_tightening(&prep, &q, vec![3, 1, 2], 0.0, &cov, &settings)
+            .expect("the basis {z1, x2, x3} solves the problem at q");
+        assert_eq!(pivots, 0);
+        assert!((z[0] - 1.0).abs() < 1e-15 && (x[1] - 2.0).abs() < 1e-15 && x[2] == 3.0);
+    }
+
+    /// A basis whose kernel is singular on the data is said to be so: `{z1, z2, x3}` of
+    /// `M = [[1, 1, 0], [1, 1, 0], [0, 0, 1]]` has the kernel `[[1, 1], [1, 1]]`.
+    #[test]
+    fn a_singular_basis_is_said_to_be_singular() {
+        let prep = prepared(&[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let verdict = remove_tightening(
+            &prep,
+            &[-1.0, -1.0, 1.0],
+            vec![3, 4, 2],
+            0.0,
+            &[0.0; 3],
+            &Settings::default(),
+        )
+        .expect_err("a singular kernel");
+        assert_eq!(verdict, BasisVerdict::Singular);
+    }
 }

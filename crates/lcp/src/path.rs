@@ -1,7 +1,7 @@
 //! The load path of a parametric LCP: how far it is followed, how it ended, its steps and
 //! breakpoints, and the solutions read from it.
 
-use crate::{Residual, SettingsError, Var};
+use crate::{LcpStatus, Residual, SettingsError, Var};
 
 /// How far the path is followed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -136,6 +136,51 @@ pub struct PathPoint {
     pub fallback: bool,
 }
 
+/// Why no solution is reported at a load where the path should give one
+/// ([`LoadPath::unreported`]): what the path's own basis gave there, evaluated afresh from the
+/// data, and how a fresh standard solve at that load ended. Every reported solution is
+/// verified; this says what was tried instead of a bare "none".
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unreported {
+    /// The load at which the solution was sought.
+    pub p: f64,
+    /// The path's basis at `p`, without the tightening.
+    pub path_basis: BasisVerdict,
+    /// How the fresh standard solve at `p` (Lemke's method with its fallbacks) ended: never
+    /// [`LcpStatus::Solved`] here; `None` when it stopped on invalid data.
+    pub fresh: Option<LcpStatus>,
+}
+
+/// What the path's basis gave at a load where it gives no verified solution.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BasisVerdict {
+    /// The basis matrix formed from the data is numerically singular (or the path records no
+    /// complementary basis on that segment).
+    Singular,
+    /// A basic variable of the basis is negative beyond round-off: the basis is not a solution
+    /// at this load (the traced path passed an event that the data put before it, or the
+    /// tightening was not removed to a feasible basis).
+    Negative {
+        /// The variable (`X` a component of `x = q + M z`, `Z` one of `z`).
+        var: Var,
+        /// Its value, in the units of the problem.
+        value: f64,
+        /// The largest magnitude among the variables of its kind (`x` or `z`) there.
+        largest: f64,
+    },
+    /// The tightening could not be driven to zero at this load: the drive stopped after this
+    /// many pivots (on a ray, the pivot cap or a singular basis).
+    TighteningNotRemoved {
+        /// Pivots made before the drive stopped.
+        pivots: usize,
+    },
+    /// A point was formed but its residuals exceed the acceptance ([`crate::ACCEPT_RESIDUAL`]).
+    Unverified {
+        /// The residuals from the data.
+        residual: Residual,
+    },
+}
+
 /// The direction in which a mechanism moves (Criterion 2b), normalised to `max |dz| = 1`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MechanismMode {
@@ -186,6 +231,10 @@ pub struct LoadPath {
     /// [`PathStatus::TargetReached`] and the solution comes from a fresh solve at the target
     /// (`fallback` is set on it).
     pub artificial_mechanism: Option<f64>,
+    /// Why there is no [`LoadPath::solution`] although the path has a load to report it at
+    /// (`None` when there is a solution, or when the ending has no such load: a numerical failure
+    /// of the path itself, no solution at the start).
+    pub unreported: Option<Unreported>,
     pub(crate) start_slots: Vec<usize>,
     pub(crate) records: Vec<(usize, usize)>,
     /// The number of steps made before the load first reached the target (the target lies on

@@ -97,7 +97,7 @@ pub(crate) fn points_at(
             .and_then(|b| evaluate(solver, path, b, seg, p));
         out[i] = match quick {
             Some(pt) => Some(pt),
-            None => solution_on_segment(solver, path, seg, p),
+            None => solution_on_segment(solver, path, seg, p).ok(),
         };
     }
     out

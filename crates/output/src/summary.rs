@@ -92,7 +92,12 @@ pub fn contact_summary_detail(
             let _ = writeln!(s);
         }
         None => {
-            let _ = writeln!(s, "no solution to report");
+            let why = if sol.unreported().is_some() {
+                " (why: in the notes at the end)"
+            } else {
+                ""
+            };
+            let _ = writeln!(s, "no solution to report{why}");
         }
     }
     let _ = writeln!(s);
