@@ -228,21 +228,30 @@ fn contact_zone(
                 .map_err(path_output_failure)
         },
         || {
-            if let Some(dir) = &args.csv {
-                report_files(
-                    unilateral_output::write_contact_csv_with(&sol, dir, &about),
-                    dir,
-                )?;
-            }
-            if let Some(dir) = &args.report {
-                let options = args
-                    .report_args
-                    .options(problem.title.clone(), problem.units.clone());
-                let files = unilateral_output::write_path_report(&sol, dir, &options)
-                    .map_err(|e| report_failure(&e))?;
-                report_files(Ok(files), dir)?;
-            }
-            Ok(())
+            // The tables and the report side by side on the thread pool (the solve is over):
+            // each is announced in that order, and the first failure is the one returned.
+            let (csv, report) = rayon::join(
+                || {
+                    args.csv.as_ref().map(|dir| {
+                        report_files(
+                            unilateral_output::write_contact_csv_with(&sol, dir, &about),
+                            dir,
+                        )
+                    })
+                },
+                || {
+                    args.report.as_ref().map(|dir| {
+                        let options = args
+                            .report_args
+                            .options(problem.title.clone(), problem.units.clone());
+                        unilateral_output::write_path_report(&sol, dir, &options)
+                            .map_err(|e| report_failure(&e))
+                            .map(|files| (files, dir))
+                    })
+                },
+            );
+            let report = report.map(|r| r.and_then(|(files, dir)| report_files(Ok(files), dir)));
+            csv.unwrap_or(Ok(())).and(report.unwrap_or(Ok(())))
         },
     )?;
     outcome_failure(file, &sol).map_or(Ok(()), Err)
@@ -282,25 +291,47 @@ fn structural(
                 .map_err(path_output_failure)
         },
         || {
-            if let Some(dir) = &args.csv {
-                report_files(
-                    unilateral_output::write_structural_csv_with(&a, dir, &about),
-                    dir,
-                )?;
-            }
-            if let Some(dir) = &args.vtk {
-                let format = args.vtk_format.format();
-                report_files(unilateral_output::write_vtk_with(&a, dir, format), dir)?;
-            }
-            if let Some(dir) = &args.report {
-                let options = args
-                    .report_args
-                    .options(problem.title.clone(), problem.units.clone());
-                let files = unilateral_output::write_structural_report(&a, dir, &options)
-                    .map_err(|e| report_failure(&e))?;
-                report_files(Ok(files), dir)?;
-            }
-            Ok(())
+            // The tables, the ParaView files and the report side by side on the thread pool
+            // (the solve is over): each is announced in that order, and the first failure is
+            // the one returned.
+            let (csv, (vtk, report)) = rayon::join(
+                || {
+                    args.csv.as_ref().map(|dir| {
+                        (
+                            unilateral_output::write_structural_csv_with(&a, dir, &about),
+                            dir,
+                        )
+                    })
+                },
+                || {
+                    rayon::join(
+                        || {
+                            args.vtk.as_ref().map(|dir| {
+                                let format = args.vtk_format.format();
+                                (unilateral_output::write_vtk_with(&a, dir, format), dir)
+                            })
+                        },
+                        || {
+                            args.report.as_ref().map(|dir| {
+                                let options = args
+                                    .report_args
+                                    .options(problem.title.clone(), problem.units.clone());
+                                (
+                                    unilateral_output::write_structural_report(&a, dir, &options)
+                                        .map_err(|e| report_failure(&e)),
+                                    dir,
+                                )
+                            })
+                        },
+                    )
+                },
+            );
+            let csv = csv.map_or(Ok(()), |(w, dir)| report_files(w, dir));
+            let vtk = vtk.map_or(Ok(()), |(w, dir)| report_files(w, dir));
+            let report = report.map_or(Ok(()), |(w, dir)| {
+                w.and_then(|files| report_files(Ok(files), dir))
+            });
+            csv.and(vtk).and(report)
         },
     )?;
     outcome_failure(file, &a.solution).map_or(Ok(()), Err)
