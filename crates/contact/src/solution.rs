@@ -295,6 +295,15 @@ impl ContactSolution {
         self.lcp.get_or_init(|| ContactLcp::build(&self.zone))
     }
 
+    /// The load of step `k` (1-based, as [`LoadStep::index`]) computed afresh from the data,
+    /// an independent check of the traced `steps[k − 1].p`
+    /// ([`unilateral_lcp::PathSolver::event_load`]: the basis before the step factorised anew
+    /// and refined; `O(m³)` a step). `None` for a step the path does not have or whose basis is
+    /// numerically singular.
+    pub fn event_load(&self, k: usize) -> Option<f64> {
+        self.engine.solver.event_load(&self.path, k).ok().flatten()
+    }
+
     /// Why no solution is reported although the ending has a load to report it at, for the
     /// reader (the same sentence is among [`ContactSolution::notes`]); `None` when a solution is
     /// reported or the ending has no such load.

@@ -561,6 +561,43 @@ fn nonnegative(
     Ok((x, z, pivots))
 }
 
+/// The load at which step `k` (1-based) of `path` happens, computed afresh from the data: the
+/// basis of the segment before it factorised anew, its values and the entering column's rates
+/// solved with working-precision refinement ([`Basis::solve_refined`]), and the load where the
+/// step's leaving variable reaches zero on that segment. `None` when the step or its basis is
+/// not there (a singular basis, a step past the record).
+pub(crate) fn event_load(solver: &PathSolver, path: &LoadPath, k: usize) -> Option<f64> {
+    let prep = &solver.prep;
+    let n = prep.n;
+    let seg = k.checked_sub(1)?;
+    let &(_, leaving) = path.records.get(seg)?;
+    let entering = path.segment_entering(seg, n)?;
+    let h: Vec<f64> = solver
+        .q0()
+        .iter()
+        .zip(&solver.cov)
+        .map(|(q, c)| q + solver.c0 * c)
+        .collect();
+    let cols = prep.columns(&h, solver.d());
+    let slots = path.slots_after(seg);
+    let basis = Basis::from_slots(&cols, slots.clone()).ok()?;
+    let beta = basis.solve_refined(&cols, &cols.h);
+    let mut column = vec![0.0; n];
+    cols.axpy_col(&mut column, 1.0, entering);
+    let alpha = basis.solve_refined(&cols, &column);
+    let ls = slots.iter().position(|&v| v == leaving)?;
+    let theta = beta[ls] / alpha[ls];
+    // The driver's value where the leaving variable reaches zero: basic, it moves with the
+    // entering column's rate; entering (the first segment), it is the step length itself.
+    let t = match slots.iter().position(|&v| v == cols.driver()) {
+        Some(ds) => beta[ds] - theta * alpha[ds],
+        None if entering == cols.driver() => theta,
+        None => return None,
+    };
+    let p = cols.driver_real(t);
+    p.is_finite().then_some(p)
+}
+
 /// The solution without tightening at `p` on a traced path (see [`PathSolver::solution_at`]).
 pub(crate) fn point_at(solver: &PathSolver, path: &LoadPath, p: f64) -> Option<PathPoint> {
     let seg = match path.last_segment_containing(p) {

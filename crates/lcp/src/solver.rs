@@ -183,6 +183,19 @@ impl PathSolver {
         Ok(point_at(self, path, p))
     }
 
+    /// The load of step `k` (1-based, as [`crate::Step::index`]) of a path this solver followed,
+    /// computed afresh from the data: the basis of the segment before the step factorised anew
+    /// and its values and rates refined in working precision, where the path itself moves its
+    /// basis by updates of an inverse that is refactorised every few pivots. An independent
+    /// check of the traced [`crate::Step::p`] (`O(k³)` a step); `Ok(None)` for a step the path does
+    /// not have or whose basis is numerically singular.
+    ///
+    /// A path of a problem of another order is refused ([`LcpError::Dimension`]).
+    pub fn event_load(&self, path: &LoadPath, k: usize) -> Result<Option<f64>, LcpError> {
+        self.check_path(path)?;
+        Ok(crate::parametric::event_load(self, path, k))
+    }
+
     /// The solutions without tightening at many loads of a path this solver followed, one per
     /// load in the order given (`None` for a load off the traced path): the same answers as
     /// [`PathSolver::solution_at`] at each load, in one walk along the path.

@@ -58,11 +58,17 @@ fn pressed_bar_slips_node_by_node_from_the_free_end() {
             "step {j}: p = {}",
             step.p
         );
+        // The independent evaluation of the step's load (its basis factorised anew) gives
+        // the closed form too.
+        let fresh = sol.event_load(j + 1).expect("the step's basis");
+        assert!((fresh - expect).abs() < 1e-12 * expect, "step {j}: {fresh}");
         assert_eq!(step.events.len(), 1);
         assert_eq!(step.events[0].pair, m - 1 - j, "slips from the free end");
         assert_eq!(step.events[0].kind, EventKind::StartsSlippingPlus);
     }
     assert!(matches!(sol.outcome, Outcome::Ray { .. }));
+    assert_eq!(sol.event_load(0), None, "steps count from 1");
+    assert_eq!(sol.event_load(m + 1), None, "no step beyond the path");
     // At p* = 12 > 4·fN/F every node slips; the clamp spring carries F·p − m·f·N.
     let p = sol.p.unwrap();
     assert_eq!(p, 12.0);
@@ -259,4 +265,23 @@ fn path_turns_back() {
             step.p
         );
     }
+}
+
+/// The paper's Example 1 traced with its tightening c = 1: the first event (pair 1 opens) at
+/// p = 32/3 (the paper's Table 2), from the traced path and from the independent evaluation of
+/// the step's basis with the tightening in it.
+#[test]
+fn example1_event_load_afresh_is_the_papers() {
+    let zone = crate::common::example1_zone();
+    let settings = SolveSettings {
+        tightening: 1.0,
+        target: 1.0,
+        follow: Follow::ToEnd,
+        ..SolveSettings::default()
+    };
+    let sol = solve(&zone, &settings).unwrap();
+    let expect = 32.0 / 3.0;
+    assert!((sol.steps[0].p - expect).abs() < 1e-12 * expect);
+    let fresh = sol.event_load(1).expect("the first step's basis");
+    assert!((fresh - expect).abs() < 1e-12 * expect, "{fresh}");
 }
