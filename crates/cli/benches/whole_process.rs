@@ -319,6 +319,9 @@ fn load_average() -> String {
 }
 
 fn main() {
+    // The yardstick is one dense LU on one thread (issue 11). This process runs nothing else
+    // of faer; the program it starts uses faer's parallelism in its refactorisations.
+    faer::set_global_parallelism(faer::Par::Seq);
     // `cargo bench` passes `--bench`; a filter argument other than that selects nothing here.
     if std::env::args().skip(1).any(|a| a != "--bench") {
         return;

@@ -21,6 +21,9 @@ mod beam_zone;
 use beam_zone::beam_on_supports;
 use unilateral_contact::{follow_history, History, HistorySolution, LoadCase, Stage, StageStatus};
 
+mod common;
+use common::one_thread;
+
 fn history_of(m: usize, stages: usize) -> (unilateral_contact::ContactZone, History) {
     let zone = beam_on_supports(m, 7);
     let mut st = vec![Stage {
@@ -58,7 +61,7 @@ fn lu_seconds(n: usize) -> f64 {
         ((i * 31 + j * 17) % 97) as f64 / 97.0 + if i == j { n as f64 } else { 0.0 }
     });
     let t = Instant::now();
-    black_box(a.partial_piv_lu());
+    black_box(one_thread(|| a.partial_piv_lu()));
     t.elapsed().as_secs_f64()
 }
 

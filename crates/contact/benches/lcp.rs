@@ -34,6 +34,9 @@ use unilateral_lcp::{
     follow_path, solve_lcp, Follow, Lcp, LcpSolution, LoadPath, PathOptions, Settings,
 };
 
+mod common;
+use common::one_thread;
+
 const SEED: u64 = 7;
 
 struct Problem {
@@ -88,7 +91,7 @@ impl Problem {
     }
 
     fn lu(&self) -> f64 {
-        let lu = self.shifted.partial_piv_lu();
+        let lu = one_thread(|| self.shifted.partial_piv_lu());
         // Something of the factors, so that nothing is optimised away.
         lu.U()[(0, 0)]
     }
