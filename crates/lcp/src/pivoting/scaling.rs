@@ -15,6 +15,7 @@
 //! rows, instead of looking like round-off of them.
 
 use faer::Mat;
+use rayon::prelude::*;
 
 use crate::binary::{exponent, ldexp};
 
@@ -172,15 +173,25 @@ impl Scaling {
     ) -> (Vec<f64>, Vec<f64>) {
         let n = m.nrows();
         let mut c = vec![0.0f64; rhs.len()];
+        // Each sweep reads `M` twice, by columns; the row maxima are formed over blocks of rows
+        // and the column maxima column by column on the thread pool (a maximum is exact: the
+        // same exponents whatever the threads).
+        const ROWS: usize = 256;
         for _ in 0..MAX_SWEEPS {
             let mut rmax = vec![f64::NEG_INFINITY; n];
-            for j in 0..n {
-                for i in 0..n {
-                    if let Some(l) = log2_of(m[(i, j)]) {
-                        rmax[i] = rmax[i].max(l + a[i] + b[j]);
+            rmax.par_chunks_mut(ROWS)
+                .enumerate()
+                .for_each(|(blk, part)| {
+                    let i0 = blk * ROWS;
+                    for j in 0..n {
+                        let col = &m.col_as_slice(j)[i0..i0 + part.len()];
+                        for (r, (&v, &ai)) in part.iter_mut().zip(col.iter().zip(&a[i0..])) {
+                            if let Some(l) = log2_of(v) {
+                                *r = r.max(l + ai + b[j]);
+                            }
+                        }
                     }
-                }
-            }
+                });
             for (k, r) in rhs.iter().enumerate() {
                 for i in 0..n {
                     if let Some(l) = log2_of(r[i]) {
@@ -195,18 +206,25 @@ impl Scaling {
                     a[i] -= rmax[i] / 2.0;
                 }
             }
-            for j in 0..n {
-                let mut cmax = f64::NEG_INFINITY;
-                for i in 0..n {
-                    if let Some(l) = log2_of(m[(i, j)]) {
-                        cmax = cmax.max(l + a[i] + b[j]);
+            let columns_balanced = b
+                .par_iter_mut()
+                .enumerate()
+                .map(|(j, bj)| {
+                    let mut cmax = f64::NEG_INFINITY;
+                    for (&v, &ai) in m.col_as_slice(j).iter().zip(&a) {
+                        if let Some(l) = log2_of(v) {
+                            cmax = cmax.max(l + ai + *bj);
+                        }
                     }
-                }
-                if cmax.is_finite() {
-                    balanced &= cmax.abs() <= 1.0;
-                    b[j] -= cmax / 2.0;
-                }
-            }
+                    if cmax.is_finite() {
+                        *bj -= cmax / 2.0;
+                        cmax.abs() <= 1.0
+                    } else {
+                        true
+                    }
+                })
+                .reduce(|| true, |x, y| x && y);
+            balanced &= columns_balanced;
             for (k, r) in rhs.iter().enumerate() {
                 let mut cmax = f64::NEG_INFINITY;
                 for i in 0..n {
