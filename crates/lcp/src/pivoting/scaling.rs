@@ -183,11 +183,11 @@ impl Scaling {
                 .enumerate()
                 .for_each(|(blk, part)| {
                     let i0 = blk * ROWS;
-                    for j in 0..n {
+                    for (j, &bj) in b.iter().enumerate() {
                         let col = &m.col_as_slice(j)[i0..i0 + part.len()];
                         for (r, (&v, &ai)) in part.iter_mut().zip(col.iter().zip(&a[i0..])) {
                             if let Some(l) = log2_of(v) {
-                                *r = r.max(l + ai + b[j]);
+                                *r = r.max(l + ai + bj);
                             }
                         }
                     }
