@@ -18,6 +18,27 @@ pub(crate) enum Failure {
 }
 
 impl Failure {
+    /// The outcome of steps that all ran (the writers, side by side): `Ok` if every one did,
+    /// else the most serious failure (the program's before the input's, then the first), with
+    /// every other failure printed on stderr first, so that none goes unsaid.
+    pub(crate) fn all_of(
+        results: impl IntoIterator<Item = Result<(), Failure>>,
+    ) -> Result<(), Failure> {
+        let mut failures: Vec<Failure> = results.into_iter().filter_map(Result::err).collect();
+        let worst = failures
+            .iter()
+            .position(|f| matches!(f, Failure::Internal(_)))
+            .unwrap_or(0);
+        if failures.is_empty() {
+            return Ok(());
+        }
+        let returned = failures.remove(worst);
+        for other in &failures {
+            crate::output::note(&other.message());
+        }
+        Err(returned)
+    }
+
     /// The exit status of the contract: 2 bad input, 1 internal failure (0 is an answer).
     pub(crate) fn exit_code(&self) -> u8 {
         match self {
@@ -147,8 +168,8 @@ pub(crate) fn outcome_failure(
     ending_failure(file, &sol.outcome, sol.steps.len()).or_else(|| {
         sol.unreported_is_failure().then(|| {
             Failure::Internal(format!(
-                "{}: {} — a numerical failure of the program, not a fault of the model; the \
-                 output holds the events of the path",
+                "{}: {} — the program could not give a verified solution there; the output \
+                 holds the events of the path",
                 file.display(),
                 sol.unreported()
                     .unwrap_or_else(|| "no solution is reported".into())
@@ -394,6 +415,27 @@ mod tests {
         ] {
             check(lcp_failure(&file(), &e), 2);
         }
+    }
+
+    /// Steps that all ran: the program's failure is returned before the input's, else the
+    /// first; nothing failed, nothing returned.
+    #[test]
+    fn of_failures_side_by_side_the_most_serious_is_returned() {
+        assert!(Failure::all_of([Ok(()), Ok(())]).is_ok());
+        let input = |s: &str| Err(Failure::Input(s.into()));
+        let internal = |s: &str| Err(Failure::Internal(s.into()));
+        let f = Failure::all_of([input("a"), Ok(()), internal("b"), internal("c")]).unwrap_err();
+        assert!(
+            matches!(f, Failure::Internal(ref m) if m == "b"),
+            "{}",
+            f.message()
+        );
+        let f = Failure::all_of([Ok(()), input("a"), input("b")]).unwrap_err();
+        assert!(
+            matches!(f, Failure::Input(ref m) if m == "a"),
+            "{}",
+            f.message()
+        );
     }
 
     #[test]

@@ -18,6 +18,11 @@ use failure::Failure;
 
 fn main() -> ExitCode {
     large_blocks_mapped();
+    // faer's own parallel kernels are asked for where their bits do not depend on the number
+    // of threads (the engine's refactorisation); everything else of faer (the sparse
+    // factorisations and solves of the finite elements) runs on one thread, so that a model
+    // gives the same bits on every machine.
+    faer::set_global_parallelism(faer::Par::Seq);
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {

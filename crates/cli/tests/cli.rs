@@ -156,6 +156,94 @@ fn a_missing_solution_is_explained() {
     assert!(out.stdout.contains(why), "{}", out.stdout);
 }
 
+/// The benchmark's continuous beam on `m` frictional elastic bearings
+/// (`crates/cli/benches/whole_process.rs`), as a model file.
+fn bearing_beam_model(m: usize) -> String {
+    let (l, d) = (m - 1, m - 1);
+    format!(
+        "title = \"Continuous beam on {m} frictional elastic bearings\"\nunits = \"N, m\"\n\
+         [[sections]]\nname = \"beam\"\nE = 3.0e10\nA = 0.5\nI = 0.04\n\
+         [[sections]]\nname = \"tie\"\nE = 2.0e11\nA = 1.0e-7\nI = 1.0e-9\n\
+         [[members]]\nname = \"beam\"\nstart = [0.0, 0.0]\nend = [{l}.0, 0.0]\ndivisions = {d}\n\
+         section = \"beam\"\n\
+         [[members]]\nname = \"soles\"\ntype = \"bar\"\nstart = [0.0, 0.0]\nend = [{l}.0, 0.0]\n\
+         divisions = {d}\nsection = \"tie\"\n\
+         [[springs]]\nnodes = \"soles.nodes\"\ndirection = [0.0, 1.0]\nstiffness = 1.0e9\n\
+         [[springs]]\nnodes = \"soles.nodes\"\ndirection = [1.0, 0.0]\nstiffness = 2.0e6\n\
+         [[contact]]\nname = \"bearing\"\nfrom = \"soles.nodes\"\nto = \"beam.nodes\"\n\
+         normal = [0.0, 1.0]\nfriction = 0.3\n\
+         [[loads.constant.distributed]]\nelements = \"beam\"\nq = [0.0, -1.0e4]\n\
+         [[loads.variable.distributed]]\nelements = \"beam\"\nstart = [1.0e3, -4.0e4]\n\
+         end = [1.0e3, 1.0e4]\n"
+    )
+}
+
+/// The files are the same bits whatever the number of threads. The 300-bearing beam traced to
+/// p* = 1.9543 makes 257 steps: the last block of breakpoints holds one step, whose forces are
+/// a product of the 300 × 300 zone blocks with one column, which faer's parallel product splits
+/// into per-thread partial sums (37 rows of path.csv changed in their last digits between 1
+/// and 4 threads before that product was asked on one thread).
+#[test]
+fn the_files_do_not_depend_on_the_number_of_threads() {
+    let written = |threads: &str| {
+        let cmd = TestCommand::new(&[
+            "solve",
+            "beam.toml",
+            "--trace",
+            "target",
+            "--target",
+            "1.9543",
+            "--csv",
+            "csv",
+            "--json",
+            "out.json",
+        ]);
+        std::fs::write(cmd.path("beam.toml"), bearing_beam_model(300)).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_unilateral"))
+            .args(&cmd.args)
+            .current_dir(cmd.dir.path())
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .expect("run unilateral");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let steps = std::fs::read_to_string(cmd.path("csv/steps.csv")).unwrap();
+        assert_eq!(steps.lines().count(), 258, "257 steps and the header");
+        let path = std::fs::read(cmd.path("csv/path.csv")).unwrap();
+        let mut json = cmd.json("out.json");
+        json.as_object_mut().unwrap().remove("timings");
+        (path, json)
+    };
+    let one = written("1");
+    for threads in ["2", "4"] {
+        let other = written(threads);
+        assert!(one.0 == other.0, "path.csv differs with {threads} threads");
+        assert_eq!(one.1, other.1, "the JSON differs with {threads} threads");
+    }
+}
+
+/// The tables and the report are written side by side: when both fail, both failures are said
+/// (the first on stderr before the one that sets the exit status), not only one.
+#[test]
+fn every_writer_that_fails_says_so() {
+    let cmd = TestCommand::new(&["solve"]).arg(example1()).args(&[
+        "--csv",
+        "blocker/csv",
+        "--report",
+        "rep",
+    ]);
+    std::fs::write(cmd.path("blocker"), "a file where a directory is asked").unwrap();
+    std::fs::create_dir_all(cmd.path("rep/report.html")).unwrap();
+    let out = cmd.run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(out.stderr.contains("blocker"), "{}", out.stderr);
+    assert!(out.stderr.contains("rep"), "{}", out.stderr);
+    assert_eq!(out.stderr.matches("error:").count(), 2, "{}", out.stderr);
+}
+
 #[test]
 fn default_trace_stops_at_the_target_with_the_same_answer() {
     let cmd = TestCommand::new(&["solve"])

@@ -479,8 +479,8 @@ impl ContactSolution {
         let w = faer::Mat::from_fn(m, k, |i, j| {
             (zs[j][m + i] * down - zs[j][2 * m + i] * down) / 2.0
         });
-        let normal = &zone.rnn * &zn + &zone.rnt * &w;
-        let tangential = &zone.rtn * &zn + &zone.rtt * &w;
+        let normal = product(&zone.rnn, &zn) + product(&zone.rnt, &w);
+        let tangential = product(&zone.rtn, &zn) + product(&zone.rtt, &w);
         let (fs, ds) = (
             self.engine.units.user_force(1.0),
             self.engine.units.user_displacement(1.0),
@@ -640,6 +640,22 @@ fn pair_results_scaled(
             }
         })
         .collect()
+}
+
+/// `a·b` on one thread, whatever faer's global parallelism: faer's parallel product of a matrix
+/// and one column splits the sums by thread, so its last bits would depend on the number of
+/// threads (a block of breakpoints with one step, m ≥ 256).
+fn product(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> faer::Mat<f64> {
+    let mut out = faer::Mat::zeros(a.nrows(), b.ncols());
+    faer::linalg::matmul::matmul(
+        out.as_mut(),
+        faer::Accum::Replace,
+        a.as_ref(),
+        b.as_ref(),
+        1.0,
+        faer::Par::Seq,
+    );
+    out
 }
 
 #[cfg(test)]

@@ -310,8 +310,8 @@ pub(crate) fn unreported_note(why: &Unreported, m: usize, names: &[String]) -> S
             format!(
                 "the working scheme traced there is not a solution of the data: {} of pair {} is \
                  {value:.6e}, negative beyond round-off ({what} there up to {largest:.3e}) — the \
-                 path passed an event that the data put before this load, or the structure is \
-                 too close to a mechanism for the working precision to decide",
+                 traced path passed an event that the data put before this load (its updated \
+                 values lost that much precision this far along it)",
                 label(m, *var),
                 names.get(pair).map_or("?", |s| s.as_str()),
             )

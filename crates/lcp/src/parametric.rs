@@ -379,19 +379,17 @@ pub(crate) fn solution_on_segment(
     let n = prep.n;
     let driver = 2 * n;
     let mut slots = path.slots_after(seg);
-    if let Some(ds) = slots.iter().position(|&v| v == driver) {
-        // A segment without an entering column is the end of the record: nothing to evaluate.
-        let Some(e) = path.segment_entering(seg, n) else {
-            return Err(Unreported {
-                p,
-                path_basis: BasisVerdict::Singular,
-                fresh: None,
-            });
-        };
-        slots[ds] = e;
-    }
+    let entering = match slots.iter().position(|&v| v == driver) {
+        Some(ds) => path.segment_entering(seg, n).map(|e| slots[ds] = e),
+        None => Some(()),
+    };
     let q_real: Vec<f64> = solver.q_at(p);
-    let path_basis = match remove_tightening(prep, &q_real, slots, c0, cov, settings) {
+    // A segment without an entering column (the end of the record) has no basis to evaluate.
+    let evaluated = match entering {
+        Some(()) => remove_tightening(prep, &q_real, slots, c0, cov, settings),
+        None => Err(BasisVerdict::Singular),
+    };
+    let path_basis = match evaluated {
         Ok((x, z, pivots)) => {
             let residual = solver.residual(p, &x, &z);
             if residual.accepts(&x, &z) {

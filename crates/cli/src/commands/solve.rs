@@ -229,7 +229,7 @@ fn contact_zone(
         },
         || {
             // The tables and the report side by side on the thread pool (the solve is over):
-            // each is announced in that order, and the first failure is the one returned.
+            // each is announced in that order; every failure is said, the most serious returned.
             let (csv, report) = rayon::join(
                 || {
                     args.csv.as_ref().map(|dir| {
@@ -251,7 +251,7 @@ fn contact_zone(
                 },
             );
             let report = report.map(|r| r.and_then(|(files, dir)| report_files(Ok(files), dir)));
-            csv.unwrap_or(Ok(())).and(report.unwrap_or(Ok(())))
+            Failure::all_of([csv.unwrap_or(Ok(())), report.unwrap_or(Ok(()))])
         },
     )?;
     outcome_failure(file, &sol).map_or(Ok(()), Err)
@@ -292,8 +292,8 @@ fn structural(
         },
         || {
             // The tables, the ParaView files and the report side by side on the thread pool
-            // (the solve is over): each is announced in that order, and the first failure is
-            // the one returned.
+            // (the solve is over): each is announced in that order; every failure is said, the
+            // most serious returned.
             let (csv, (vtk, report)) = rayon::join(
                 || {
                     args.csv.as_ref().map(|dir| {
@@ -331,7 +331,7 @@ fn structural(
             let report = report.map_or(Ok(()), |(w, dir)| {
                 w.and_then(|files| report_files(Ok(files), dir))
             });
-            csv.and(vtk).and(report)
+            Failure::all_of([csv, vtk, report])
         },
     )?;
     outcome_failure(file, &a.solution).map_or(Ok(()), Err)

@@ -21,6 +21,14 @@ pub(crate) struct KernelInverse {
 /// core of the machine).
 const PARALLEL_K: usize = 384;
 
+/// faer's parallelism for the refactorisation's LU and inverse: the caller's thread pool.
+/// Both split their work by blocks of the result, never a sum, so the factors and the inverse
+/// are the same bits whatever the number of threads (unlike faer's product of a matrix and one
+/// column, which the rest of the workspace runs with `Par::Seq`).
+fn refactor_par() -> faer::Par {
+    faer::Par::rayon(0)
+}
+
 /// Columns per task of the parallel passes.
 pub(crate) const PARALLEL_BLOCK: usize = 64;
 
@@ -32,7 +40,7 @@ pub(crate) fn lu_in_place(a: &mut faer::Mat<f64>) -> (Vec<usize>, Vec<usize>) {
     use faer::dyn_stack::{MemBuffer, MemStack};
     use faer::linalg::lu::partial_pivoting::factor;
     let k = a.nrows();
-    let par = faer::get_global_parallelism();
+    let par = refactor_par();
     let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
     let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
         k,
@@ -72,7 +80,7 @@ impl KernelInverse {
         use faer::linalg::lu::partial_pivoting::inverse;
         let k = lu.nrows();
         self.reserve(k);
-        let par = faer::get_global_parallelism();
+        let par = refactor_par();
         let mut scratch = MemBuffer::new(inverse::inverse_scratch::<usize, f64>(k, par));
         let out = faer::MatMut::from_column_major_slice_with_stride_mut(
             &mut self.data[..],
