@@ -25,13 +25,13 @@ impl Failure {
         results: impl IntoIterator<Item = Result<(), Failure>>,
     ) -> Result<(), Failure> {
         let mut failures: Vec<Failure> = results.into_iter().filter_map(Result::err).collect();
+        if failures.is_empty() {
+            return Ok(());
+        }
         let worst = failures
             .iter()
             .position(|f| matches!(f, Failure::Internal(_)))
             .unwrap_or(0);
-        if failures.is_empty() {
-            return Ok(());
-        }
         let returned = failures.remove(worst);
         for other in &failures {
             crate::output::note(&other.message());

@@ -22,6 +22,7 @@ fn siconos(sub: &str) -> PathBuf {
 struct TestCommand {
     dir: tempfile::TempDir,
     args: Vec<String>,
+    env: Vec<(String, String)>,
 }
 
 struct Output {
@@ -35,7 +36,13 @@ impl TestCommand {
         Self {
             dir: tempfile::tempdir().expect("temp dir"),
             args: args.iter().map(|s| s.to_string()).collect(),
+            env: Vec::new(),
         }
+    }
+
+    fn env(mut self, key: &str, value: &str) -> Self {
+        self.env.push((key.to_string(), value.to_string()));
+        self
     }
 
     fn path(&self, name: &str) -> PathBuf {
@@ -55,6 +62,7 @@ impl TestCommand {
     fn run(&self) -> Output {
         let out = Command::new(env!("CARGO_BIN_EXE_unilateral"))
             .args(&self.args)
+            .envs(self.env.iter().map(|(k, v)| (k, v)))
             .current_dir(self.dir.path())
             .output()
             .expect("run unilateral");
@@ -156,28 +164,6 @@ fn a_missing_solution_is_explained() {
     assert!(out.stdout.contains(why), "{}", out.stdout);
 }
 
-/// The benchmark's continuous beam on `m` frictional elastic bearings
-/// (`crates/cli/benches/whole_process.rs`), as a model file.
-fn bearing_beam_model(m: usize) -> String {
-    let (l, d) = (m - 1, m - 1);
-    format!(
-        "title = \"Continuous beam on {m} frictional elastic bearings\"\nunits = \"N, m\"\n\
-         [[sections]]\nname = \"beam\"\nE = 3.0e10\nA = 0.5\nI = 0.04\n\
-         [[sections]]\nname = \"tie\"\nE = 2.0e11\nA = 1.0e-7\nI = 1.0e-9\n\
-         [[members]]\nname = \"beam\"\nstart = [0.0, 0.0]\nend = [{l}.0, 0.0]\ndivisions = {d}\n\
-         section = \"beam\"\n\
-         [[members]]\nname = \"soles\"\ntype = \"bar\"\nstart = [0.0, 0.0]\nend = [{l}.0, 0.0]\n\
-         divisions = {d}\nsection = \"tie\"\n\
-         [[springs]]\nnodes = \"soles.nodes\"\ndirection = [0.0, 1.0]\nstiffness = 1.0e9\n\
-         [[springs]]\nnodes = \"soles.nodes\"\ndirection = [1.0, 0.0]\nstiffness = 2.0e6\n\
-         [[contact]]\nname = \"bearing\"\nfrom = \"soles.nodes\"\nto = \"beam.nodes\"\n\
-         normal = [0.0, 1.0]\nfriction = 0.3\n\
-         [[loads.constant.distributed]]\nelements = \"beam\"\nq = [0.0, -1.0e4]\n\
-         [[loads.variable.distributed]]\nelements = \"beam\"\nstart = [1.0e3, -4.0e4]\n\
-         end = [1.0e3, 1.0e4]\n"
-    )
-}
-
 /// The files are the same bits whatever the number of threads. The 300-bearing beam traced to
 /// p* = 1.9543 makes 257 steps: the last block of breakpoints holds one step, whose forces are
 /// a product of the 300 × 300 zone blocks with one column, which faer's parallel product splits
@@ -197,19 +183,15 @@ fn the_files_do_not_depend_on_the_number_of_threads() {
             "csv",
             "--json",
             "out.json",
-        ]);
-        std::fs::write(cmd.path("beam.toml"), bearing_beam_model(300)).unwrap();
-        let out = Command::new(env!("CARGO_BIN_EXE_unilateral"))
-            .args(&cmd.args)
-            .current_dir(cmd.dir.path())
-            .env("RAYON_NUM_THREADS", threads)
-            .output()
-            .expect("run unilateral");
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        ])
+        .env("RAYON_NUM_THREADS", threads);
+        std::fs::write(
+            cmd.path("beam.toml"),
+            unilateral_oracle::fixtures::bearings::beam_model(300),
+        )
+        .unwrap();
+        let out = cmd.run();
+        assert_eq!(out.code, 0, "{}", out.stderr);
         let steps = std::fs::read_to_string(cmd.path("csv/steps.csv")).unwrap();
         assert_eq!(steps.lines().count(), 258, "257 steps and the header");
         let path = std::fs::read(cmd.path("csv/path.csv")).unwrap();

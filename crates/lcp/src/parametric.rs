@@ -48,13 +48,8 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     let (options, settings) = (solver.options(), solver.settings());
     let n = solver.order();
     let prep = &solver.prep;
-    let (c0, cov) = (solver.c0, &solver.cov);
-    let h: Vec<f64> = solver
-        .q0()
-        .iter()
-        .zip(cov)
-        .map(|(q, c)| q + c0 * c)
-        .collect();
+    let c0 = solver.c0;
+    let h = solver.q_traced();
     let cols = prep.columns(&h, solver.d());
     let tol = Tolerances {
         pivot: settings.pivot_tol(),
@@ -379,15 +374,20 @@ pub(crate) fn solution_on_segment(
     let n = prep.n;
     let driver = 2 * n;
     let mut slots = path.slots_after(seg);
-    let entering = match slots.iter().position(|&v| v == driver) {
-        Some(ds) => path.segment_entering(seg, n).map(|e| slots[ds] = e),
-        None => Some(()),
+    // The driver's slot takes the segment's entering column; a segment without one (the end
+    // of the record) has no basis to evaluate.
+    let complete = match slots.iter().position(|&v| v == driver) {
+        Some(ds) => path
+            .segment_entering(seg, n)
+            .map(|e| slots[ds] = e)
+            .is_some(),
+        None => true,
     };
     let q_real: Vec<f64> = solver.q_at(p);
-    // A segment without an entering column (the end of the record) has no basis to evaluate.
-    let evaluated = match entering {
-        Some(()) => remove_tightening(prep, &q_real, slots, c0, cov, settings),
-        None => Err(BasisVerdict::Singular),
+    let evaluated = if complete {
+        remove_tightening(prep, &q_real, slots, c0, cov, settings)
+    } else {
+        Err(BasisVerdict::Singular)
     };
     let path_basis = match evaluated {
         Ok((x, z, pivots)) => {
@@ -570,13 +570,7 @@ pub(crate) fn event_load(solver: &PathSolver, path: &LoadPath, k: usize) -> Opti
     let seg = k.checked_sub(1)?;
     let &(_, leaving) = path.records.get(seg)?;
     let entering = path.segment_entering(seg, n)?;
-    let h: Vec<f64> = solver
-        .q0()
-        .iter()
-        .zip(&solver.cov)
-        .map(|(q, c)| q + solver.c0 * c)
-        .collect();
-    let cols = prep.columns(&h, solver.d());
+    let cols = prep.columns(&solver.q_traced(), solver.d());
     let slots = path.slots_after(seg);
     let basis = Basis::from_slots(&cols, slots.clone()).ok()?;
     let beta = basis.solve_refined(&cols, &cols.h);

@@ -124,6 +124,15 @@ impl PathSolver {
         &self.d
     }
 
+    /// `q0 + c0·cov`: the constant part with the tightening, as the path is traced.
+    pub(crate) fn q_traced(&self) -> Vec<f64> {
+        self.q0
+            .iter()
+            .zip(&self.cov)
+            .map(|(q, c)| q + self.c0 * c)
+            .collect()
+    }
+
     /// `q0 + p·d`.
     pub(crate) fn q_at(&self, p: f64) -> Vec<f64> {
         self.q0

@@ -1,7 +1,7 @@
 //! Fixtures shared by the contact tests.
 
 use faer::Mat;
-use unilateral_contact::{ContactLcp, ContactZone};
+use unilateral_contact::{ContactLcp, ContactZone, Follow, SolveSettings};
 use unilateral_oracle as oracle;
 use unilateral_oracle::fixtures::example1;
 
@@ -14,6 +14,16 @@ pub fn example1_zone() -> ContactZone {
     zone.friction = vec![example1::FRICTION; example1::PAIRS];
     zone.variable.normal = example1::RV_N.to_vec();
     zone
+}
+
+/// The paper's procedure for Example 1: tightening c = 1, target 1, traced to its end.
+pub fn example1_paper_settings() -> SolveSettings {
+    SolveSettings {
+        tightening: 1.0,
+        target: 1.0,
+        follow: Follow::ToEnd,
+        ..SolveSettings::default()
+    }
 }
 
 /// A contact zone of `m` pairs whose full stiffness `[[Rnn, Rnt], [Rtn, Rtt]]` is the symmetric

@@ -273,13 +273,7 @@ fn path_turns_back() {
 #[test]
 fn example1_event_load_afresh_is_the_papers() {
     let zone = crate::common::example1_zone();
-    let settings = SolveSettings {
-        tightening: 1.0,
-        target: 1.0,
-        follow: Follow::ToEnd,
-        ..SolveSettings::default()
-    };
-    let sol = solve(&zone, &settings).unwrap();
+    let sol = solve(&zone, &crate::common::example1_paper_settings()).unwrap();
     let expect = 32.0 / 3.0;
     assert!((sol.steps[0].p - expect).abs() < 1e-12 * expect);
     let fresh = sol.event_load(1).expect("the first step's basis");

@@ -143,14 +143,10 @@ fn check(zone: &ContactZone, settings: &SolveSettings, f: f64, u: f64) -> Result
 
 /// The paper's Example 1 in contact-zone form (examples/example1-contact-zone.toml).
 fn example1() -> (ContactZone, SolveSettings) {
-    let zone = crate::common::example1_zone();
-    let settings = SolveSettings {
-        tightening: 1.0,
-        target: 1.0,
-        follow: Follow::ToEnd,
-        ..SolveSettings::default()
-    };
-    (zone, settings)
+    (
+        crate::common::example1_zone(),
+        crate::common::example1_paper_settings(),
+    )
 }
 
 const FACTORS: [f64; 9] = [1e-12, 3.3e-9, 1e-6, 0.001, 0.7, 1.0, 9.81, 1e6, 1e12];
