@@ -32,6 +32,8 @@ pub(crate) struct Basis {
     s_pos: Vec<usize>,
     /// `K⁻¹`: rows follow `s_cols`, columns follow `r_rows`.
     kinv: KernelInverse,
+    /// Changes so far ([`Basis::version`]).
+    version: u64,
 }
 
 /// The kernel matrix was numerically singular.
@@ -56,6 +58,7 @@ impl Basis {
             r_pos: vec![NONE; n],
             s_pos: vec![NONE; 2 * n + 1],
             kinv: KernelInverse::default(),
+            version: 0,
         }
     }
 
@@ -94,6 +97,7 @@ impl Basis {
 
     /// Recomputes `K⁻¹` from the data by an LU factorisation of `K = A[R, S]`.
     pub fn refactor(&mut self, cols: &Columns) -> Result<(), SingularBasis> {
+        self.version += 1;
         let k = self.s_cols.len();
         if k == 0 {
             self.kinv.clear();
@@ -209,6 +213,17 @@ impl Basis {
     /// `α = B⁻¹ A[:, col]` and the relative residual of the kernel solve, which the slack-row
     /// pass yields for free: on the rows of `R`, `A[:, col] − A[:, S] y_S` is `u_R − K y_S`.
     pub fn ftran_checked(&self, cols: &Columns, col: usize) -> (Vec<f64>, f64) {
+        self.ftran_checked_with(cols, col, None)
+    }
+
+    /// [`Basis::ftran_checked`] with the kernel solve of a structural `col` given (from
+    /// [`Basis::pivot_solving`] in this version of the basis).
+    pub fn ftran_checked_with(
+        &self,
+        cols: &Columns,
+        col: usize,
+        solved: Option<Vec<f64>>,
+    ) -> (Vec<f64>, f64) {
         let n = self.n;
         let mut tmp = vec![0.0; n];
         let (ys, uscale) = if col < n {
@@ -220,7 +235,13 @@ impl Basis {
             cols.axpy_col(&mut tmp, 1.0, col);
             let ur: Vec<f64> = self.r_rows.iter().map(|&r| tmp[r]).collect();
             let s = ur.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            (self.kernel_solve(&ur), s)
+            match solved {
+                Some(ys) => {
+                    debug_assert_eq!(ys.len(), ur.len());
+                    (ys, s)
+                }
+                None => (self.kernel_solve(&ur), s),
+            }
         };
         self.subtract_kernel_columns(cols, &ys, &mut tmp);
         let resid = self.r_rows.iter().fold(0.0f64, |a, &r| a.max(tmp[r].abs()));
@@ -358,10 +379,30 @@ impl Basis {
 
     /// Replaces the column at `slot` by `entering`, given `alpha = B⁻¹ A[:, entering]`.
     pub fn pivot(&mut self, cols: &Columns, entering: usize, slot: usize, alpha: &[f64]) {
+        self.pivot_solving(cols, entering, slot, alpha, None);
+    }
+
+    /// [`Basis::pivot`], and for a structural column `next` also the kernel part of its
+    /// `B⁻¹ A[:, next]` in the new basis, formed in the pass that updates `K⁻¹` when the leaving
+    /// variable is a slack (bordering or replacing a row: the next entering column is then that
+    /// slack's structural complement, and its kernel solve would read `K⁻¹` once more right
+    /// after). The same bits as the kernel solve of [`Basis::ftran_checked`]; pass it to
+    /// [`Basis::ftran_checked_with`] while the basis is unchanged ([`Basis::version`]).
+    pub fn pivot_solving(
+        &mut self,
+        cols: &Columns,
+        entering: usize,
+        slot: usize,
+        alpha: &[f64],
+        next: Option<usize>,
+    ) -> Option<Vec<f64>> {
         let n = self.n;
         let leaving = self.slot_var[slot];
         let enter_slack = entering < n;
         let leave_slack = leaving < n;
+        self.version += 1;
+        let next = next.filter(|&c| c >= n);
+        let mut solved = None;
         match (enter_slack, leave_slack) {
             (false, true) => {
                 // Border K with the new column `entering` and the new row `leaving`.
@@ -373,7 +414,13 @@ impl Basis {
                     .collect();
                 let sigma = alpha[slot];
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                self.kinv.border(&ut, &v, sigma);
+                // The next column on the bordered rows `R + [r]`.
+                let u = next.map(|e| {
+                    let mut u: Vec<f64> = self.r_rows.iter().map(|&i| cols.entry(i, e)).collect();
+                    u.push(cols.entry(r, e));
+                    u
+                });
+                solved = self.kinv.border_solving(&ut, &v, sigma, u.as_deref());
                 self.s_pos[entering] = self.s_cols.len();
                 self.s_cols.push(entering);
                 self.r_pos[r] = self.r_rows.len();
@@ -414,7 +461,15 @@ impl Basis {
                 let r = leaving;
                 let w: Vec<f64> = self.kinv.col(b).to_vec();
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                self.kinv.replace_row(b, &w, &v);
+                // The next column on the rows after the replacement.
+                let u = next.map(|e| {
+                    self.r_rows
+                        .iter()
+                        .enumerate()
+                        .map(|(a, &i)| cols.entry(if a == b { r } else { i }, e))
+                        .collect::<Vec<f64>>()
+                });
+                solved = self.kinv.replace_row_solving(b, &w, &v, u.as_deref());
                 self.r_rows[b] = r;
                 self.r_pos[r] = b;
                 self.r_pos[entering] = NONE;
@@ -423,6 +478,13 @@ impl Basis {
         self.slot_var[slot] = entering;
         self.var_slot[entering] = slot;
         self.var_slot[leaving] = NONE;
+        solved
+    }
+
+    /// A count of the changes of this basis (pivots and refactorisations): a kernel solve from
+    /// [`Basis::pivot_solving`] belongs to the version it returned at.
+    pub fn version(&self) -> u64 {
+        self.version
     }
 }
 

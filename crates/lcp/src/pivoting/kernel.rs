@@ -145,9 +145,8 @@ impl KernelInverse {
         // threads. (Summing in more blocks changes the round-off, and the 1000-support beam's
         // path is sensitive to it: see docs/engine.md.)
         let half = k / 2;
-        let (mut y, y2) = rayon::join(|| sum(0..half), || sum(half..k));
-        axpy(&mut y, 1.0, &y2);
-        y
+        let (y, y2) = rayon::join(|| sum(0..half), || sum(half..k));
+        finish_halves(y, Some(y2))
     }
 
     fn grow(&mut self, k: usize) {
@@ -169,14 +168,28 @@ impl KernelInverse {
     /// Borders `K` with a column `u` and a row `v` (corner `δ`), given `ũ = G u`, the row `v`
     /// itself and `σ = δ − vᵀ ũ`. `ṽᵀ = vᵀ G` is formed column by column in the same pass that
     /// updates the column, so `G` is read once.
+    #[cfg(test)]
     pub fn border(&mut self, ut: &[f64], v: &[f64], sigma: f64) {
+        self.border_solving(ut, v, sigma, None);
+    }
+
+    /// [`KernelInverse::border`], and with `next = Some(u)` (`k + 1` long, in the order of the
+    /// bordered rows) also `G u` for the bordered `G`, formed in the same pass
+    /// ([`KernelInverse::update_solving`]): the same bits as [`KernelInverse::solve`] after it.
+    pub fn border_solving(
+        &mut self,
+        ut: &[f64],
+        v: &[f64],
+        sigma: f64,
+        next: Option<&[f64]>,
+    ) -> Option<Vec<f64>> {
         let k = self.k;
         self.grow(k + 1);
         let ld = self.ld;
         let f: Vec<f64> = ut.iter().map(|u| u / sigma).collect();
         // The old columns, four at a time (their dot products side by side); the largest entry
         // of the new row comes back.
-        let new_row = self.update_columns(4, |_, cols| {
+        let update = |_: usize, cols: &mut [f64]| {
             let vb = group_dots(v, cols, ld, k);
             let mut top = 0.0f64;
             for (col, &vb) in cols.chunks_mut(ld).zip(&vb) {
@@ -186,7 +199,14 @@ impl KernelInverse {
                 top = top.max(col[k].abs());
             }
             top
-        });
+        };
+        let (new_row, partial) = match next {
+            Some(u) if solving_in_pass() => {
+                let (top, y) = self.update_solving(4, k, k + 1, u, update);
+                (top, Some(y))
+            }
+            _ => (self.update_columns(4, update), None),
+        };
         let col = &mut self.data[k * ld..k * ld + k + 1];
         for (c, fa) in col.iter_mut().zip(&f) {
             *c = -fa;
@@ -195,6 +215,19 @@ impl KernelInverse {
         let new_col = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         self.gmax = self.gmax.max(new_col).max(new_row);
         self.k = k + 1;
+        match (next, partial) {
+            (Some(u), Some((mut y, mut rest))) => {
+                // The new column is the last of the sum (of its second half).
+                let last = &self.data[k * ld..k * ld + k + 1];
+                let y2 = rest.as_mut().unwrap_or(&mut y);
+                if u[k] != 0.0 {
+                    axpy(y2, u[k], last);
+                }
+                Some(finish_halves(y, rest))
+            }
+            (Some(u), None) => Some(self.solve(u)),
+            _ => None,
+        }
     }
 
     /// Removes row `a` and column `b` of `K` (a pivot on `G[a, b]`); the last row and column
@@ -240,11 +273,25 @@ impl KernelInverse {
 
     /// Replaces row `b` of `K` by `v`, given `w = G e_b` (a copy); `ṽᵀ = vᵀ G` is formed column by
     /// column in the pass that updates it.
+    #[cfg(test)]
     pub fn replace_row(&mut self, b: usize, w: &[f64], v: &[f64]) {
+        self.replace_row_solving(b, w, v, None);
+    }
+
+    /// [`KernelInverse::replace_row`], and with `next = Some(u)` (in the order of the rows
+    /// after the replacement) also `G u` for the new `G`, formed in the same pass: the same bits
+    /// as [`KernelInverse::solve`] after it.
+    pub fn replace_row_solving(
+        &mut self,
+        b: usize,
+        w: &[f64],
+        v: &[f64],
+        next: Option<&[f64]>,
+    ) -> Option<Vec<f64>> {
         let vw = dot(v, w);
         let (k, ld) = (self.k, self.ld);
         // Four columns at a time: their dot products side by side.
-        self.update_columns(4, |c0, cols| {
+        let update = |c0: usize, cols: &mut [f64]| {
             let vc = group_dots(v, cols, ld, k);
             for (j, (col, vc)) in cols.chunks_mut(ld).zip(vc).enumerate() {
                 let corr = (vc - if c0 + j == b { 1.0 } else { 0.0 }) / vw;
@@ -253,7 +300,62 @@ impl KernelInverse {
                 }
             }
             0.0
-        });
+        };
+        match next {
+            Some(u) if solving_in_pass() => {
+                let (_, (y, rest)) = self.update_solving(4, k, k, u, update);
+                Some(finish_halves(y, rest))
+            }
+            Some(u) => {
+                self.update_columns(4, update);
+                Some(self.solve(u))
+            }
+            None => {
+                self.update_columns(4, update);
+                None
+            }
+        }
+    }
+
+    /// [`KernelInverse::update_columns`] over the first `updated` columns, and in the same pass
+    /// the partial sums of `y = Σ_b u_b G[..len, b]` over them, each column added once updated
+    /// (while it is in the cache) in the order and the halves [`KernelInverse::solve`] sums a
+    /// `len × len` inverse in: the first half's sum, and the second's when there are two. A
+    /// column `updated..len` (a bordering's new one) is the caller's to add.
+    #[allow(clippy::type_complexity)]
+    fn update_solving(
+        &mut self,
+        group: usize,
+        updated: usize,
+        len: usize,
+        u: &[f64],
+        f: impl Fn(usize, &mut [f64]) -> f64 + Sync + Send,
+    ) -> (f64, (Vec<f64>, Option<Vec<f64>>)) {
+        let ld = self.ld;
+        let part = |c0: usize, data: &mut [f64]| -> (f64, Vec<f64>) {
+            let mut y = vec![0.0; len];
+            let mut top = 0.0f64;
+            for (i, cols) in data.chunks_mut(group * ld).enumerate() {
+                let c = c0 + i * group;
+                top = top.max(f(c, cols));
+                for (j, col) in cols.chunks(ld).enumerate() {
+                    let ub = u[c + j];
+                    if ub != 0.0 {
+                        axpy(&mut y, ub, &col[..len]);
+                    }
+                }
+            }
+            (top, y)
+        };
+        let data = &mut self.data[..updated * ld];
+        if len < PARALLEL_K {
+            let (top, y) = part(0, data);
+            return (top, (y, None));
+        }
+        let half = len / 2;
+        let (first, second) = data.split_at_mut(half * ld);
+        let ((t1, y1), (t2, y2)) = rayon::join(|| part(0, first), || part(half, second));
+        (t1.max(t2), (y1, Some(y2)))
     }
 
     /// Applies `f(c, columns)` to the columns of `G` in runs of `group` (`c` the first column of
@@ -283,6 +385,21 @@ impl KernelInverse {
     }
 }
 
+/// Whether an update forms the next kernel solve in its own pass. The pass then runs as the
+/// solve's two fixed halves, two tasks: on a pool of more threads the update is left to split
+/// finer, and the solve runs after it (the same bits either way).
+fn solving_in_pass() -> bool {
+    rayon::current_num_threads() <= 2
+}
+
+/// The kernel solve's sum from its halves: the first, plus the second when there are two.
+fn finish_halves(mut y: Vec<f64>, second: Option<Vec<f64>>) -> Vec<f64> {
+    if let Some(y2) = second {
+        axpy(&mut y, 1.0, &y2);
+    }
+    y
+}
+
 /// [`dots`] of `v` with the (up to four) columns of a run `cols` of columns `ld` long, over
 /// their first `k` entries.
 fn group_dots(v: &[f64], cols: &[f64], ld: usize, k: usize) -> [f64; 4] {
@@ -300,6 +417,112 @@ mod tests {
     use super::*;
     use faer::linalg::solvers::DenseSolveCore;
     use faer::Mat;
+
+    /// A well-conditioned test matrix of order `k` with entries of mixed signs and sizes.
+    fn matrix(k: usize, seed: usize) -> Mat<f64> {
+        Mat::<f64>::from_fn(k, k, |i, j| {
+            ((i * 31 + j * 17 + seed) as f64).sin() * (1.0 + ((i + 3 * j) % 5) as f64)
+                + if i == j { 4.0 * k as f64 } else { 0.0 }
+        })
+    }
+
+    fn inverse_of(a: &Mat<f64>) -> KernelInverse {
+        let mut g = KernelInverse::default();
+        let mut lu = a.clone();
+        let (fwd, bwd) = lu_in_place(&mut lu);
+        g.assign_lu_inverse(
+            lu.as_ref(),
+            faer::perm::PermRef::new_checked(&fwd, &bwd, a.nrows()),
+        );
+        g
+    }
+
+    fn same_bits(a: &[f64], b: &[f64]) -> bool {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// The kernel solve formed in the pass of an update (bordering, replacing a row) is the
+    /// solve run after the update, bit for bit, and the updated inverse is the same: below and
+    /// above the order from which the passes are split in two, on pools of one, two and three
+    /// threads (three: the update splits finer and the solve runs after it), with some zero
+    /// entries in the right-hand side (skipped by the solve).
+    #[test]
+    fn a_solve_in_the_update_pass_is_the_solve_after_it() {
+        for k in [5usize, 40, PARALLEL_K - 1, PARALLEL_K, 2 * PARALLEL_K + 3] {
+            let a = matrix(k, k);
+            let g0 = inverse_of(&a);
+            let rhs = |len: usize| -> Vec<f64> {
+                (0..len)
+                    .map(|i| {
+                        if i % 7 == 3 {
+                            0.0
+                        } else {
+                            ((i * 13 + k) as f64).cos()
+                        }
+                    })
+                    .collect()
+            };
+            // Bordering: a new column u (through ũ = G u) and row v, corner δ.
+            let u: Vec<f64> = (0..k).map(|i| ((i + 2 * k) as f64 * 0.37).sin()).collect();
+            let v: Vec<f64> = (0..k).map(|i| ((i * 5 + k) as f64 * 0.11).cos()).collect();
+            let ut = g0.solve(&u);
+            let sigma = 3.0 * k as f64 - dot(&v, &ut);
+            let next = rhs(k + 1);
+            // Replacing row b by v, with w = G e_b.
+            let b = k / 3;
+            let w = g0.col(b).to_vec();
+            let next_rr = rhs(k);
+            let mut want_b = g0.clone();
+            want_b.border(&ut, &v, sigma);
+            let want_by = want_b.solve(&next);
+            let mut want_r = g0.clone();
+            want_r.replace_row(b, &w, &v);
+            let want_ry = want_r.solve(&next_rr);
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("a pool");
+                let mut gb = g0.clone();
+                let yb = pool.install(|| gb.border_solving(&ut, &v, sigma, Some(&next)));
+                let mut gr = g0.clone();
+                let yr = pool.install(|| gr.replace_row_solving(b, &w, &v, Some(&next_rr)));
+                assert!(
+                    same_bits(&yb.expect("solved"), &want_by),
+                    "border k = {k}, {threads}"
+                );
+                assert!(
+                    same_bits(&yr.expect("solved"), &want_ry),
+                    "row k = {k}, {threads}"
+                );
+                for c in 0..=k {
+                    assert!(same_bits(gb.col(c), want_b.col(c)), "border G, k = {k}");
+                }
+                for c in 0..k {
+                    assert!(same_bits(gr.col(c), want_r.col(c)), "row G, k = {k}");
+                }
+                assert_eq!(gb.max_entry().to_bits(), want_b.max_entry().to_bits());
+            }
+            // And the bordered inverse is the inverse of the bordered matrix.
+            let mut big = Mat::<f64>::zeros(k + 1, k + 1);
+            for i in 0..k {
+                for j in 0..k {
+                    big[(i, j)] = a[(i, j)];
+                }
+                big[(i, k)] = u[i];
+                big[(k, i)] = v[i];
+            }
+            big[(k, k)] = 3.0 * k as f64;
+            let y = want_b.solve(&next);
+            for i in 0..=k {
+                let r: f64 = (0..=k).map(|j| big[(i, j)] * y[j]).sum::<f64>() - next[i];
+                assert!(
+                    r.abs() < 1e-9,
+                    "k = {k}: row {i} of the bordered system off by {r}"
+                );
+            }
+        }
+    }
 
     // Reference: faer's `PartialPivLu::inverse` (the refactorisation before: the matrix copied,
     // factorised, split into `L` and `U`, inverted into a new matrix), bit for bit, for orders

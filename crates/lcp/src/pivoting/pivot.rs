@@ -98,6 +98,9 @@ pub(crate) struct Pivoter<'a> {
     /// For each column of the start basis, its slot's rank in the priority (`usize::MAX`: not
     /// in the start).
     lex_rank: Vec<usize>,
+    /// The kernel solve of the next entering column, formed by the last pivot's update
+    /// ([`Basis::pivot_solving`]): `(basis version, column, y_S)`.
+    next_solve: Option<(u64, usize, Vec<f64>)>,
 }
 
 /// A ray's direction checked against the data: the entering variable at rate 1, every basic
@@ -178,6 +181,7 @@ impl<'a> Pivoter<'a> {
             relations: Default::default(),
             entering: usize::MAX,
             lex_rank: Vec::new(),
+            next_solve: None,
         }
         .with_lex_rank()
     }
@@ -481,7 +485,12 @@ impl<'a> Pivoter<'a> {
             *b -= theta * a;
         }
         self.beta[slot] = theta;
-        self.basis.pivot(&self.cols, entering, slot, alpha);
+        // After a slack leaves, its complement enters next (unless the driver left).
+        let next = self.cols.complement(leaving).filter(|&c| c >= self.cols.n);
+        let solved = self
+            .basis
+            .pivot_solving(&self.cols, entering, slot, alpha, next);
+        self.next_solve = next.zip(solved).map(|(c, y)| (self.basis.version(), c, y));
         self.pivots += 1;
         self.since_refactor += 1;
         self.since_values += 1;
@@ -553,7 +562,13 @@ impl<'a> Pivoter<'a> {
     /// values recomputed from the data.
     pub fn choose(&mut self, entering: usize) -> Result<(Vec<f64>, Option<Choice>), SingularBasis> {
         self.entering = entering;
-        let (mut alpha, drift) = self.basis.ftran_checked(&self.cols, entering);
+        let version = self.basis.version();
+        let solved = self
+            .next_solve
+            .take()
+            .filter(|&(v, c, _)| v == version && c == entering)
+            .map(|(_, _, y)| y);
+        let (mut alpha, drift) = self.basis.ftran_checked_with(&self.cols, entering, solved);
         self.drift = drift;
         let mut step = self.ratio_test(&alpha);
         // A ray is judged on a fresh factorisation, never on updates. A tiny pivot is judged
