@@ -213,10 +213,12 @@ pub fn write_vtk_for(model: &Model, analysis: &Analysis, dir: &Path) -> io::Resu
     write_vtk(analysis, dir)
 }
 
-/// Every number of a VTK file is finite: the values of each `DataArray` (written by this
-/// module as numbers only) and each `timestep` of the collection. This also covers the values
-/// derived here (displaced points, von Mises stress, pair forces), which could overflow even
-/// when the analysis' own numbers are finite.
+/// Every number of a VTK text is finite: the values of each `DataArray` (written by this
+/// module as numbers only) and each `timestep` of the collection. Run on the collection; the
+/// `.vtu` files' arrays are checked value by value as they are written ([`Body::note_value`]),
+/// which also covers the values derived here (displaced points, von Mises stress, pair
+/// forces), which could overflow even when the analysis' own numbers are finite. Reading the
+/// numbers back from the text was a fifth of a `--vtk` run.
 fn check_numbers(file: &str, text: &str) -> Result<(), crate::NonFiniteOutput> {
     let bad = |what: &str, token: &str| crate::NonFiniteOutput {
         field: format!("{what} in {file}"),
@@ -865,6 +867,7 @@ fn header(format: VtkFormat, snap: &Snapshot, points: usize, cells: usize) -> Bo
          format=\"ascii\">",
     );
     num(&mut s, snap.p);
+    b.note_value("TimeValue", Some(snap.p).filter(|p| !p.is_finite()));
     let _ = write!(
         s,
         "</DataArray>\n      <DataArray type=\"Int32\" Name=\"reported\" NumberOfTuples=\"1\" \
@@ -899,15 +902,20 @@ fn f64_array<const N: usize>(
     let s = &mut b.xml;
     s.push_str(&head);
     s.push_str(" format=\"ascii\">\n");
+    let mut bad = None;
     for t in tuples {
         s.push_str("         ");
         for v in t {
             s.push(' ');
             num(s, v);
+            if !v.is_finite() && bad.is_none() {
+                bad = Some(v);
+            }
         }
         s.push('\n');
     }
     s.push_str("        </DataArray>\n");
+    b.note_value(name, bad);
 }
 
 /// An integer data array of VTK type `ty`, twelve values a line.
@@ -1001,6 +1009,14 @@ impl Body {
         self.xml.push_str(s);
     }
 
+    /// Records the first non-finite value written to a data array (`value`: one found in the
+    /// array `name`, if any), which [`Body::finish`] refuses.
+    fn note_value(&mut self, name: &str, value: Option<f64>) {
+        if let (None, Some(v)) = (&self.bad, value) {
+            self.bad = Some((name.to_string(), v));
+        }
+    }
+
     /// Appends a piece made apart (with its binary arrays).
     pub(crate) fn append(&mut self, other: &Body) {
         let (x, d) = (self.xml.len(), self.data.len());
@@ -1051,8 +1067,8 @@ impl Body {
         for v in values {
             // −0 is written as 0, as in the text.
             let v = if v == 0.0 { 0.0 } else { v };
-            if !v.is_finite() && self.bad.is_none() {
-                self.bad = Some((name.to_string(), v));
+            if !v.is_finite() {
+                self.note_value(name, Some(v));
             }
             match ty {
                 "Float64" => raw.extend_from_slice(&v.to_le_bytes()),
@@ -1090,8 +1106,9 @@ impl Body {
         }
     }
 
-    /// The finished file: the XML (its numbers checked finite, see [`check_numbers`]) with
-    /// the offsets filled in, then in a binary format the appended data, then `</VTKFile>`.
+    /// The finished file: the XML with the offsets filled in, then in a binary format the
+    /// appended data, then `</VTKFile>`. Every number of its data arrays was checked finite as
+    /// it was written (ascii or binary); a non-finite one is refused here, named by its array.
     /// The XML written so far must end with `</UnstructuredGrid>` (or `</Collection>`).
     pub(crate) fn finish(self, file: &str) -> io::Result<Vec<u8>> {
         if let Some(e) = self.failed {
@@ -1104,7 +1121,6 @@ impl Body {
             }
             .into());
         }
-        check_numbers(file, &self.xml)?;
         let mut out = Vec::with_capacity(self.xml.len() + self.data.len() + 64);
         let mut at = 0;
         for &(place, offset) in &self.marks {
@@ -1166,6 +1182,38 @@ mod tests {
         let e = b.finish("a.vtu").unwrap_err();
         let n = crate::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
         assert_eq!(n.field, "the data array \"u\" in a.vtu");
+    }
+
+    /// A value of an ascii array is checked as it is written: the first non-finite one is
+    /// refused by `finish`, named by its array, whichever array comes first; finite arrays pass
+    /// and read back as written.
+    #[test]
+    fn ascii_arrays_are_checked_as_they_are_written() {
+        let mut b = Body::new(VtkFormat::Ascii);
+        super::f64_array(
+            &mut b,
+            "u",
+            &["x", "y"],
+            [[1.0, -2.5e-3], [0.0, 3.0]].into_iter(),
+        );
+        let text = String::from_utf8(b.finish("a.vtu").unwrap()).unwrap();
+        assert!(text.contains("  1 -0.0025\n"), "{text}");
+        assert!(text.contains("  0 3\n"), "{text}");
+        for (first, second, name, value) in [
+            (f64::NAN, 1.0, "u", f64::NAN),
+            (1.0, f64::NEG_INFINITY, "v", f64::NEG_INFINITY),
+        ] {
+            let mut b = Body::new(VtkFormat::Ascii);
+            super::f64_array(&mut b, "u", &[], [[first]].into_iter());
+            super::f64_array(&mut b, "v", &[], [[second], [f64::INFINITY]].into_iter());
+            let e = b.finish("a.vtu").unwrap_err();
+            let n = crate::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
+            assert_eq!(n.field, format!("the data array \"{name}\" in a.vtu"));
+            assert_eq!(n.value.is_nan(), value.is_nan());
+            if !value.is_nan() {
+                assert_eq!(n.value, value);
+            }
+        }
     }
 
     #[test]
