@@ -454,7 +454,10 @@ fn remove_tightening(
     let beta = basis.solve_refined(&cols, &cols.h);
     let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
     if beta.iter().all(|&b| b >= -1e-12 * hmax) {
-        let (x, z) = prep.unscale(&slots, &cols.values(&clamp(&beta)));
+        // Zeroed on the scale the test above accepted them on (the data's and the values'):
+        // on the values' alone, a value accepted as round-off of larger data was then
+        // reported as negative.
+        let (x, z) = prep.unscale(&slots, &cols.values(&clamp_at(&beta, hmax)));
         return nonnegative(x, z, 0);
     }
     if c0 <= 0.0 {
@@ -471,7 +474,8 @@ fn remove_tightening(
     let basis =
         Basis::from_slots(&cols, final_slots.clone()).map_err(|_| BasisVerdict::Singular)?;
     let beta = basis.solve_refined(&cols, &cols.h);
-    let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp(&beta)));
+    let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
+    let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp_at(&beta, hmax)));
     nonnegative(x, z, spent)
 }
 
@@ -534,11 +538,16 @@ fn drive_to_zero(
     (Some(slots), piv.pivots)
 }
 
+/// Values within round-off below zero (`1e-12` of their largest) set to zero.
 pub(crate) fn clamp(beta: &[f64]) -> Vec<f64> {
-    let hmax = max_abs(beta).max(f64::MIN_POSITIVE);
+    clamp_at(beta, max_abs(beta).max(f64::MIN_POSITIVE))
+}
+
+/// Values within `1e-12 · scale` below zero set to zero; the others as they are.
+pub(crate) fn clamp_at(beta: &[f64], scale: f64) -> Vec<f64> {
     beta.iter()
         .map(|&b| {
-            if b < 0.0 && b >= -1e-12 * hmax {
+            if b < 0.0 && b >= -1e-12 * scale {
                 0.0
             } else {
                 b
@@ -641,6 +650,45 @@ mod tests {
             .expect("the basis {z1, x2, x3} solves the problem at q");
         assert_eq!(pivots, 0);
         assert!((z[0] - 1.0).abs() < 1e-15 && (x[1] - 2.0).abs() < 1e-15 && x[2] == 3.0);
+    }
+
+    /// A value accepted as round-off below zero is reported as zero, on the scale it was
+    /// accepted on (the data's and the values'), not as a negative one. By hand, for
+    /// `M = [[1, 0.75, 0], [0.75, 1, 0], [0, 0, 1]]` (equilibrated as it is), `q = (−1, −1,
+    /// 0.8e-12)` and the basis `{z1, z2, z3}`: `z1 = z2 = 1/1.75 = 4/7` and `z3 = −0.8e-12`,
+    /// within `1e-12` of the data's largest (1) but not of the values' (4/7).
+    #[test]
+    fn a_value_accepted_as_round_off_is_reported_as_zero() {
+        let prep = prepared(&[[1.0, 0.75, 0.0], [0.75, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let q = [-1.0, -1.0, 0.8e-12];
+        let (x, z, pivots) = remove_tightening(
+            &prep,
+            &q,
+            vec![3, 4, 5],
+            0.0,
+            &[0.0; 3],
+            &Settings::default(),
+        )
+        .expect("z3 = −0.8e-12 is round-off of data of size 1");
+        assert_eq!(pivots, 0);
+        assert_eq!(z[2], 0.0);
+        assert!((z[0] - 4.0 / 7.0).abs() < 1e-15 && (z[1] - 4.0 / 7.0).abs() < 1e-15);
+        assert!(x.iter().all(|&v| v == 0.0), "{x:?}");
+        // Twice as far below zero it is a negative value, named.
+        let q = [-1.0, -1.0, 2.5e-12];
+        let verdict = remove_tightening(
+            &prep,
+            &q,
+            vec![3, 4, 5],
+            0.0,
+            &[0.0; 3],
+            &Settings::default(),
+        )
+        .expect_err("z3 = −2.5e-12 is not round-off of data of size 1");
+        assert!(
+            matches!(verdict, BasisVerdict::Negative { var: Var::Z(2), .. }),
+            "{verdict:?}"
+        );
     }
 
     /// A basis whose kernel is singular on the data is said to be so: `{z1, z2, x3}` of
