@@ -224,6 +224,22 @@ impl Basis {
         col: usize,
         solved: Option<Vec<f64>>,
     ) -> (Vec<f64>, f64) {
+        let (alpha, rel, _) = self.ftran_and_values(cols, col, solved, false);
+        (alpha, rel)
+    }
+
+    /// [`Basis::ftran_checked_with`], and with `values` also the basic values `B⁻¹h` from the
+    /// data (`h` the columns' right-hand side), their slack rows formed in the same pass over
+    /// the kernel's columns of `M` as the entering column's: the same bits as
+    /// [`Basis::solve`]`(cols, &cols.h)` (each sum formed as alone,
+    /// [`simd::add_columns2`]), at the cost of a kernel solve and not of another pass.
+    pub fn ftran_and_values(
+        &self,
+        cols: &Columns,
+        col: usize,
+        solved: Option<Vec<f64>>,
+        values: bool,
+    ) -> (Vec<f64>, f64, Option<Vec<f64>>) {
         let n = self.n;
         let mut tmp = vec![0.0; n];
         let (ys, uscale) = if col < n {
@@ -243,12 +259,21 @@ impl Basis {
                 None => (self.kernel_solve(&ur), s),
             }
         };
-        self.subtract_kernel_columns(cols, &ys, &mut tmp);
+        let fresh = if values {
+            let hr: Vec<f64> = self.r_rows.iter().map(|&r| cols.h[r]).collect();
+            let yh = self.kernel_solve(&hr);
+            let mut th = cols.h.clone();
+            self.subtract_kernel_columns2(cols, &ys, &mut tmp, &yh, &mut th);
+            Some(self.scatter(&yh, &th, n))
+        } else {
+            self.subtract_kernel_columns(cols, &ys, &mut tmp);
+            None
+        };
         let resid = self.r_rows.iter().fold(0.0f64, |a, &r| a.max(tmp[r].abs()));
         let yscale = ys.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         let scale = uscale + yscale;
         let rel = if scale > 0.0 { resid / scale } else { 0.0 };
-        (self.scatter(&ys, &tmp, n), rel)
+        (self.scatter(&ys, &tmp, n), rel, fresh)
     }
 
     /// `|K⁻¹| |A[R, col]|` by position in `S`: the size of the terms whose sums form the kernel
@@ -279,6 +304,15 @@ impl Basis {
 
     /// `tmp −= A[:, S] y_S`, four columns per pass over `tmp`.
     fn subtract_kernel_columns(&self, cols: &Columns, ys: &[f64], tmp: &mut [f64]) {
+        let zcols = self.kernel_columns(cols, ys, tmp);
+        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y.
+        add_columns_pooled(cols, &zcols, &mut tmp[..self.n]);
+    }
+
+    /// The stored columns of `M` and their weights for `tmp −= A[:, S] y_S`, in the order of
+    /// `S` without the zero weights; the driver's column, if basic, is subtracted from `tmp`
+    /// here.
+    fn kernel_columns(&self, cols: &Columns, ys: &[f64], tmp: &mut [f64]) -> Vec<(usize, f64)> {
         let n = self.n;
         let mut zcols: Vec<(usize, f64)> = Vec::with_capacity(ys.len());
         for (&c, &y) in self.s_cols.iter().zip(ys) {
@@ -293,8 +327,29 @@ impl Basis {
                 cols.axpy_col(tmp, -y, c);
             }
         }
-        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y.
-        add_columns_pooled(cols, &zcols, &mut tmp[..n]);
+        zcols
+    }
+
+    /// [`Basis::subtract_kernel_columns`] for two vectors, in one pass over the columns when
+    /// both have the same columns (no zero weight in one and not in the other); each result is
+    /// the same bits as alone.
+    fn subtract_kernel_columns2(
+        &self,
+        cols: &Columns,
+        y1: &[f64],
+        tmp1: &mut [f64],
+        y2: &[f64],
+        tmp2: &mut [f64],
+    ) {
+        let n = self.n;
+        let z1 = self.kernel_columns(cols, y1, tmp1);
+        let z2 = self.kernel_columns(cols, y2, tmp2);
+        if z1.len() == z2.len() && z1.iter().zip(&z2).all(|(a, b)| a.0 == b.0) {
+            add_columns_pooled2(cols, &z1, &z2, &mut tmp1[..n], &mut tmp2[..n]);
+        } else {
+            add_columns_pooled(cols, &z1, &mut tmp1[..n]);
+            add_columns_pooled(cols, &z2, &mut tmp2[..n]);
+        }
     }
 
     fn scatter(&self, ys: &[f64], tmp: &[f64], n: usize) -> Vec<f64> {
@@ -515,6 +570,40 @@ fn add_columns_pooled(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64]) {
     }
 }
 
+/// [`add_columns_pooled`] for two weight vectors over the same stored columns (`z1` and `z2`
+/// name the same columns in the same order), in one pass: each row's two sums are those of
+/// [`add_columns`] alone.
+fn add_columns_pooled2(
+    cols: &Columns,
+    z1: &[(usize, f64)],
+    z2: &[(usize, f64)],
+    out1: &mut [f64],
+    out2: &mut [f64],
+) {
+    const MIN_RUN: usize = 512;
+    let n = out1.len();
+    let threads = rayon::current_num_threads();
+    let run = |part1: &mut [f64], part2: &mut [f64], offset: usize| {
+        let len = part1.len();
+        let parts: Vec<&[f64]> = z1
+            .iter()
+            .map(|&(s, _)| &cols.m.stored(s)[offset..offset + len])
+            .collect();
+        let y1: Vec<f64> = z1.iter().map(|&(_, y)| y).collect();
+        let y2: Vec<f64> = z2.iter().map(|&(_, y)| y).collect();
+        simd::add_columns2(&parts, &y1, &y2, part1, part2);
+    };
+    if threads > 1 && n * z1.len() >= 1 << 18 && n >= 64 {
+        let rows = n.div_ceil(threads).max(MIN_RUN).next_multiple_of(8);
+        out1.par_chunks_mut(rows)
+            .zip(out2.par_chunks_mut(rows))
+            .enumerate()
+            .for_each(|(i, (p1, p2))| run(p1, p2, i * rows));
+    } else {
+        run(out1, out2, 0);
+    }
+}
+
 /// `out += Σ y_s S[offset.., s]` over `(s, y_s)` with `S` the stored columns of `M`, in the
 /// order of `zcols`, four columns to a partial sum ([`simd::add_columns`], compiled for the
 /// machine's widest vectors with the same bits).
@@ -534,6 +623,81 @@ mod tests {
     use std::sync::Arc;
 
     use crate::pivoting::columns::ColumnStore;
+
+    /// The basic values formed in the entering column's pass are the values of a solve of
+    /// their own, bit for bit, and the entering column is the same: a basis holding slacks,
+    /// columns of `M` (some stored negated) and the driver, entering a structural column and a
+    /// slack, on pools of 1, 2 and 3 threads (large enough for the pass to be split), and with a
+    /// zero in the right-hand side's kernel part (different columns for the two sums: two
+    /// passes).
+    #[test]
+    fn values_formed_in_the_entering_columns_pass_are_a_solves() {
+        // k = 401 kernel columns of 1200 rows: the pass and the kernel solve are split.
+        let n = 1200;
+        let entry = |i: usize, j: usize| {
+            let k = ((i * 7919 + j * 104_729) as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+            (k as f64 / (1u64 << 24) as f64 - 0.5) * (1.0 + (i % 5) as f64)
+                + if i == j { n as f64 } else { 0.0 }
+        };
+        let mut data: Vec<f64> = (0..n * n).map(|x| entry(x % n, x / n)).collect();
+        // Column 3 the negation of column 2: stored once, read negated.
+        for i in 0..n {
+            data[3 * n + i] = -data[2 * n + i];
+        }
+        let store = Arc::new(ColumnStore::new(n, data));
+        let h: Vec<f64> = (0..n).map(|i| ((i * 31) as f64).sin()).collect();
+        let g: Vec<f64> = (0..n)
+            .map(|i| 1.0 + ((i * 17) as f64).cos().abs())
+            .collect();
+        // Every third slot holds its z, slot 5 the driver, the others their slacks.
+        let mut slots: Vec<usize> = (0..n).collect();
+        for s in (0..n).step_by(3) {
+            slots[s] = n + s;
+        }
+        slots[5] = 2 * n;
+        for zero_in_h in [false, true] {
+            let mut h = h.clone();
+            if zero_in_h {
+                // Zero on the kernel's rows (those whose slack is not basic): y_h = 0, no
+                // column in the values' sum, every column in the entering column's.
+                for (i, v) in h.iter_mut().enumerate() {
+                    if i % 3 == 0 || i == 5 {
+                        *v = 0.0;
+                    }
+                }
+            }
+            let cols = Columns::new(n, store.clone(), h, g.clone());
+            let basis = Basis::from_slots(&cols, slots.clone()).expect("a regular basis");
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("a pool");
+                // z_1 (its slack is basic) and x_3 (its z is basic).
+                for entering in [n + 1, 3] {
+                    let (alpha, drift, values) =
+                        pool.install(|| basis.ftran_and_values(&cols, entering, None, true));
+                    let (want_alpha, want_drift) =
+                        pool.install(|| basis.ftran_checked(&cols, entering));
+                    let want_values = pool.install(|| basis.solve(&cols, &cols.h));
+                    let values = values.expect("asked for");
+                    let same = |a: &[f64], b: &[f64]| {
+                        a.len() == b.len()
+                            && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+                    };
+                    assert!(
+                        same(&alpha, &want_alpha),
+                        "α: {threads} threads, {entering}"
+                    );
+                    assert_eq!(drift.to_bits(), want_drift.to_bits());
+                    assert!(
+                        same(&values, &want_values),
+                        "β: {threads} threads, {zero_in_h}"
+                    );
+                }
+            }
+        }
+    }
 
     /// The slack-row pass forms every row's sum as the plain loop below does (four columns to
     /// a partial sum, in the order given, then the left-over columns one by one: the reference,
