@@ -652,11 +652,39 @@ impl<'a> Pivoter<'a> {
     /// `β += B⁻¹(h − B β)`: the basic values refined once from the data (`O(n·k)`).
     fn refine_values(&mut self) {
         let mut r = self.cols.h.clone();
-        for (slot, &c) in self.basis.slot_var.iter().enumerate() {
-            if self.beta[slot] != 0.0 {
-                self.cols.axpy_col(&mut r, -self.beta[slot], c);
+        let terms: Vec<(usize, f64)> = self
+            .basis
+            .slot_var
+            .iter()
+            .zip(&self.beta)
+            .filter(|&(_, &b)| b != 0.0)
+            .map(|(&c, &b)| (c, -b))
+            .collect();
+        let n = self.cols.n;
+        let cols = &*self.cols;
+        let mut unused = vec![0.0; n];
+        // `Columns::axpy_col` of each term in turn, row by row.
+        by_row_blocks(&mut r, &mut unused, |a, r, _| {
+            let rows = a..a + r.len();
+            for &(c, s) in &terms {
+                if c < n {
+                    if rows.contains(&c) {
+                        r[c - a] += s;
+                    }
+                } else if c < 2 * n {
+                    let (col, neg) = cols.m_col(c - n);
+                    let col = &col[rows.clone()];
+                    if neg {
+                        r.iter_mut().zip(col).for_each(|(o, v)| *o += s * v);
+                    } else {
+                        r.iter_mut().zip(col).for_each(|(o, v)| *o -= s * v);
+                    }
+                } else {
+                    let g = &cols.g[rows.clone()];
+                    r.iter_mut().zip(g).for_each(|(o, v)| *o -= s * v);
+                }
             }
-        }
+        });
         let corr = self.basis.solve(&self.cols, &r);
         self.beta.iter_mut().zip(&corr).for_each(|(b, c)| *b += c);
         self.since_values = 0;
@@ -703,29 +731,41 @@ impl<'a> Pivoter<'a> {
         alpha: &[f64],
         tau: &[f64],
     ) -> (Vec<f64>, Vec<f64>) {
-        let n = self.cols.n;
-        let mut r = vec![0.0; n];
-        let mut t = vec![0.0; n];
-        let mut col = vec![0.0; n];
-        let mut add = |c: usize, s: f64, size: f64, r: &mut [f64], t: &mut [f64]| {
-            if c < n {
-                r[c] += s;
-                t[c] += size;
-            } else {
-                self.cols.col_into(c, &mut col);
-                for ((ri, ti), a) in r.iter_mut().zip(t.iter_mut()).zip(&col) {
-                    *ri += s * a;
-                    *ti += size * a.abs();
-                }
-            }
-        };
-        add(entering, 1.0, 1.0, &mut r, &mut t);
+        let mut terms = vec![(entering, 1.0, 1.0)];
         for (slot, &c) in self.basis.slot_var.iter().enumerate() {
             let size = alpha[slot].abs() + tau[slot];
             if size != 0.0 {
-                add(c, -alpha[slot], size, &mut r, &mut t);
+                terms.push((c, -alpha[slot], size));
             }
         }
+        let n = self.cols.n;
+        let (mut r, mut t) = (vec![0.0; n], vec![0.0; n]);
+        let cols = &*self.cols;
+        by_row_blocks(&mut r, &mut t, |a, r, t| {
+            let rows = a..a + r.len();
+            for &(c, s, size) in &terms {
+                if c < n {
+                    if rows.contains(&c) {
+                        r[c - a] += s;
+                        t[c - a] += size;
+                    }
+                    continue;
+                }
+                // A[:, c] as `Columns::col_into` writes it: 0 + v for a negated stored column
+                // of `M`, 0 − v for another, 0 − g for the driver's.
+                let (col, plus) = if c < 2 * n {
+                    let (col, neg) = cols.m_col(c - n);
+                    (&col[rows.clone()], neg)
+                } else {
+                    (&cols.g[rows.clone()], false)
+                };
+                for ((ri, ti), &v) in r.iter_mut().zip(t.iter_mut()).zip(col) {
+                    let e = if plus { 0.0 + v } else { 0.0 - v };
+                    *ri += s * e;
+                    *ti += size * e.abs();
+                }
+            }
+        });
         (r, t)
     }
 
@@ -930,6 +970,24 @@ impl<'a> Pivoter<'a> {
                 .complement(leaving)
                 .expect("only the driver has no complement");
         }
+    }
+}
+
+/// Runs `f(first row, r block, t block)` over blocks of the rows of `r` and `t` (of equal
+/// length), on the thread pool when they are long: one block per thread of at least 512 rows.
+/// A row's result depends on that row alone, so it is the same whatever the blocks.
+fn by_row_blocks(r: &mut [f64], t: &mut [f64], f: impl Fn(usize, &mut [f64], &mut [f64]) + Sync) {
+    use rayon::prelude::*;
+    let n = r.len();
+    let threads = rayon::current_num_threads();
+    if threads > 1 && n >= 1024 {
+        let rows = n.div_ceil(threads).max(512);
+        r.par_chunks_mut(rows)
+            .zip(t.par_chunks_mut(rows))
+            .enumerate()
+            .for_each(|(i, (r, t))| f(i * rows, r, t));
+    } else {
+        f(0, r, t);
     }
 }
 
