@@ -224,21 +224,22 @@ impl Basis {
         col: usize,
         solved: Option<Vec<f64>>,
     ) -> (Vec<f64>, f64) {
-        let (alpha, rel, _) = self.ftran_and_values(cols, col, solved, false);
+        let (alpha, rel, _) = self.ftran_and_values(cols, col, solved, None);
         (alpha, rel)
     }
 
-    /// [`Basis::ftran_checked_with`], and with `values` also the basic values `B⁻¹h` from the
-    /// data (`h` the columns' right-hand side), their slack rows formed in the same pass over
-    /// the kernel's columns of `M` as the entering column's: the same bits as
-    /// [`Basis::solve`]`(cols, &cols.h)` (each sum formed as alone,
-    /// [`simd::add_columns2`]), at the cost of a kernel solve and not of another pass.
+    /// [`Basis::ftran_checked_with`], and with `values = Some(…)` also the basic values `B⁻¹h`
+    /// from the data (`h` the columns' right-hand side), their slack rows formed in the same
+    /// pass over the kernel's columns of `M` as the entering column's: the same bits as
+    /// [`Basis::solve`]`(cols, &cols.h)` (each sum formed as alone, [`simd::add_columns2`]), at
+    /// the cost of a kernel solve and not of another pass. `values = Some(Some(y))` gives that
+    /// kernel solve `K⁻¹ h_R` (from [`Basis::pivot_solving`] in this version of the basis).
     pub fn ftran_and_values(
         &self,
         cols: &Columns,
         col: usize,
         solved: Option<Vec<f64>>,
-        values: bool,
+        values: Option<Option<Vec<f64>>>,
     ) -> (Vec<f64>, f64, Option<Vec<f64>>) {
         let n = self.n;
         let mut tmp = vec![0.0; n];
@@ -259,9 +260,11 @@ impl Basis {
                 None => (self.kernel_solve(&ur), s),
             }
         };
-        let fresh = if values {
-            let hr: Vec<f64> = self.r_rows.iter().map(|&r| cols.h[r]).collect();
-            let yh = self.kernel_solve(&hr);
+        let fresh = if let Some(solved_h) = values {
+            let yh = solved_h.unwrap_or_else(|| {
+                let hr: Vec<f64> = self.r_rows.iter().map(|&r| cols.h[r]).collect();
+                self.kernel_solve(&hr)
+            });
             let mut th = cols.h.clone();
             self.subtract_kernel_columns2(cols, &ys, &mut tmp, &yh, &mut th);
             Some(self.scatter(&yh, &th, n))
@@ -434,15 +437,20 @@ impl Basis {
 
     /// Replaces the column at `slot` by `entering`, given `alpha = B⁻¹ A[:, entering]`.
     pub fn pivot(&mut self, cols: &Columns, entering: usize, slot: usize, alpha: &[f64]) {
-        self.pivot_solving(cols, entering, slot, alpha, None);
+        self.pivot_solving(cols, entering, slot, alpha, None, false);
     }
 
-    /// [`Basis::pivot`], and for a structural column `next` also the kernel part of its
-    /// `B⁻¹ A[:, next]` in the new basis, formed in the pass that updates `K⁻¹` when the leaving
-    /// variable is a slack (bordering or replacing a row: the next entering column is then that
-    /// slack's structural complement, and its kernel solve would read `K⁻¹` once more right
-    /// after). The same bits as the kernel solve of [`Basis::ftran_checked`]; pass it to
-    /// [`Basis::ftran_checked_with`] while the basis is unchanged ([`Basis::version`]).
+    /// [`Basis::pivot`], and kernel solves of the new basis formed in the pass that updates
+    /// `K⁻¹` (the same bits as [`KernelInverse::solve`] after it), which a solve right after
+    /// the update would read `K⁻¹` once more for:
+    /// * for a structural column `next`, the kernel part of `B⁻¹ A[:, next]`, when the leaving
+    ///   variable is a slack (bordering or replacing a row: the next entering column is then
+    ///   that slack's structural complement), for [`Basis::ftran_checked_with`];
+    /// * with `values`, `K⁻¹ h_R` (`h` the columns' right-hand side), the kernel part of the
+    ///   basic values from the data, for [`Basis::ftran_and_values`] (not when a column and a
+    ///   row are removed: that update moves them).
+    ///
+    /// Either is `None` where it is not formed; use them while [`Basis::version`] is unchanged.
     pub fn pivot_solving(
         &mut self,
         cols: &Columns,
@@ -450,14 +458,37 @@ impl Basis {
         slot: usize,
         alpha: &[f64],
         next: Option<usize>,
-    ) -> Option<Vec<f64>> {
+        values: bool,
+    ) -> (Option<Vec<f64>>, Option<Vec<f64>>) {
         let n = self.n;
         let leaving = self.slot_var[slot];
         let enter_slack = entering < n;
         let leave_slack = leaving < n;
         self.version += 1;
         let next = next.filter(|&c| c >= n);
-        let mut solved = None;
+        // The right-hand sides on the new kernel's rows `rows`: the next column's (where the
+        // leaving variable is a slack) and the values'; and what the update returns for them.
+        let rhs = |rows: &[usize], with_next: bool| -> Vec<Vec<f64>> {
+            let mut out = Vec::new();
+            if let Some(e) = next.filter(|_| with_next) {
+                out.push(rows.iter().map(|&i| cols.entry(i, e)).collect());
+            }
+            if values {
+                out.push(rows.iter().map(|&i| cols.h[i]).collect());
+            }
+            out
+        };
+        let split = |solved: Vec<Vec<f64>>, with_next: bool| {
+            let mut it = solved.into_iter();
+            let y_next = if next.is_some() && with_next {
+                it.next()
+            } else {
+                None
+            };
+            let y_values = if values { it.next() } else { None };
+            (y_next, y_values)
+        };
+        let mut solved = (None, None);
         match (enter_slack, leave_slack) {
             (false, true) => {
                 // Border K with the new column `entering` and the new row `leaving`.
@@ -469,13 +500,12 @@ impl Basis {
                     .collect();
                 let sigma = alpha[slot];
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                // The next column on the bordered rows `R + [r]`.
-                let u = next.map(|e| {
-                    let mut u: Vec<f64> = self.r_rows.iter().map(|&i| cols.entry(i, e)).collect();
-                    u.push(cols.entry(r, e));
-                    u
-                });
-                solved = self.kinv.border_solving(&ut, &v, sigma, u.as_deref());
+                // On the bordered rows `R + [r]`.
+                let mut rows = self.r_rows.clone();
+                rows.push(r);
+                let u = rhs(&rows, true);
+                let u: Vec<&[f64]> = u.iter().map(|x| &x[..]).collect();
+                solved = split(self.kinv.border_solving(&ut, &v, sigma, &u), true);
                 self.s_pos[entering] = self.s_cols.len();
                 self.s_cols.push(entering);
                 self.r_pos[r] = self.r_rows.len();
@@ -505,7 +535,10 @@ impl Basis {
                     .iter()
                     .map(|&c| alpha[self.var_slot[c]])
                     .collect();
-                self.kinv.replace_column(a, &ut);
+                // The rows do not change; the leaving `z`'s complement (a slack) enters next.
+                let u = rhs(&self.r_rows, false);
+                let u: Vec<&[f64]> = u.iter().map(|x| &x[..]).collect();
+                solved = split(self.kinv.replace_column_solving(a, &ut, &u), false);
                 self.s_cols[a] = entering;
                 self.s_pos[leaving] = NONE;
                 self.s_pos[entering] = a;
@@ -516,15 +549,12 @@ impl Basis {
                 let r = leaving;
                 let w: Vec<f64> = self.kinv.col(b).to_vec();
                 let v: Vec<f64> = self.s_cols.iter().map(|&c| cols.entry(r, c)).collect();
-                // The next column on the rows after the replacement.
-                let u = next.map(|e| {
-                    self.r_rows
-                        .iter()
-                        .enumerate()
-                        .map(|(a, &i)| cols.entry(if a == b { r } else { i }, e))
-                        .collect::<Vec<f64>>()
-                });
-                solved = self.kinv.replace_row_solving(b, &w, &v, u.as_deref());
+                // On the rows after the replacement.
+                let mut rows = self.r_rows.clone();
+                rows[b] = r;
+                let u = rhs(&rows, true);
+                let u: Vec<&[f64]> = u.iter().map(|x| &x[..]).collect();
+                solved = split(self.kinv.replace_row_solving(b, &w, &v, &u), true);
                 self.r_rows[b] = r;
                 self.r_pos[r] = b;
                 self.r_pos[entering] = NONE;
@@ -676,7 +706,7 @@ mod tests {
                 // z_1 (its slack is basic) and x_3 (its z is basic).
                 for entering in [n + 1, 3] {
                     let (alpha, drift, values) =
-                        pool.install(|| basis.ftran_and_values(&cols, entering, None, true));
+                        pool.install(|| basis.ftran_and_values(&cols, entering, None, Some(None)));
                     let (want_alpha, want_drift) =
                         pool.install(|| basis.ftran_checked(&cols, entering));
                     let want_values = pool.install(|| basis.solve(&cols, &cols.h));

@@ -170,19 +170,19 @@ impl KernelInverse {
     /// updates the column, so `G` is read once.
     #[cfg(test)]
     pub fn border(&mut self, ut: &[f64], v: &[f64], sigma: f64) {
-        self.border_solving(ut, v, sigma, None);
+        self.border_solving(ut, v, sigma, &[]);
     }
 
-    /// [`KernelInverse::border`], and with `next = Some(u)` (`k + 1` long, in the order of the
-    /// bordered rows) also `G u` for the bordered `G`, formed in the same pass
+    /// [`KernelInverse::border`], and `G u` for each `u` of `rhs` (`k + 1` long, in the order
+    /// of the bordered rows) for the bordered `G`, formed in the same pass
     /// ([`KernelInverse::update_solving`]): the same bits as [`KernelInverse::solve`] after it.
     pub fn border_solving(
         &mut self,
         ut: &[f64],
         v: &[f64],
         sigma: f64,
-        next: Option<&[f64]>,
-    ) -> Option<Vec<f64>> {
+        rhs: &[&[f64]],
+    ) -> Vec<Vec<f64>> {
         let k = self.k;
         self.grow(k + 1);
         let ld = self.ld;
@@ -200,12 +200,11 @@ impl KernelInverse {
             }
             top
         };
-        let (new_row, partial) = match next {
-            Some(u) if solving_in_pass() => {
-                let (top, y) = self.update_solving(4, k, k + 1, u, update);
-                (top, Some(y))
-            }
-            _ => (self.update_columns(4, update), None),
+        let fused = !rhs.is_empty() && solving_in_pass();
+        let (new_row, partial) = if fused {
+            self.update_solving(4, k, k + 1, rhs, update)
+        } else {
+            (self.update_columns(4, update), Vec::new())
         };
         let col = &mut self.data[k * ld..k * ld + k + 1];
         for (c, fa) in col.iter_mut().zip(&f) {
@@ -215,19 +214,21 @@ impl KernelInverse {
         let new_col = col.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         self.gmax = self.gmax.max(new_col).max(new_row);
         self.k = k + 1;
-        match (next, partial) {
-            (Some(u), Some((mut y, mut rest))) => {
-                // The new column is the last of the sum (of its second half).
-                let last = &self.data[k * ld..k * ld + k + 1];
+        if !fused {
+            return rhs.iter().map(|u| self.solve(u)).collect();
+        }
+        // The new column is the last of each sum (of its second half).
+        let last = &self.data[k * ld..k * ld + k + 1];
+        rhs.iter()
+            .zip(partial)
+            .map(|(u, (mut y, mut rest))| {
                 let y2 = rest.as_mut().unwrap_or(&mut y);
                 if u[k] != 0.0 {
                     axpy(y2, u[k], last);
                 }
-                Some(finish_halves(y, rest))
-            }
-            (Some(u), None) => Some(self.solve(u)),
-            _ => None,
-        }
+                finish_halves(y, rest)
+            })
+            .collect()
     }
 
     /// Removes row `a` and column `b` of `K` (a pivot on `G[a, b]`); the last row and column
@@ -258,36 +259,58 @@ impl KernelInverse {
     }
 
     /// Replaces column `a` of `K` (row `a` of `G`) given `ũ = G u` for the new column.
+    #[cfg(test)]
     pub fn replace_column(&mut self, a: usize, ut: &[f64]) {
+        self.replace_column_solving(a, ut, &[]);
+    }
+
+    /// [`KernelInverse::replace_column`], and `G u` for each `u` of `rhs` for the new `G`,
+    /// formed in the same pass: the same bits as [`KernelInverse::solve`] after it.
+    pub fn replace_column_solving(
+        &mut self,
+        a: usize,
+        ut: &[f64],
+        rhs: &[&[f64]],
+    ) -> Vec<Vec<f64>> {
         let piv = ut[a];
         let k = self.k;
-        self.update_columns(1, |_, col| {
+        let update = |_: usize, col: &mut [f64]| {
             let ra = col[a] / piv;
             if ra != 0.0 {
                 axpy(&mut col[..k], -ra, ut);
                 col[a] = ra;
             }
             0.0
-        });
+        };
+        if !rhs.is_empty() && solving_in_pass() {
+            let (_, partial) = self.update_solving(1, k, k, rhs, update);
+            partial
+                .into_iter()
+                .map(|(y, rest)| finish_halves(y, rest))
+                .collect()
+        } else {
+            self.update_columns(1, update);
+            rhs.iter().map(|u| self.solve(u)).collect()
+        }
     }
 
     /// Replaces row `b` of `K` by `v`, given `w = G e_b` (a copy); `ṽᵀ = vᵀ G` is formed column by
     /// column in the pass that updates it.
     #[cfg(test)]
     pub fn replace_row(&mut self, b: usize, w: &[f64], v: &[f64]) {
-        self.replace_row_solving(b, w, v, None);
+        self.replace_row_solving(b, w, v, &[]);
     }
 
-    /// [`KernelInverse::replace_row`], and with `next = Some(u)` (in the order of the rows
-    /// after the replacement) also `G u` for the new `G`, formed in the same pass: the same bits
-    /// as [`KernelInverse::solve`] after it.
+    /// [`KernelInverse::replace_row`], and `G u` for each `u` of `rhs` (in the order of the
+    /// rows after the replacement) for the new `G`, formed in the same pass: the same bits as
+    /// [`KernelInverse::solve`] after it.
     pub fn replace_row_solving(
         &mut self,
         b: usize,
         w: &[f64],
         v: &[f64],
-        next: Option<&[f64]>,
-    ) -> Option<Vec<f64>> {
+        rhs: &[&[f64]],
+    ) -> Vec<Vec<f64>> {
         let vw = dot(v, w);
         let (k, ld) = (self.k, self.ld);
         // Four columns at a time: their dot products side by side.
@@ -301,61 +324,61 @@ impl KernelInverse {
             }
             0.0
         };
-        match next {
-            Some(u) if solving_in_pass() => {
-                let (_, (y, rest)) = self.update_solving(4, k, k, u, update);
-                Some(finish_halves(y, rest))
-            }
-            Some(u) => {
-                self.update_columns(4, update);
-                Some(self.solve(u))
-            }
-            None => {
-                self.update_columns(4, update);
-                None
-            }
+        if !rhs.is_empty() && solving_in_pass() {
+            let (_, partial) = self.update_solving(4, k, k, rhs, update);
+            partial
+                .into_iter()
+                .map(|(y, rest)| finish_halves(y, rest))
+                .collect()
+        } else {
+            self.update_columns(4, update);
+            rhs.iter().map(|u| self.solve(u)).collect()
         }
     }
 
     /// [`KernelInverse::update_columns`] over the first `updated` columns, and in the same pass
-    /// the partial sums of `y = Σ_b u_b G[..len, b]` over them, each column added once updated
-    /// (while it is in the cache) in the order and the halves [`KernelInverse::solve`] sums a
-    /// `len × len` inverse in: the first half's sum, and the second's when there are two. A
-    /// column `updated..len` (a bordering's new one) is the caller's to add.
+    /// for each `u` of `rhs` the partial sums of `y = Σ_b u_b G[..len, b]` over them, each
+    /// column added once updated (while it is in the cache) in the order and the halves
+    /// [`KernelInverse::solve`] sums a `len × len` inverse in: the first half's sum, and the
+    /// second's when there are two. A column `updated..len` (a bordering's new one) is the
+    /// caller's to add.
     #[allow(clippy::type_complexity)]
     fn update_solving(
         &mut self,
         group: usize,
         updated: usize,
         len: usize,
-        u: &[f64],
+        rhs: &[&[f64]],
         f: impl Fn(usize, &mut [f64]) -> f64 + Sync + Send,
-    ) -> (f64, (Vec<f64>, Option<Vec<f64>>)) {
+    ) -> (f64, Vec<(Vec<f64>, Option<Vec<f64>>)>) {
         let ld = self.ld;
-        let part = |c0: usize, data: &mut [f64]| -> (f64, Vec<f64>) {
-            let mut y = vec![0.0; len];
+        let part = |c0: usize, data: &mut [f64]| -> (f64, Vec<Vec<f64>>) {
+            let mut ys = vec![vec![0.0; len]; rhs.len()];
             let mut top = 0.0f64;
             for (i, cols) in data.chunks_mut(group * ld).enumerate() {
                 let c = c0 + i * group;
                 top = top.max(f(c, cols));
                 for (j, col) in cols.chunks(ld).enumerate() {
-                    let ub = u[c + j];
-                    if ub != 0.0 {
-                        axpy(&mut y, ub, &col[..len]);
+                    for (y, u) in ys.iter_mut().zip(rhs) {
+                        let ub = u[c + j];
+                        if ub != 0.0 {
+                            axpy(y, ub, &col[..len]);
+                        }
                     }
                 }
             }
-            (top, y)
+            (top, ys)
         };
         let data = &mut self.data[..updated * ld];
         if len < PARALLEL_K {
-            let (top, y) = part(0, data);
-            return (top, (y, None));
+            let (top, ys) = part(0, data);
+            return (top, ys.into_iter().map(|y| (y, None)).collect());
         }
         let half = len / 2;
         let (first, second) = data.split_at_mut(half * ld);
         let ((t1, y1), (t2, y2)) = rayon::join(|| part(0, first), || part(half, second));
-        (t1.max(t2), (y1, Some(y2)))
+        let ys = y1.into_iter().zip(y2).map(|(a, b)| (a, Some(b))).collect();
+        (t1.max(t2), ys)
     }
 
     /// Applies `f(c, columns)` to the columns of `G` in runs of `group` (`c` the first column of
@@ -441,11 +464,12 @@ mod tests {
         a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
     }
 
-    /// The kernel solve formed in the pass of an update (bordering, replacing a row) is the
-    /// solve run after the update, bit for bit, and the updated inverse is the same: below and
-    /// above the order from which the passes are split in two, on pools of one, two and three
-    /// threads (three: the update splits finer and the solve runs after it), with some zero
-    /// entries in the right-hand side (skipped by the solve).
+    /// The kernel solves formed in the pass of an update (bordering, replacing a row or a
+    /// column; one or two right-hand sides) are the solves run after the update, bit for bit,
+    /// and the updated inverse is the same: below and above the order from which the passes
+    /// are split in two, on pools of one, two and three threads (three: the update splits finer
+    /// and the solves run after it), with some zero entries in the right-hand side (skipped by
+    /// the solve).
     #[test]
     fn a_solve_in_the_update_pass_is_the_solve_after_it() {
         for k in [5usize, 40, PARALLEL_K - 1, PARALLEL_K, 2 * PARALLEL_K + 3] {
@@ -478,23 +502,33 @@ mod tests {
             let mut want_r = g0.clone();
             want_r.replace_row(b, &w, &v);
             let want_ry = want_r.solve(&next_rr);
+            // Replacing column a_col of K by u: ũ = G u.
+            let a_col = (2 * k) / 3;
+            let ut_c = g0.solve(&u);
+            let mut want_c = g0.clone();
+            want_c.replace_column(a_col, &ut_c);
+            let want_cy = want_c.solve(&next_rr);
             for threads in [1, 2, 3] {
                 let pool = rayon::ThreadPoolBuilder::new()
                     .num_threads(threads)
                     .build()
                     .expect("a pool");
+                // Two right-hand sides at once, as a pivot asks (the next column's, the
+                // values'): each as alone.
+                let other: Vec<f64> = next.iter().map(|x| 1.0 - 2.0 * x).collect();
                 let mut gb = g0.clone();
-                let yb = pool.install(|| gb.border_solving(&ut, &v, sigma, Some(&next)));
+                let yb = pool.install(|| gb.border_solving(&ut, &v, sigma, &[&next, &other]));
                 let mut gr = g0.clone();
-                let yr = pool.install(|| gr.replace_row_solving(b, &w, &v, Some(&next_rr)));
-                assert!(
-                    same_bits(&yb.expect("solved"), &want_by),
-                    "border k = {k}, {threads}"
-                );
-                assert!(
-                    same_bits(&yr.expect("solved"), &want_ry),
-                    "row k = {k}, {threads}"
-                );
+                let yr = pool.install(|| gr.replace_row_solving(b, &w, &v, &[&next_rr]));
+                let mut gc = g0.clone();
+                let yc = pool.install(|| gc.replace_column_solving(a_col, &ut_c, &[&next_rr]));
+                assert!(same_bits(&yb[0], &want_by), "border k = {k}, {threads}");
+                assert!(same_bits(&yb[1], &want_b.solve(&other)), "border k = {k}");
+                assert!(same_bits(&yr[0], &want_ry), "row k = {k}, {threads}");
+                assert!(same_bits(&yc[0], &want_cy), "column k = {k}, {threads}");
+                for c in 0..k {
+                    assert!(same_bits(gc.col(c), want_c.col(c)), "column G, k = {k}");
+                }
                 for c in 0..=k {
                     assert!(same_bits(gb.col(c), want_b.col(c)), "border G, k = {k}");
                 }

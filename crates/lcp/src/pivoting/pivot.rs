@@ -101,6 +101,9 @@ pub(crate) struct Pivoter<'a> {
     /// The kernel solve of the next entering column, formed by the last pivot's update
     /// ([`Basis::pivot_solving`]): `(basis version, column, y_S)`.
     next_solve: Option<(u64, usize, Vec<f64>)>,
+    /// `K⁻¹ h_R` formed by the last pivot's update for the values of the next entering
+    /// column's pass: `(basis version, y_S)`.
+    next_values: Option<(u64, Vec<f64>)>,
     /// How often, lately, a tiny pivot made the basic values be recomputed from the data (a
     /// moving average over about sixteen entering columns with drifted values): when it is
     /// high, the values are formed beforehand in the entering column's pass
@@ -187,6 +190,7 @@ impl<'a> Pivoter<'a> {
             entering: usize::MAX,
             lex_rank: Vec::new(),
             next_solve: None,
+            next_values: None,
             refresh_rate: 0.0,
         }
         .with_lex_rank()
@@ -491,12 +495,22 @@ impl<'a> Pivoter<'a> {
             *b -= theta * a;
         }
         self.beta[slot] = theta;
-        // After a slack leaves, its complement enters next (unless the driver left).
+        // After a slack leaves, its complement enters next (unless the driver left); with it
+        // the values' kernel solve when the next entering column will want them (the rule of
+        // `choose`, on the kernel after this pivot).
         let next = self.cols.complement(leaving).filter(|&c| c >= self.cols.n);
-        let solved = self
+        let k_after = match (entering < self.cols.n, leaving < self.cols.n) {
+            (false, true) => self.basis.kernel_size() + 1,
+            (true, false) => self.basis.kernel_size().saturating_sub(1),
+            _ => self.basis.kernel_size(),
+        };
+        let values = self.wants_values(k_after);
+        let (solved, solved_h) = self
             .basis
-            .pivot_solving(&self.cols, entering, slot, alpha, next);
-        self.next_solve = next.zip(solved).map(|(c, y)| (self.basis.version(), c, y));
+            .pivot_solving(&self.cols, entering, slot, alpha, next, values);
+        let version = self.basis.version();
+        self.next_solve = next.zip(solved).map(|(c, y)| (version, c, y));
+        self.next_values = solved_h.map(|y| (version, y));
         self.pivots += 1;
         self.since_refactor += 1;
         self.since_values += 1;
@@ -563,6 +577,17 @@ impl<'a> Pivoter<'a> {
         }
     }
 
+    /// Whether the basic values are to be formed in the entering column's pass, for a kernel of
+    /// order `k`: worth their kernel solve (`O(k²)`) when tiny pivots have lately needed them
+    /// for more than `k/2n` of the entering columns, as the pass they save is `O(n·k)`
+    /// (measured: the 1000-bearing beam 5.5 → 5.1 s with this rule, 5.3 s with `2k/n`; the
+    /// zone, whose tiny pivots are rare, 0.2 s slower when the values are always formed). A
+    /// rule of the path alone, and the values are the same bits either way, so the path does
+    /// not depend on it.
+    fn wants_values(&self, k: usize) -> bool {
+        2.0 * self.refresh_rate * self.cols.n as f64 > k as f64
+    }
+
     /// The entering column `α = B⁻¹ A[:, entering]` and the ratio test's choice on it, the
     /// judgement made on accurate numbers: a ray on a fresh factorisation, a tiny pivot on basic
     /// values recomputed from the data.
@@ -575,17 +600,18 @@ impl<'a> Pivoter<'a> {
             .filter(|&(v, c, _)| v == version && c == entering)
             .map(|(_, _, y)| y);
         // The values a tiny pivot would recompute from the data, formed in the entering
-        // column's pass over `M` (the same bits as `refresh_values`): worth their kernel solve
-        // (`O(k²)`) when tiny pivots have lately needed them for more than `k/2n` of the
-        // entering columns, as the pass they save is `O(n·k)` (measured: the 1000-bearing beam
-        // 5.5 → 5.1 s with this rule, 5.3 s with `2k/n`; the zone, whose tiny pivots are rare,
-        // 0.2 s slower when the values are always formed). A rule of the path alone, and the
-        // values are the same bits either way, so the path does not depend on it.
-        let want_values = self.since_values > 0
-            && 2.0 * self.refresh_rate * self.cols.n as f64 > self.basis.kernel_size() as f64;
-        let (mut alpha, drift, mut fresh) =
-            self.basis
-                .ftran_and_values(&self.cols, entering, solved, want_values);
+        // column's pass over `M` (the same bits as `refresh_values`), their kernel solve from
+        // the last update's pass where it was formed there.
+        let values =
+            (self.since_values > 0 && self.wants_values(self.basis.kernel_size())).then(|| {
+                self.next_values
+                    .take()
+                    .filter(|(v, _)| *v == version)
+                    .map(|(_, y)| y)
+            });
+        let (mut alpha, drift, mut fresh) = self
+            .basis
+            .ftran_and_values(&self.cols, entering, solved, values);
         let fresh_version = self.basis.version();
         self.drift = drift;
         let mut step = self.ratio_test(&alpha);
