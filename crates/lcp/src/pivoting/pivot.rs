@@ -4,6 +4,7 @@
 use crate::pivoting::basis::{Basis, SingularBasis};
 use crate::pivoting::columns::Columns;
 use crate::pivoting::relations::Relations;
+use crate::pivoting::simd::axpy;
 
 /// Numerical thresholds, all relative to the (equilibrated) data.
 #[derive(Debug, Clone, Copy)]
@@ -689,7 +690,8 @@ impl<'a> Pivoter<'a> {
         let n = self.cols.n;
         let cols = &*self.cols;
         let mut unused = vec![0.0; n];
-        // `Columns::axpy_col` of each term in turn, row by row.
+        // `Columns::axpy_col` of each term in turn, row by row (`o − s·v` is `o + (−s)·v`
+        // exactly: an `axpy`).
         by_row_blocks(&mut r, &mut unused, |a, r, _| {
             let rows = a..a + r.len();
             for &(c, s) in &terms {
@@ -699,15 +701,9 @@ impl<'a> Pivoter<'a> {
                     }
                 } else if c < 2 * n {
                     let (col, neg) = cols.m_col(c - n);
-                    let col = &col[rows.clone()];
-                    if neg {
-                        r.iter_mut().zip(col).for_each(|(o, v)| *o += s * v);
-                    } else {
-                        r.iter_mut().zip(col).for_each(|(o, v)| *o -= s * v);
-                    }
+                    axpy(r, if neg { s } else { -s }, &col[rows.clone()]);
                 } else {
-                    let g = &cols.g[rows.clone()];
-                    r.iter_mut().zip(g).for_each(|(o, v)| *o -= s * v);
+                    axpy(r, -s, &cols.g[rows.clone()]);
                 }
             }
         });
@@ -785,11 +781,7 @@ impl<'a> Pivoter<'a> {
                 } else {
                     (&cols.g[rows.clone()], false)
                 };
-                for ((ri, ti), &v) in r.iter_mut().zip(t.iter_mut()).zip(col) {
-                    let e = if plus { 0.0 + v } else { 0.0 - v };
-                    *ri += s * e;
-                    *ti += size * e.abs();
-                }
+                crate::pivoting::simd::residual_terms(r, t, col, s, size, plus);
             }
         });
         (r, t)

@@ -226,6 +226,51 @@ fn add_columns_body(columns: &[&[f64]], y: &[f64], out: &mut [f64]) {
     }
 }
 
+/// `r += s·e` and `t += size·|e|` with `e = 0 + c` (`plus`) or `e = 0 − c`: the terms of a
+/// column of the tableau, read from its stored column of `M`, as a residual and the size of
+/// its terms gather them (`Pivoter::direction_residual`).
+pub(crate) fn residual_terms(
+    r: &mut [f64],
+    t: &mut [f64],
+    c: &[f64],
+    s: f64,
+    size: f64,
+    plus: bool,
+) {
+    residual_terms_at(level(), r, t, c, s, size, plus)
+}
+
+fn residual_terms_at(
+    level: Level,
+    r: &mut [f64],
+    t: &mut [f64],
+    c: &[f64],
+    s: f64,
+    size: f64,
+    plus: bool,
+) {
+    at_level!(level, fn terms(r: &mut [f64], t: &mut [f64], c: &[f64], s: f64, size: f64, plus: bool) -> () = residual_terms_body)
+}
+
+#[inline(always)]
+fn residual_terms_body(r: &mut [f64], t: &mut [f64], c: &[f64], s: f64, size: f64, plus: bool) {
+    let n = r.len().min(t.len()).min(c.len());
+    let (r, t, c) = (&mut r[..n], &mut t[..n], &c[..n]);
+    if plus {
+        for ((ri, ti), &v) in r.iter_mut().zip(t.iter_mut()).zip(c) {
+            let e = 0.0 + v;
+            *ri += s * e;
+            *ti += size * e.abs();
+        }
+    } else {
+        for ((ri, ti), &v) in r.iter_mut().zip(t.iter_mut()).zip(c) {
+            let e = 0.0 - v;
+            *ri += s * e;
+            *ti += size * e.abs();
+        }
+    }
+}
+
 /// [`add_columns`] for two right-hand sides over the same columns: `out1 += Σ y1_s c_s` and
 /// `out2 += Σ y2_s c_s`, each formed exactly as [`add_columns`] forms it alone (the same
 /// groups of four and eight, in the same order), with each column read once for both.
@@ -296,6 +341,28 @@ fn add_columns2_body(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The residual's terms are the plain loop's bits at every level, signed zeros included.
+    #[test]
+    fn residual_terms_are_the_plain_loops_at_every_level() {
+        let mut c = data(1003, 7);
+        c[3] = 0.0;
+        c[4] = -0.0;
+        for plus in [false, true] {
+            let (r0, t0) = (data(1003, 8), data(1003, 9));
+            let (mut r1, mut t1) = (r0.clone(), t0.clone());
+            for ((ri, ti), &v) in r1.iter_mut().zip(t1.iter_mut()).zip(&c) {
+                let e = if plus { 0.0 + v } else { 0.0 - v };
+                *ri += -0.37 * e;
+                *ti += 2.5 * e.abs();
+            }
+            for level in levels() {
+                let (mut r2, mut t2) = (r0.clone(), t0.clone());
+                residual_terms_at(level, &mut r2, &mut t2, &c, -0.37, 2.5, plus);
+                assert!(same(&r1, &r2) && same(&t1, &t2), "{level:?}, {plus}");
+            }
+        }
+    }
 
     /// Two right-hand sides in one pass give each the bits of its own pass, at every level,
     /// for column counts that exercise the eights, a four and single columns.
