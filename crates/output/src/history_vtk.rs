@@ -209,6 +209,7 @@ fn header(s: &State, points: usize, cells: usize, format: VtkFormat) -> Body {
         s.stage
     );
     b.push_str(&text);
+    b.note_value("TimeValue", Some(s.t).filter(|t| !t.is_finite()));
     b
 }
 
@@ -249,12 +250,18 @@ fn array(
     }
     let out = &mut b.xml;
     let _ = write!(out, "{head} format=\"ascii\">");
+    // The first non-finite value, refused by `Body::finish` (checked as written, as in the
+    // binary arrays).
+    let mut bad = None;
     for (k, v) in values.into_iter().enumerate() {
         out.push_str(if k % components.max(1) == 0 {
             "\n          "
         } else {
             " "
         });
+        if !v.is_finite() && bad.is_none() {
+            bad = Some(v);
+        }
         if ty == "Float64" {
             let _ = write!(out, "{}", Num(v));
         } else {
@@ -262,6 +269,7 @@ fn array(
         }
     }
     out.push_str("\n        </DataArray>\n");
+    b.note_value(name, bad);
 }
 
 fn cells(out: &mut Body, connectivity: Vec<usize>, offsets: Vec<usize>, types: Vec<u8>) {
@@ -419,4 +427,43 @@ fn pairs_vtu(model: &Model, gaps: &[f64], s: &State, format: VtkFormat) -> Body 
     out.push_str("      </CellData>\n");
     out.push_str(FOOTER);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{array, header, State};
+    use crate::vtk::VtkFormat;
+
+    /// The first non-finite value of an ascii array, or a non-finite load in the header, is
+    /// refused by `finish`, named by its array (checked as written, not read back); a finite
+    /// file passes. Each case in ascii and in binary.
+    #[test]
+    fn non_finite_numbers_of_history_files_are_refused() {
+        let state = |t: f64| State {
+            t,
+            stage: 2,
+            pairs: None,
+            results: None,
+        };
+        for format in [VtkFormat::Ascii, VtkFormat::Binary] {
+            let mut b = header(&state(0.5), 2, 1, format);
+            array(&mut b, "Float64", "u", 2, [1.0, -2.5e-3, 0.0, 3.0]);
+            array(&mut b, "Int64", "k", 1, [3.0, 4.0]);
+            assert!(b.finish("h.vtu").is_ok(), "{format:?}");
+            for (t, values, name) in [
+                (0.5, [1.0, f64::NAN, f64::INFINITY, 0.0], "u"),
+                (f64::NEG_INFINITY, [1.0; 4], "TimeValue"),
+            ] {
+                let mut b = header(&state(t), 2, 1, format);
+                array(&mut b, "Float64", "u", 2, values);
+                let e = b.finish("h.vtu").unwrap_err();
+                let n = crate::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
+                assert_eq!(
+                    n.field,
+                    format!("the data array \"{name}\" in h.vtu"),
+                    "{format:?}"
+                );
+            }
+        }
+    }
 }

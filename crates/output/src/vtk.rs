@@ -1011,7 +1011,7 @@ impl Body {
 
     /// Records the first non-finite value written to a data array (`value`: one found in the
     /// array `name`, if any), which [`Body::finish`] refuses.
-    fn note_value(&mut self, name: &str, value: Option<f64>) {
+    pub(crate) fn note_value(&mut self, name: &str, value: Option<f64>) {
         if let (None, Some(v)) = (&self.bad, value) {
             self.bad = Some((name.to_string(), v));
         }
