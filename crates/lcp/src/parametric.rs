@@ -474,8 +474,7 @@ fn remove_tightening(
     let basis =
         Basis::from_slots(&cols, final_slots.clone()).map_err(|_| BasisVerdict::Singular)?;
     let beta = basis.solve_refined(&cols, &cols.h);
-    let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
-    let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp_at(&beta, hmax)));
+    let (x, z) = prep.unscale(&final_slots, &cols.values(&clamp(&beta)));
     nonnegative(x, z, spent)
 }
 

@@ -97,7 +97,7 @@ impl Basis {
 
     /// Recomputes `K⁻¹` from the data by an LU factorisation of `K = A[R, S]`.
     pub fn refactor(&mut self, cols: &Columns) -> Result<(), SingularBasis> {
-        self.version += 1;
+        self.new_version();
         let k = self.s_cols.len();
         if k == 0 {
             self.kinv.clear();
@@ -464,7 +464,7 @@ impl Basis {
         let leaving = self.slot_var[slot];
         let enter_slack = entering < n;
         let leave_slack = leaving < n;
-        self.version += 1;
+        self.new_version();
         let next = next.filter(|&c| c >= n);
         // The right-hand sides on the new kernel's rows `rows`: the next column's (where the
         // leaving variable is a slack) and the values'; and what the update returns for them.
@@ -566,10 +566,17 @@ impl Basis {
         solved
     }
 
-    /// A count of the changes of this basis (pivots and refactorisations): a kernel solve from
-    /// [`Basis::pivot_solving`] belongs to the version it returned at.
+    /// The version of this basis: a number no other basis state of the process has (taken anew
+    /// at every pivot and refactorisation, and by a clone's first change), so a kernel solve
+    /// from [`Basis::pivot_solving`] belongs to the version it returned at and to no other.
     pub fn version(&self) -> u64 {
         self.version
+    }
+
+    fn new_version(&mut self) {
+        use std::sync::atomic::{AtomicU64, Ordering};
+        static NEXT: AtomicU64 = AtomicU64::new(1);
+        self.version = NEXT.fetch_add(1, Ordering::Relaxed);
     }
 }
 
@@ -725,6 +732,71 @@ mod tests {
                         "β: {threads} threads, {zero_in_h}"
                     );
                 }
+            }
+        }
+    }
+
+    /// The solves a pivot forms in its update's pass are those of the new basis, bit for bit:
+    /// the next column's kernel part (through `ftran_checked_with`) and the values' (through
+    /// `ftran_and_values`), for each kind of pivot (bordering, replacing a row, replacing a
+    /// column; a removal forms none), on pools of 1, 2 and 3 threads, with a kernel above the
+    /// order from which the passes are split.
+    #[test]
+    fn a_pivots_solves_are_the_new_bases() {
+        let n = 1200;
+        let entry = |i: usize, j: usize| {
+            let k = ((i * 7919 + j * 104_729) as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+            (k as f64 / (1u64 << 24) as f64 - 0.5) * (1.0 + (i % 5) as f64)
+                + if i == j { n as f64 } else { 0.0 }
+        };
+        let data: Vec<f64> = (0..n * n).map(|x| entry(x % n, x / n)).collect();
+        let store = Arc::new(ColumnStore::new(n, data));
+        let h: Vec<f64> = (0..n).map(|i| ((i * 31) as f64).sin()).collect();
+        let g: Vec<f64> = (0..n)
+            .map(|i| 1.0 + ((i * 17) as f64).cos().abs())
+            .collect();
+        let cols = Columns::new(n, store, h, g);
+        // Every third slot holds its z (k = 400), the others their slacks.
+        let slots: Vec<usize> = (0..n).map(|s| if s % 3 == 0 { n + s } else { s }).collect();
+        let basis = Basis::from_slots(&cols, slots).expect("a regular basis");
+        let same = |a: &[f64], b: &[f64]| {
+            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+        };
+        // (entering, slot): z_1 for slack x_2 (bordering), x_3 for slack x_4 (replacing a
+        // row), z_7 for z_6 (replacing a column), x_9 for z_9 (removal).
+        for (entering, slot, forms) in [
+            (n + 1, 2, true),
+            (3, 4, true),
+            (n + 7, 6, true),
+            (9, 9, false),
+        ] {
+            let alpha = basis.ftran(&cols, entering);
+            assert!(alpha[slot].abs() > 1e-9, "a pivot on {entering} at {slot}");
+            // The next column: the leaving slack's complement, or some structural column.
+            let leaving = basis.slot_var[slot];
+            let next = if leaving < n { n + leaving } else { n + 10 };
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .expect("a pool");
+                pool.install(|| {
+                    let mut fused = basis.clone();
+                    let (y_next, y_values) =
+                        fused.pivot_solving(&cols, entering, slot, &alpha, Some(next), true);
+                    let mut plain = basis.clone();
+                    plain.pivot(&cols, entering, slot, &alpha);
+                    assert_ne!(fused.version(), basis.version());
+                    assert_ne!(fused.version(), plain.version());
+                    assert_eq!(y_values.is_some(), forms, "{entering}");
+                    assert_eq!(y_next.is_some(), forms && leaving < n, "{entering}");
+                    let (a1, d1) = fused.ftran_checked_with(&cols, next, y_next);
+                    let (a2, d2) = plain.ftran_checked(&cols, next);
+                    assert!(same(&a1, &a2) && d1 == d2, "{entering}, {threads} threads");
+                    let (_, _, v1) = fused.ftran_and_values(&cols, next, None, Some(y_values));
+                    let v2 = plain.solve(&cols, &cols.h);
+                    assert!(same(&v1.expect("asked for"), &v2), "{entering}, {threads}");
+                });
             }
         }
     }

@@ -499,13 +499,21 @@ impl<'a> Pivoter<'a> {
         // After a slack leaves, its complement enters next (unless the driver left); with it
         // the values' kernel solve when the next entering column will want them (the rule of
         // `choose`, on the kernel after this pivot).
-        let next = self.cols.complement(leaving).filter(|&c| c >= self.cols.n);
+        // Neither when a refactorisation follows (below) or the driver leaves: nothing would
+        // use them.
         let k_after = match (entering < self.cols.n, leaving < self.cols.n) {
             (false, true) => self.basis.kernel_size() + 1,
             (true, false) => self.basis.kernel_size().saturating_sub(1),
             _ => self.basis.kernel_size(),
         };
-        let values = self.wants_values(k_after);
+        let refactor_next = self.since_refactor + 1 >= self.refactor_interval.max(k_after / 4)
+            || self.drift > DRIFT;
+        let wanted = !refactor_next && leaving != self.cols.driver();
+        let next = self
+            .cols
+            .complement(leaving)
+            .filter(|&c| wanted && c >= self.cols.n);
+        let values = wanted && self.wants_values(k_after);
         let (solved, solved_h) = self
             .basis
             .pivot_solving(&self.cols, entering, slot, alpha, next, values);
@@ -520,6 +528,7 @@ impl<'a> Pivoter<'a> {
         // accuracy on an entering column triggers it earlier (`drift`).
         let interval = self.refactor_interval.max(self.basis.kernel_size() / 4);
         if self.since_refactor >= interval || self.drift > DRIFT {
+            debug_assert!(refactor_next, "the solves above were skipped for this");
             self.refactor()?;
         }
         Ok(leaving)
@@ -852,6 +861,9 @@ impl<'a> Pivoter<'a> {
     /// of a new problem (its perturbation `B ε` is lexicographically positive there).
     pub fn rebase(&mut self, reset: &[bool], acc: &mut [f64]) {
         let n = self.cols.n;
+        // Solves formed for the right-hand side before the move are not the new one's.
+        self.next_values = None;
+        self.next_solve = None;
         self.refresh_values();
         let moves: Vec<(usize, usize, f64)> = self
             .basis
