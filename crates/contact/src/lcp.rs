@@ -1,6 +1,7 @@
 //! The `3m` LCP of `formulation.md` §3 built from a contact zone.
 
 use faer::Mat;
+use rayon::prelude::*;
 use unilateral_lcp::{ParametricLcp, Tightening, Var};
 
 use crate::ContactZone;
@@ -33,27 +34,35 @@ impl ContactLcp {
         let f = &zone.friction;
         let n = 3 * m;
         let mut mm = Mat::<f64>::zeros(n, n);
-        // Column by column (faer's storage order), so that every write is contiguous.
-        for j in 0..m {
-            for i in 0..m {
-                let (nn, nt, tn, tt) = (
-                    zone.rnn[(i, j)],
-                    zone.rnt[(i, j)],
-                    zone.rtn[(i, j)],
-                    zone.rtt[(i, j)],
-                );
-                let fi = f[i];
-                mm[(i, j)] = nn;
-                mm[(i, m + j)] = nt / 2.0;
-                mm[(i, 2 * m + j)] = -nt / 2.0;
-                mm[(m + i, j)] = fi * nn + tn;
-                mm[(m + i, m + j)] = (fi * nt + tt) / 2.0;
-                mm[(m + i, 2 * m + j)] = -(fi * nt + tt) / 2.0;
-                mm[(2 * m + i, j)] = fi * nn - tn;
-                mm[(2 * m + i, m + j)] = (fi * nt - tt) / 2.0;
-                mm[(2 * m + i, 2 * m + j)] = -(fi * nt - tt) / 2.0;
-            }
-        }
+        // Column by column (faer's storage order, every write contiguous), on the pool: column
+        // `b·m + j` holds pair j's normal (b = 0) or friction part (1: +, 2: −), each entry
+        // formed from its own data alone.
+        mm.as_mut()
+            .par_col_iter_mut()
+            .enumerate()
+            .for_each(|(c, mut col)| {
+                let (b, j) = (c / m, c % m);
+                for i in 0..m {
+                    let fi = f[i];
+                    let (top, plus, minus) = match b {
+                        0 => {
+                            let (nn, tn) = (zone.rnn[(i, j)], zone.rtn[(i, j)]);
+                            (nn, fi * nn + tn, fi * nn - tn)
+                        }
+                        1 => {
+                            let (nt, tt) = (zone.rnt[(i, j)], zone.rtt[(i, j)]);
+                            (nt / 2.0, (fi * nt + tt) / 2.0, (fi * nt - tt) / 2.0)
+                        }
+                        _ => {
+                            let (nt, tt) = (zone.rnt[(i, j)], zone.rtt[(i, j)]);
+                            (-nt / 2.0, -(fi * nt + tt) / 2.0, -(fi * nt - tt) / 2.0)
+                        }
+                    };
+                    col[i] = top;
+                    col[m + i] = plus;
+                    col[2 * m + i] = minus;
+                }
+            });
         let (q0, d) = load_vectors(zone);
         let dir = tightening_direction(f);
         let lexicographic_order = (m..n).chain(0..m).collect();

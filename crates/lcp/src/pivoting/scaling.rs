@@ -249,16 +249,25 @@ impl Scaling {
     pub fn scale_matrix(&self, m: &Mat<f64>) -> (Vec<f64>, bool) {
         let n = m.nrows();
         let mut out = vec![0.0; n * n];
-        let mut exact = true;
-        for j in 0..n {
-            let c = self.col_exp[j];
-            for i in 0..n {
-                let (v, e) = (m[(i, j)], self.row_exp[i] + c);
-                let s = ldexp(v, e);
-                exact &= ldexp(s, -e) == v;
-                out[j * n + i] = s;
-            }
+        if n == 0 {
+            return (out, true);
         }
+        // Column by column on the pool (each entry depends on itself alone).
+        let exact = out
+            .par_chunks_mut(n)
+            .enumerate()
+            .map(|(j, out)| {
+                let c = self.col_exp[j];
+                let mut exact = true;
+                for ((o, &v), &r) in out.iter_mut().zip(m.col_as_slice(j)).zip(&self.row_exp) {
+                    let e = r + c;
+                    let s = ldexp(v, e);
+                    exact &= ldexp(s, -e) == v;
+                    *o = s;
+                }
+                exact
+            })
+            .reduce(|| true, |a, b| a && b);
         (out, exact)
     }
 
