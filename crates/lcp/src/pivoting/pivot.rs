@@ -496,9 +496,9 @@ impl<'a> Pivoter<'a> {
             *b -= theta * a;
         }
         self.beta[slot] = theta;
-        // After a slack leaves, its complement enters next (unless the driver left); with it
-        // the values' kernel solve when the next entering column will want them (the rule of
-        // `choose`, on the kernel after this pivot).
+        // Solves for the next entering column formed in the update's pass: after a slack
+        // leaves its complement enters next, and the values' kernel solve is formed when the
+        // next column will want them (the rule of `choose`, on the kernel after this pivot).
         // Neither when a refactorisation follows (below) or the driver leaves: nothing would
         // use them.
         let k_after = match (entering < self.cols.n, leaving < self.cols.n) {
