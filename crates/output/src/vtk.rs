@@ -1063,20 +1063,6 @@ impl Body {
         ty: &str,
         values: impl IntoIterator<Item = f64>,
     ) {
-        let mut raw = Vec::new();
-        for v in values {
-            // −0 is written as 0, as in the text.
-            let v = if v == 0.0 { 0.0 } else { v };
-            if !v.is_finite() {
-                self.note_value(name, Some(v));
-            }
-            match ty {
-                "Float64" => raw.extend_from_slice(&v.to_le_bytes()),
-                "Int64" => raw.extend_from_slice(&(v as i64).to_le_bytes()),
-                "Int32" => raw.extend_from_slice(&(v as i32).to_le_bytes()),
-                _ => raw.push(v as u8), // UInt8
-            }
-        }
         self.xml.push_str(head);
         self.xml.push_str(" format=\"appended\" offset=\"");
         self.marks.push((self.xml.len(), self.data.len()));
@@ -1086,7 +1072,39 @@ impl Body {
                 out.extend_from_slice(&(v as u64).to_le_bytes());
             }
         };
-        if self.format == VtkFormat::Compressed {
+        // Raw: the values go straight after their byte count (filled in once they are all
+        // there); compressed: into a buffer of their own, compressed by blocks.
+        let raw_format = self.format != VtkFormat::Compressed;
+        let start = self.data.len();
+        let mut own = Vec::new();
+        let raw = if raw_format {
+            u64s(&mut self.data, &[0]);
+            &mut self.data
+        } else {
+            &mut own
+        };
+        let mut bad = None;
+        for v in values {
+            // −0 is written as 0, as in the text.
+            let v = if v == 0.0 { 0.0 } else { v };
+            if !v.is_finite() && bad.is_none() {
+                bad = Some(v);
+            }
+            match ty {
+                "Float64" => raw.extend_from_slice(&v.to_le_bytes()),
+                "Int64" => raw.extend_from_slice(&(v as i64).to_le_bytes()),
+                "Int32" => raw.extend_from_slice(&(v as i32).to_le_bytes()),
+                _ => raw.push(v as u8), // UInt8
+            }
+        }
+        self.note_value(name, bad);
+        if raw_format {
+            let bytes = (self.data.len() - start - 8) as u64;
+            self.data[start..start + 8].copy_from_slice(&bytes.to_le_bytes());
+            return;
+        }
+        let raw = own;
+        {
             let blocks: Vec<Vec<u8>> = match raw.chunks(ZLIB_BLOCK).map(zlib).collect() {
                 Ok(b) => b,
                 Err(e) => {
@@ -1100,9 +1118,6 @@ impl Body {
             for b in &blocks {
                 self.data.extend_from_slice(b);
             }
-        } else {
-            u64s(&mut self.data, &[raw.len()]);
-            self.data.extend_from_slice(&raw);
         }
     }
 
@@ -1172,16 +1187,32 @@ mod tests {
             text.contains("Name=\"k\" format=\"appended\" offset=\"24\"/>"),
             "{text}"
         );
-        let mut b = Body::new(VtkFormat::Compressed);
+        for format in [VtkFormat::Compressed, VtkFormat::Binary] {
+            let mut b = Body::new(format);
+            b.binary_array(
+                "<DataArray type=\"Float64\" Name=\"u\"",
+                "u",
+                "Float64",
+                [1.0, f64::INFINITY, f64::NAN],
+            );
+            let e = b.finish("a.vtu").unwrap_err();
+            let n = crate::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
+            assert_eq!(n.field, "the data array \"u\" in a.vtu");
+            assert_eq!(n.value, f64::INFINITY, "the first one, {format:?}");
+        }
+        // The raw bytes: each array's byte count, then its values, little-endian.
+        let mut b = Body::new(VtkFormat::Binary);
         b.binary_array(
-            "<DataArray type=\"Float64\" Name=\"u\"",
-            "u",
-            "Float64",
-            [1.0, f64::INFINITY],
+            "<DataArray type=\"Int32\" Name=\"k\"",
+            "k",
+            "Int32",
+            [3.0, -1.0],
         );
-        let e = b.finish("a.vtu").unwrap_err();
-        let n = crate::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
-        assert_eq!(n.field, "the data array \"u\" in a.vtu");
+        let bytes = b.finish("a.vtu").unwrap();
+        let mut want = 8u64.to_le_bytes().to_vec();
+        want.extend_from_slice(&3i32.to_le_bytes());
+        want.extend_from_slice(&(-1i32).to_le_bytes());
+        assert!(bytes.windows(want.len()).any(|w| w == want.as_slice()));
     }
 
     /// A value of an ascii array is checked as it is written: the first non-finite one is
