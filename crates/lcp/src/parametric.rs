@@ -659,31 +659,26 @@ mod tests {
     #[test]
     fn a_value_accepted_as_round_off_is_reported_as_zero() {
         let prep = prepared(&[[1.0, 0.75, 0.0], [0.75, 1.0, 0.0], [0.0, 0.0, 1.0]]);
-        let q = [-1.0, -1.0, 0.8e-12];
-        let (x, z, pivots) = remove_tightening(
-            &prep,
-            &q,
-            vec![3, 4, 5],
-            0.0,
-            &[0.0; 3],
-            &Settings::default(),
-        )
-        .expect("z3 = −0.8e-12 is round-off of data of size 1");
+        // The basis {z1, z2, z3} at q, without tightening.
+        let evaluate = |q: &[f64]| {
+            remove_tightening(
+                &prep,
+                q,
+                vec![3, 4, 5],
+                0.0,
+                &[0.0; 3],
+                &Settings::default(),
+            )
+        };
+        let (x, z, pivots) =
+            evaluate(&[-1.0, -1.0, 0.8e-12]).expect("z3 = −0.8e-12 is round-off of data of size 1");
         assert_eq!(pivots, 0);
         assert_eq!(z[2], 0.0);
         assert!((z[0] - 4.0 / 7.0).abs() < 1e-15 && (z[1] - 4.0 / 7.0).abs() < 1e-15);
         assert!(x.iter().all(|&v| v == 0.0), "{x:?}");
         // Twice as far below zero it is a negative value, named.
-        let q = [-1.0, -1.0, 2.5e-12];
-        let verdict = remove_tightening(
-            &prep,
-            &q,
-            vec![3, 4, 5],
-            0.0,
-            &[0.0; 3],
-            &Settings::default(),
-        )
-        .expect_err("z3 = −2.5e-12 is not round-off of data of size 1");
+        let verdict = evaluate(&[-1.0, -1.0, 2.5e-12])
+            .expect_err("z3 = −2.5e-12 is not round-off of data of size 1");
         assert!(
             matches!(verdict, BasisVerdict::Negative { var: Var::Z(2), .. }),
             "{verdict:?}"

@@ -661,6 +661,31 @@ mod tests {
 
     use crate::pivoting::columns::ColumnStore;
 
+    /// A dense `n × n` test matrix by columns: entries of both signs and several sizes, the
+    /// diagonal dominant (every principal submatrix regular).
+    fn test_matrix(n: usize) -> Vec<f64> {
+        let entry = |i: usize, j: usize| {
+            let k = ((i * 7919 + j * 104_729) as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+            (k as f64 / (1u64 << 24) as f64 - 0.5) * (1.0 + (i % 5) as f64)
+                + if i == j { n as f64 } else { 0.0 }
+        };
+        (0..n * n).map(|x| entry(x % n, x / n)).collect()
+    }
+
+    /// A right-hand side `h` and a driver direction `g` for [`test_matrix`].
+    fn test_sides(n: usize) -> (Vec<f64>, Vec<f64>) {
+        let h = (0..n).map(|i| ((i * 31) as f64).sin()).collect();
+        let g = (0..n)
+            .map(|i| 1.0 + ((i * 17) as f64).cos().abs())
+            .collect();
+        (h, g)
+    }
+
+    /// Bit-for-bit equality of two vectors.
+    fn same(a: &[f64], b: &[f64]) -> bool {
+        a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
     /// The basic values formed in the entering column's pass are the values of a solve of
     /// their own, bit for bit, and the entering column is the same: a basis holding slacks,
     /// columns of `M` (some stored negated) and the driver, entering a structural column and a
@@ -671,21 +696,13 @@ mod tests {
     fn values_formed_in_the_entering_columns_pass_are_a_solves() {
         // k = 401 kernel columns of 1200 rows: the pass and the kernel solve are split.
         let n = 1200;
-        let entry = |i: usize, j: usize| {
-            let k = ((i * 7919 + j * 104_729) as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
-            (k as f64 / (1u64 << 24) as f64 - 0.5) * (1.0 + (i % 5) as f64)
-                + if i == j { n as f64 } else { 0.0 }
-        };
-        let mut data: Vec<f64> = (0..n * n).map(|x| entry(x % n, x / n)).collect();
+        let mut data = test_matrix(n);
         // Column 3 the negation of column 2: stored once, read negated.
         for i in 0..n {
             data[3 * n + i] = -data[2 * n + i];
         }
         let store = Arc::new(ColumnStore::new(n, data));
-        let h: Vec<f64> = (0..n).map(|i| ((i * 31) as f64).sin()).collect();
-        let g: Vec<f64> = (0..n)
-            .map(|i| 1.0 + ((i * 17) as f64).cos().abs())
-            .collect();
+        let (h, g) = test_sides(n);
         // Every third slot holds its z, slot 5 the driver, the others their slacks.
         let mut slots: Vec<usize> = (0..n).collect();
         for s in (0..n).step_by(3) {
@@ -718,10 +735,6 @@ mod tests {
                         pool.install(|| basis.ftran_checked(&cols, entering));
                     let want_values = pool.install(|| basis.solve(&cols, &cols.h));
                     let values = values.expect("asked for");
-                    let same = |a: &[f64], b: &[f64]| {
-                        a.len() == b.len()
-                            && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
-                    };
                     assert!(
                         same(&alpha, &want_alpha),
                         "α: {threads} threads, {entering}"
@@ -744,24 +757,12 @@ mod tests {
     #[test]
     fn a_pivots_solves_are_the_new_bases() {
         let n = 1200;
-        let entry = |i: usize, j: usize| {
-            let k = ((i * 7919 + j * 104_729) as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
-            (k as f64 / (1u64 << 24) as f64 - 0.5) * (1.0 + (i % 5) as f64)
-                + if i == j { n as f64 } else { 0.0 }
-        };
-        let data: Vec<f64> = (0..n * n).map(|x| entry(x % n, x / n)).collect();
-        let store = Arc::new(ColumnStore::new(n, data));
-        let h: Vec<f64> = (0..n).map(|i| ((i * 31) as f64).sin()).collect();
-        let g: Vec<f64> = (0..n)
-            .map(|i| 1.0 + ((i * 17) as f64).cos().abs())
-            .collect();
+        let store = Arc::new(ColumnStore::new(n, test_matrix(n)));
+        let (h, g) = test_sides(n);
         let cols = Columns::new(n, store, h, g);
         // Every third slot holds its z (k = 400), the others their slacks.
         let slots: Vec<usize> = (0..n).map(|s| if s % 3 == 0 { n + s } else { s }).collect();
         let basis = Basis::from_slots(&cols, slots).expect("a regular basis");
-        let same = |a: &[f64], b: &[f64]| {
-            a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
-        };
         // (entering, slot): z_1 for slack x_2 (bordering), x_3 for slack x_4 (replacing a
         // row), z_7 for z_6 (replacing a column), x_9 for z_9 (removal).
         for (entering, slot, forms) in [

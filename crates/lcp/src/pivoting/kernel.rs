@@ -282,16 +282,7 @@ impl KernelInverse {
             }
             0.0
         };
-        if !rhs.is_empty() && solving_in_pass() {
-            let (_, partial) = self.update_solving(1, k, k, rhs, update);
-            partial
-                .into_iter()
-                .map(|(y, rest)| finish_halves(y, rest))
-                .collect()
-        } else {
-            self.update_columns(1, update);
-            rhs.iter().map(|u| self.solve(u)).collect()
-        }
+        self.update_then_solve(1, rhs, update)
     }
 
     /// Replaces row `b` of `K` by `v`, given `w = G e_b` (a copy); `ṽᵀ = vᵀ G` is formed column by
@@ -324,14 +315,27 @@ impl KernelInverse {
             }
             0.0
         };
+        self.update_then_solve(4, rhs, update)
+    }
+
+    /// An update of every column that keeps the order `k` ([`KernelInverse::update_columns`]),
+    /// then `G u` for each `u` of `rhs`: formed in the update's pass where
+    /// [`solving_in_pass`] allows, else solved after it (the same bits either way).
+    fn update_then_solve(
+        &mut self,
+        group: usize,
+        rhs: &[&[f64]],
+        update: impl Fn(usize, &mut [f64]) -> f64 + Sync + Send,
+    ) -> Vec<Vec<f64>> {
+        let k = self.k;
         if !rhs.is_empty() && solving_in_pass() {
-            let (_, partial) = self.update_solving(4, k, k, rhs, update);
+            let (_, partial) = self.update_solving(group, k, k, rhs, update);
             partial
                 .into_iter()
                 .map(|(y, rest)| finish_halves(y, rest))
                 .collect()
         } else {
-            self.update_columns(4, update);
+            self.update_columns(group, update);
             rhs.iter().map(|u| self.solve(u)).collect()
         }
     }

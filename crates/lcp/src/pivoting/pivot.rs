@@ -622,7 +622,6 @@ impl<'a> Pivoter<'a> {
         let (mut alpha, drift, mut fresh) = self
             .basis
             .ftran_and_values(&self.cols, entering, solved, values);
-        let fresh_version = self.basis.version();
         self.drift = drift;
         let mut step = self.ratio_test(&alpha);
         // A ray is judged on a fresh factorisation, never on updates. A tiny pivot is judged
@@ -641,7 +640,8 @@ impl<'a> Pivoter<'a> {
                 self.refresh_rate += (if tiny { 1.0 } else { 0.0 } - self.refresh_rate) / 16.0;
                 if tiny {
                     match fresh.take() {
-                        Some(beta) if self.basis.version() == fresh_version => {
+                        // Formed on this basis (not one refactorised since).
+                        Some(beta) if self.basis.version() == version => {
                             self.beta = beta;
                             self.since_values = 0;
                         }
@@ -698,10 +698,9 @@ impl<'a> Pivoter<'a> {
             .collect();
         let n = self.cols.n;
         let cols = &*self.cols;
-        let mut unused = vec![0.0; n];
         // `Columns::axpy_col` of each term in turn, row by row (`o − s·v` is `o + (−s)·v`
         // exactly: an `axpy`).
-        by_row_blocks(&mut r, &mut unused, |a, r, _| {
+        by_row_blocks(&mut r, &mut [], |a, r, _| {
             let rows = a..a + r.len();
             for &(c, s) in &terms {
                 if c < n {
@@ -1003,21 +1002,29 @@ impl<'a> Pivoter<'a> {
     }
 }
 
-/// Runs `f(first row, r block, t block)` over blocks of the rows of `r` and `t` (of equal
-/// length), on the thread pool when they are long: one block per thread of at least 512 rows.
-/// A row's result depends on that row alone, so it is the same whatever the blocks.
+/// Runs `f(first row, r block, t block)` over blocks of the rows of `r` and of `t` (of the
+/// same length, or empty: then every `t` block is empty), on the thread pool when they are
+/// long: one block per thread of at least 512 rows. A row's result depends on that row alone,
+/// so it is the same whatever the blocks.
 fn by_row_blocks(r: &mut [f64], t: &mut [f64], f: impl Fn(usize, &mut [f64], &mut [f64]) + Sync) {
     use rayon::prelude::*;
     let n = r.len();
+    debug_assert!(t.is_empty() || t.len() == n);
     let threads = rayon::current_num_threads();
-    if threads > 1 && n >= 1024 {
-        let rows = n.div_ceil(threads).max(512);
+    if threads <= 1 || n < 1024 {
+        f(0, r, t);
+        return;
+    }
+    let rows = n.div_ceil(threads).max(512);
+    if t.is_empty() {
+        r.par_chunks_mut(rows)
+            .enumerate()
+            .for_each(|(i, r)| f(i * rows, r, &mut []));
+    } else {
         r.par_chunks_mut(rows)
             .zip(t.par_chunks_mut(rows))
             .enumerate()
             .for_each(|(i, (r, t))| f(i * rows, r, t));
-    } else {
-        f(0, r, t);
     }
 }
 
