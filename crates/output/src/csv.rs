@@ -9,7 +9,8 @@ use std::path::Path;
 
 use unilateral_contact::ContactSolution;
 
-use crate::finite::{self, full as n, Full};
+use crate::decimal::push_int;
+use crate::finite::{self, full as n, push_full};
 use crate::json::{breakpoint_blocks, dof_name, About, PathOutputError};
 
 /// The name of the long table of the whole path: every pair at every breakpoint.
@@ -115,21 +116,23 @@ pub fn write_contact_csv_with(
                 .map(|(st, ps)| {
                     // The step's load formatted once for all its rows; the rows' text in one
                     // buffer of about its final size; the pair names written as they are.
-                    let p_text = Full(st.p).to_string();
+                    let mut p_text = String::with_capacity(24);
+                    push_full(&mut p_text, st.p);
                     let pairs = ps.as_deref().unwrap_or(&[]);
                     let mut rows = String::with_capacity(pairs.len() * 128);
                     for (i, p) in pairs.iter().enumerate() {
-                        let _ = write!(rows, "{},{p_text},{},", st.index, i + 1);
+                        push_int(&mut rows, st.index as i64);
+                        rows.push(',');
+                        rows.push_str(&p_text);
+                        rows.push(',');
+                        push_int(&mut rows, i as i64 + 1);
+                        rows.push(',');
                         push_csv_field(&mut rows, &p.name);
-                        let _ = writeln!(
-                            rows,
-                            ",{},{},{},{},{}{c_column}",
-                            Full(p.x_n),
-                            Full(p.x_t),
-                            Full(p.z_n),
-                            Full(p.z_t),
-                            p.state
-                        );
+                        for v in [p.x_n, p.x_t, p.z_n, p.z_t] {
+                            rows.push(',');
+                            push_full(&mut rows, v);
+                        }
+                        let _ = writeln!(rows, ",{}{c_column}", p.state);
                     }
                     rows
                 })

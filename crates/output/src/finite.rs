@@ -41,25 +41,18 @@ impl From<NonFiniteOutput> for io::Error {
 
 /// A number for files read by programs (CSV): full precision, the shortest text that reads back
 /// as the same `f64`, in exponent form (`1.5e-3`), and a negative zero as `0e0`.
-/// [`full`] as a `Display` value, written straight into a formatter (no `String` of its own:
-/// the long tables write millions of them).
-pub(crate) struct Full(pub f64);
-
-impl std::fmt::Display for Full {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.0 == 0.0 {
-            f.write_str("0e0")
-        } else {
-            write!(f, "{:e}", self.0)
-        }
-    }
+pub(crate) fn full(v: f64) -> String {
+    let mut s = String::with_capacity(24);
+    push_full(&mut s, v);
+    s
 }
 
-pub(crate) fn full(v: f64) -> String {
+/// [`full`] appended to `s` (the long tables write millions of them).
+pub(crate) fn push_full(s: &mut String, v: f64) {
     if v == 0.0 {
-        "0e0".into()
+        s.push_str("0e0");
     } else {
-        format!("{v:e}")
+        crate::decimal::push_exp(s, v);
     }
 }
 

@@ -32,6 +32,7 @@ use unilateral_fem::Model;
 
 mod chart;
 mod csv;
+mod decimal;
 mod finite;
 pub mod font;
 mod json;

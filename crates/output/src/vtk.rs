@@ -929,7 +929,7 @@ fn int_array(b: &mut Body, ty: &str, name: &str, values: impl IntoIterator<Item 
     let _ = write!(s, "{head} format=\"ascii\">");
     for (k, v) in values.into_iter().enumerate() {
         s.push_str(if k % 12 == 0 { "\n          " } else { " " });
-        let _ = write!(s, "{v}");
+        crate::decimal::push_int(s, v);
     }
     s.push_str("\n        </DataArray>\n");
 }
@@ -937,13 +937,13 @@ fn int_array(b: &mut Body, ty: &str, name: &str, values: impl IntoIterator<Item 
 /// A number as plain decimals where that is short, else in exponent form; both read back to
 /// the same `f64`.
 fn num(s: &mut String, x: f64) {
-    let _ = if x == 0.0 {
-        write!(s, "0")
+    if x == 0.0 {
+        s.push('0');
     } else if (1e-4..1e15).contains(&x.abs()) {
-        write!(s, "{x}")
+        crate::decimal::push_plain(s, x);
     } else {
-        write!(s, "{x:e}")
-    };
+        crate::decimal::push_exp(s, x);
+    }
 }
 
 /// How the data arrays of the `.vtu` files are written (`--vtk-format`).
