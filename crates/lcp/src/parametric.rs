@@ -183,8 +183,16 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 }
             } else {
                 path.status = PathStatus::Mechanism;
+                // The ray was judged on a fresh factorisation: its load is the limit load, and
+                // the last breakpoint (where the mechanism forms) and its step carry it too,
+                // not the value the updates had reached there (a rounding or more apart).
                 let p_lim = piv.driver_value();
                 path.p_limit = Some(p_lim);
+                if let (Some(b), Some(st)) = (path.breakpoints.last_mut(), path.steps.last_mut()) {
+                    b.p = p_lim;
+                    st.p = p_lim;
+                    path.p_max = path.p_max.max(p_lim);
+                }
                 path.mechanism = Some(mechanism_mode(prep, &piv, last_entering, &alpha));
                 match crossed {
                     Some(j) => Some((j, options.target)),

@@ -85,12 +85,13 @@ impl PathSolver {
     ) -> Result<Self, LcpError> {
         let n = validate(&problem, &options, &settings)?;
         let ParametricLcp { m, q0, d } = problem;
-        let prep = Prepared::from_owned(m);
+        let mut prep = Prepared::from_owned(m);
         let (c0, cov) = tightening_of(&options, n);
         let relations = std::sync::Arc::new(crate::pivoting::relations::Relations::new(
             &prep,
             &settings.row_relations,
         ));
+        prep.derive_rows(&relations);
         Ok(Self {
             relations,
             q0,

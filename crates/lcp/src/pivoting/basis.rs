@@ -308,8 +308,17 @@ impl Basis {
     /// `tmp −= A[:, S] y_S`, four columns per pass over `tmp`.
     fn subtract_kernel_columns(&self, cols: &Columns, ys: &[f64], tmp: &mut [f64]) {
         let zcols = self.kernel_columns(cols, ys, tmp);
-        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y.
-        add_columns_pooled(cols, &zcols, &mut tmp[..self.n]);
+        // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y; the rows that row
+        // relations tie are formed from them after the pass
+        // (`relations::DerivedRows`).
+        match cols.derived.as_deref() {
+            Some(d) => {
+                let before = d.before(tmp);
+                add_columns_pooled(cols, &zcols, &mut tmp[..d.read]);
+                d.derive(tmp, &before);
+            }
+            None => add_columns_pooled(cols, &zcols, &mut tmp[..self.n]),
+        }
     }
 
     /// The stored columns of `M` and their weights for `tmp −= A[:, S] y_S`, in the order of
@@ -344,14 +353,20 @@ impl Basis {
         y2: &[f64],
         tmp2: &mut [f64],
     ) {
-        let n = self.n;
         let z1 = self.kernel_columns(cols, y1, tmp1);
         let z2 = self.kernel_columns(cols, y2, tmp2);
+        let derived = cols.derived.as_deref();
+        let n = derived.map_or(self.n, |d| d.read);
+        let before = derived.map(|d| (d.before(tmp1), d.before(tmp2)));
         if z1.len() == z2.len() && z1.iter().zip(&z2).all(|(a, b)| a.0 == b.0) {
             add_columns_pooled2(cols, &z1, &z2, &mut tmp1[..n], &mut tmp2[..n]);
         } else {
             add_columns_pooled(cols, &z1, &mut tmp1[..n]);
             add_columns_pooled(cols, &z2, &mut tmp2[..n]);
+        }
+        if let (Some(d), Some((b1, b2))) = (derived, before) {
+            d.derive(tmp1, &b1);
+            d.derive(tmp2, &b2);
         }
     }
 
@@ -852,5 +867,92 @@ mod tests {
                 .all(|(a, b)| a.to_bits() == b.to_bits());
             assert!(same, "{threads} threads");
         }
+    }
+
+    /// The rows that row relations tie are formed, not read: with `M`'s rows `2m..3m` equal
+    /// to `2f` times rows `0..m` less rows `m..2m` (the contact LCP's friction rows), the slack
+    /// rows of a solve and of an entering column are the same bits whether the kernel columns'
+    /// entries in those rows are the data or NaN, and they agree with the rows summed over the
+    /// columns (no rows derived) to round-off of the terms.
+    #[test]
+    fn rows_tied_by_relations_are_formed_not_read() {
+        use crate::pivoting::prepare::Prepared;
+        use crate::pivoting::relations::Relations;
+        use crate::RowRelation;
+        let m = 400;
+        let n = 3 * m;
+        let base = test_matrix(n);
+        let f = |i: usize| 0.2 + 0.1 * (i % 7) as f64;
+        let mat = Mat::from_fn(n, n, |i, j| {
+            let e = |r: usize| base[j * n + r];
+            if i < 2 * m {
+                e(i)
+            } else {
+                2.0 * f(i - 2 * m) * e(i - 2 * m) - e(i - m)
+            }
+        });
+        let given: Vec<RowRelation> = (0..m)
+            .map(|i| RowRelation {
+                terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * f(i))],
+            })
+            .collect();
+        let mut prep = Prepared::new(&mat);
+        let relations = Relations::new(&prep, &given);
+        assert_eq!(relations.list().len(), m, "every relation holds");
+        prep.derive_rows(&relations);
+        assert_eq!(prep.derived.as_ref().map(|d| d.read), Some(2 * m));
+        let (h, g) = test_sides(n);
+        let cols = prep.columns(&h, &g);
+        assert!(cols.derived.is_some());
+        let mut summed = cols.clone();
+        summed.derived = None;
+        // z_s basic for every third slot below 2m (the kernel's rows are all read), slacks
+        // elsewhere.
+        let in_kernel = |s: usize| s < 2 * m && s.is_multiple_of(3);
+        let slots: Vec<usize> = (0..n)
+            .map(|s| if in_kernel(s) { n + s } else { s })
+            .collect();
+        // The kernel's columns of the equilibrated M with NaN in the derived rows.
+        let scaled = prep.matrix();
+        let poisoned: Vec<f64> = (0..n * n)
+            .map(|x| {
+                let (i, j) = (x % n, x / n);
+                if in_kernel(j) && i >= 2 * m {
+                    f64::NAN
+                } else {
+                    scaled[(i, j)]
+                }
+            })
+            .collect();
+        let mut blind = cols.clone();
+        blind.m = Arc::new(ColumnStore::new(n, poisoned));
+        let basis = Basis::from_slots(&cols, slots.clone()).expect("a regular basis");
+        let basis_blind = Basis::from_slots(&blind, slots.clone()).expect("a regular basis");
+        let basis_summed = Basis::from_slots(&summed, slots).expect("a regular basis");
+        let close = |a: &[f64], b: &[f64], what: &str| {
+            let scale = b.iter().fold(0.0f64, |x, y| x.max(y.abs()));
+            for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                assert!(
+                    (x - y).abs() <= 1e-12 * scale,
+                    "{what}, slot {k}: {x} against {y}"
+                );
+            }
+        };
+        // Entering: a z of a read row, a z of a derived row, the driver, a non-basic slack.
+        for entering in [n + 1, n + 2 * m + 1, 2 * n, 3] {
+            let alpha = basis.ftran(&cols, entering);
+            assert!(
+                same(&alpha, &basis_blind.ftran(&blind, entering)),
+                "{entering}"
+            );
+            close(&alpha, &basis_summed.ftran(&summed, entering), "α");
+        }
+        let values = basis.solve(&cols, &cols.h);
+        assert!(same(&values, &basis_blind.solve(&blind, &blind.h)));
+        close(&values, &basis_summed.solve(&summed, &summed.h), "β");
+        // In one pass with the values, the same bits as each alone.
+        let (alpha, _, fresh) = basis.ftran_and_values(&cols, n + 4, None, Some(None));
+        assert!(same(&alpha, &basis.ftran(&cols, n + 4)));
+        assert!(same(&fresh.expect("asked for"), &values));
     }
 }

@@ -120,6 +120,8 @@ pub(crate) struct Columns {
     pub eh: i32,
     /// Exponent of the scale of `g`.
     pub eg: i32,
+    /// Rows of `M` that the slack-row pass forms from row relations instead of reading them.
+    pub derived: Option<std::sync::Arc<crate::pivoting::relations::DerivedRows>>,
 }
 
 impl Columns {
@@ -135,7 +137,15 @@ impl Columns {
         };
         let h = h.into_iter().map(|v| ldexp(v, -eh)).collect();
         let g = g.into_iter().map(|v| ldexp(v, -eg)).collect();
-        Self { n, m, g, h, eh, eg }
+        Self {
+            n,
+            m,
+            g,
+            h,
+            eh,
+            eg,
+            derived: None,
+        }
     }
 
     /// Basic values (`x`, `z` by slot) in the equilibrated units of the caller.

@@ -3,6 +3,7 @@
 use faer::Mat;
 
 use crate::pivoting::columns::{ColumnStore, Columns};
+use crate::pivoting::relations::{DerivedRows, Relations};
 use crate::pivoting::scaling::Scaling;
 use crate::LcpError;
 
@@ -61,6 +62,8 @@ pub(crate) struct Prepared {
     exact: bool,
     /// The original `M`, kept only when it is not recovered exactly.
     original: Option<Mat<f64>>,
+    /// Rows of `M` that the slack-row pass forms from row relations ([`Prepared::derive_rows`]).
+    pub derived: Option<std::sync::Arc<DerivedRows>>,
 }
 
 impl Prepared {
@@ -74,7 +77,14 @@ impl Prepared {
             m_scaled: std::sync::Arc::new(ColumnStore::new(m.nrows(), scaled)),
             exact,
             original: None,
+            derived: None,
         }
+    }
+
+    /// Lets every tableau of this problem form the rows that `relations` tie instead of
+    /// reading them in the slack-row pass ([`DerivedRows`]).
+    pub fn derive_rows(&mut self, relations: &Relations) {
+        self.derived = DerivedRows::new(self.n, relations).map(std::sync::Arc::new);
     }
 
     /// The equilibration of `m`, which it takes: one copy of the matrix is held (the
@@ -149,6 +159,7 @@ impl Prepared {
             m_scaled: std::sync::Arc::new(ColumnStore::new(m.nrows(), scaled)),
             exact,
             original: None,
+            derived: None,
         }
     }
 
@@ -160,12 +171,14 @@ impl Prepared {
 
     /// Tableau columns for `x = h + g t + M z` given in original units.
     pub fn columns(&self, h: &[f64], g: &[f64]) -> Columns {
-        Columns::new(
+        let mut cols = Columns::new(
             self.n,
             self.m_scaled.clone(),
             self.scaling.scale_rows(h),
             self.scaling.scale_rows(g),
-        )
+        );
+        cols.derived = self.derived.clone();
+        cols
     }
 
     /// Unscaled `(x, z)` from basic values by slot.

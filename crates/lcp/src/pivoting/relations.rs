@@ -101,6 +101,11 @@ impl Relations {
         self.list.is_empty()
     }
 
+    /// The relations, each as its `(row, λ_i / E_i)` terms in the equilibrated rows.
+    pub fn list(&self) -> &[Vec<(usize, f64)>] {
+        &self.list
+    }
+
     /// The candidate slots that the relations do not exclude (see the module documentation).
     ///
     /// `var_of` gives the basic variable of a slot, `slot_of` the slot of a basic `x_i`,
@@ -176,6 +181,92 @@ impl Relations {
     }
 }
 
+/// Rows that the pass over the kernel's columns of `M` need not read
+/// ([`Basis`](crate::pivoting::basis::Basis)'s slack rows `v − A[:, S] y_S`): a tail of rows
+/// `read..n`, each the last row of a relation whose other rows are all read. After the pass over
+/// rows `..read` each is formed from its relation: `λᵀ v` is unchanged by the pass (`λᵀM = 0`),
+/// so `v_r = (λᵀ v_before − Σ_{i≠r} λ_i v_i) / λ_r`. For the contact LCP these are the `m` rows
+/// `x_t-` (`x_t+ + x_t- = 2f·x_n` row by row of `M`): the pass reads two thirds of each column.
+/// A derived value differs from the one summed over the columns by round-off of the relation's
+/// terms, and it satisfies the relation to round-off, which a summed one satisfies only to the
+/// pass's own round-off.
+#[derive(Debug, Clone)]
+pub(crate) struct DerivedRows {
+    /// The rows the pass reads: `..read`.
+    pub read: usize,
+    /// For row `read + t`: its relation's terms and its own `λ`.
+    rows: Vec<(Vec<(usize, f64)>, f64)>,
+}
+
+impl DerivedRows {
+    /// The longest tail of the `n` rows that `relations` let the pass skip; `None` if there is
+    /// none. A row is derived only if its `λ` is not tiny against the relation's other ones
+    /// (a division by it would magnify their round-off).
+    pub fn new(n: usize, relations: &Relations) -> Option<Self> {
+        let list = relations.list();
+        let mut relation_of = vec![usize::MAX; n];
+        for (k, terms) in list.iter().enumerate() {
+            let Some(&(r, l)) = terms.iter().max_by_key(|&&(i, _)| i) else {
+                continue;
+            };
+            let largest = terms.iter().fold(0.0f64, |a, &(_, l)| a.max(l.abs()));
+            if r < n && l.abs() >= 1e-8 * largest {
+                relation_of[r] = k;
+            }
+        }
+        let mut read = n;
+        while read > 0 && relation_of[read - 1] != usize::MAX {
+            read -= 1;
+        }
+        // Every other row of a derived row's relation must be read: else read more rows.
+        loop {
+            let needed = (read..n)
+                .flat_map(|r| {
+                    list[relation_of[r]]
+                        .iter()
+                        .map(|&(i, _)| i)
+                        .filter(move |&i| i != r)
+                })
+                .max();
+            match needed {
+                Some(i) if i >= read => read = i + 1,
+                _ => break,
+            }
+        }
+        (read < n).then(|| Self {
+            read,
+            rows: (read..n)
+                .map(|r| {
+                    let terms = list[relation_of[r]].clone();
+                    let l = terms.iter().find(|&&(i, _)| i == r).map_or(1.0, |t| t.1);
+                    (terms, l)
+                })
+                .collect(),
+        })
+    }
+
+    /// `λᵀ v` of each derived row's relation, before the pass.
+    pub fn before(&self, v: &[f64]) -> Vec<f64> {
+        self.rows
+            .iter()
+            .map(|(terms, _)| terms.iter().map(|&(i, l)| l * v[i]).sum())
+            .collect()
+    }
+
+    /// The derived rows of `v` after the pass over its rows `..read`, from [`DerivedRows::before`].
+    pub fn derive(&self, v: &mut [f64], before: &[f64]) {
+        for (t, ((terms, l), c)) in self.rows.iter().zip(before).enumerate() {
+            let r = self.read + t;
+            let others: f64 = terms
+                .iter()
+                .filter(|&&(i, _)| i != r)
+                .map(|&(i, li)| li * v[i])
+                .sum();
+            v[r] = (c - others) / l;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -224,5 +315,43 @@ mod tests {
         // A failing relation takes no rows; a row already in a relation is not taken again.
         let r = Relations::new(&prep, &[fails, holds.clone(), holds]);
         assert_eq!(r.list.len(), 1);
+    }
+
+    /// The derived rows are the longest tail of relations' last rows whose other rows are
+    /// read: all of `2m..3m` for the friction rows of `m` pairs; from the row after a pair
+    /// without a relation; none when a relation's last row is not at the end.
+    #[test]
+    fn the_derived_rows_are_a_tail_of_relations_last_rows() {
+        let m = 4;
+        let n = 3 * m;
+        let pair = |i: usize| vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -0.6)];
+        let relations = |pairs: &[usize]| Relations {
+            list: pairs.iter().map(|&i| pair(i)).collect(),
+            of_row: Vec::new(),
+        };
+        let all = DerivedRows::new(n, &relations(&[0, 1, 2, 3])).expect("a tail");
+        assert_eq!(all.read, 2 * m);
+        let gap = DerivedRows::new(n, &relations(&[0, 2, 3])).expect("a tail");
+        assert_eq!(gap.read, 2 * m + 2);
+        assert!(DerivedRows::new(n, &relations(&[0, 1, 2])).is_none());
+        // A derived row whose relation needs another row of the tail: that row is read.
+        let mut odd = relations(&[0, 1, 2]);
+        odd.list.push(vec![(2 * m + 1, 1.0), (2 * m + 3, 1.0)]);
+        let d = DerivedRows::new(n, &odd).expect("a tail");
+        assert_eq!(d.read, 2 * m + 2);
+        // Forming a derived row from the others and λᵀv before the pass.
+        let v: Vec<f64> = (0..n).map(|i| i as f64 + 0.5).collect();
+        let before = all.before(&v);
+        let mut w = v.clone();
+        w[all.read..].fill(1e9);
+        all.derive(&mut w, &before);
+        for r in all.read..n {
+            assert!(
+                (w[r] - v[r]).abs() <= 1e-12 * v[r].abs(),
+                "{r}: {} against {}",
+                w[r],
+                v[r]
+            );
+        }
     }
 }
