@@ -191,7 +191,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 if let (Some(b), Some(st)) = (path.breakpoints.last_mut(), path.steps.last_mut()) {
                     b.p = p_lim;
                     st.p = p_lim;
-                    path.p_max = path.p_max.max(p_lim);
+                    path.p_max = path.breakpoints.iter().fold(0.0f64, |a, b| a.max(b.p));
                 }
                 path.mechanism = Some(mechanism_mode(prep, &piv, last_entering, &alpha));
                 match crossed {

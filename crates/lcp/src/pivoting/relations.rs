@@ -200,8 +200,9 @@ pub(crate) struct DerivedRows {
 
 impl DerivedRows {
     /// The longest tail of the `n` rows that `relations` let the pass skip; `None` if there is
-    /// none. A row is derived only if its `λ` is not tiny against the relation's other ones
-    /// (a division by it would magnify their round-off).
+    /// none. A row is derived only if its `λ` is at least `10⁻³` of the relation's largest (a
+    /// division by it magnifies the relation's own round-off, which [`Relations::new`] allows
+    /// up to `10⁻¹³` of its terms) and only from a relation that names each row once.
     pub fn new(n: usize, relations: &Relations) -> Option<Self> {
         let list = relations.list();
         let mut relation_of = vec![usize::MAX; n];
@@ -210,7 +211,11 @@ impl DerivedRows {
                 continue;
             };
             let largest = terms.iter().fold(0.0f64, |a, &(_, l)| a.max(l.abs()));
-            if r < n && l.abs() >= 1e-8 * largest {
+            let distinct = terms
+                .iter()
+                .enumerate()
+                .all(|(a, &(i, _))| terms[..a].iter().all(|&(j, _)| j != i));
+            if r < n && distinct && l.abs() >= 1e-3 * largest {
                 relation_of[r] = k;
             }
         }
@@ -334,6 +339,17 @@ mod tests {
         let gap = DerivedRows::new(n, &relations(&[0, 2, 3])).expect("a tail");
         assert_eq!(gap.read, 2 * m + 2);
         assert!(DerivedRows::new(n, &relations(&[0, 1, 2])).is_none());
+        // A relation naming its last row twice, or with a tiny λ there, derives nothing.
+        let twice = Relations {
+            list: vec![vec![(0, 1.0), (n - 1, 0.5), (n - 1, 0.5)]],
+            of_row: Vec::new(),
+        };
+        assert!(DerivedRows::new(n, &twice).is_none());
+        let tiny = Relations {
+            list: vec![vec![(0, 1.0), (n - 1, 1e-4)]],
+            of_row: Vec::new(),
+        };
+        assert!(DerivedRows::new(n, &tiny).is_none());
         // A derived row whose relation needs another row of the tail: that row is read.
         let mut odd = relations(&[0, 1, 2]);
         odd.list.push(vec![(2 * m + 1, 1.0), (2 * m + 3, 1.0)]);
