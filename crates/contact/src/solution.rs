@@ -230,6 +230,10 @@ pub struct ContactSolution {
     pub(crate) zone: Arc<ContactZone>,
     /// The `3m` LCP in the user's units, formed on first use ([`ContactSolution::lcp`]).
     pub(crate) lcp: OnceLock<ContactLcp>,
+    /// The largest entry of that `M` and of the terms `f·R` its friction rows are formed
+    /// from, found on first use (`O(m²)`; [`ContactSolution::traced_on_segments`] asks for it
+    /// at every block of breakpoints).
+    pub(crate) m_big: OnceLock<f64>,
     /// The engine's load path (breakpoints and mechanism rates in the user's units).
     pub path: LoadPath,
     /// The prepared normalised problem that was solved, shared by the clones of the solution:
@@ -434,29 +438,32 @@ impl ContactSolution {
         // are the same, and an overflow left is one of the forces themselves.
         let p_big = loads.iter().fold(0.0f64, |a, p| a.max(p.abs()));
         // The largest entry of `M` and of the terms `f·R` its friction rows are formed from.
-        let mut m_big = 0.0f64;
-        for j in 0..m {
-            for (i, &fi) in f.iter().enumerate() {
-                let (nn, nt, tn, tt) = (
-                    zone.rnn[(i, j)],
-                    zone.rnt[(i, j)],
-                    zone.rtn[(i, j)],
-                    zone.rtt[(i, j)],
-                );
-                for v in [
-                    nn,
-                    nt / 2.0,
-                    fi * nn,
-                    fi * nt / 2.0,
-                    fi * nn + tn,
-                    fi * nn - tn,
-                    (fi * nt + tt) / 2.0,
-                    (fi * nt - tt) / 2.0,
-                ] {
-                    m_big = m_big.max(v.abs());
+        let m_big = *self.m_big.get_or_init(|| {
+            let mut m_big = 0.0f64;
+            for j in 0..m {
+                for (i, &fi) in f.iter().enumerate() {
+                    let (nn, nt, tn, tt) = (
+                        zone.rnn[(i, j)],
+                        zone.rnt[(i, j)],
+                        zone.rtn[(i, j)],
+                        zone.rtt[(i, j)],
+                    );
+                    for v in [
+                        nn,
+                        nt / 2.0,
+                        fi * nn,
+                        fi * nt / 2.0,
+                        fi * nn + tn,
+                        fi * nn - tn,
+                        (fi * nt + tt) / 2.0,
+                        (fi * nt - tt) / 2.0,
+                    ] {
+                        m_big = m_big.max(v.abs());
+                    }
                 }
             }
-        }
+            m_big
+        });
         let z_big = zs
             .iter()
             .flat_map(|z| z.iter())

@@ -277,6 +277,7 @@ pub fn solve_shared(
         tightening_pivots: 0,
         zone,
         lcp: OnceLock::new(),
+        m_big: OnceLock::new(),
         path,
         engine: Arc::new(Engine {
             solver,
