@@ -99,19 +99,26 @@ fn push_zeros(s: &mut String, count: i32) {
     }
 }
 
+/// The digits of `x` where this module writes its text: a finite nonzero number that is no
+/// halfway case (else the standard library writes it, with `std_text`).
+fn own_digits(s: &mut String, x: f64, std_text: fn(&mut String, f64)) -> Option<Digits> {
+    let d = (x.is_finite() && x != 0.0)
+        .then(|| Digits::of(x))
+        .filter(|d| !d.may_be_a_tie(x));
+    if d.is_none() {
+        std_text(s, x);
+    }
+    d
+}
+
 /// Appends the text of `format!("{x:e}")`: `1.5e-3`, `-2e7`, `0e0`.
 pub(crate) fn push_exp(s: &mut String, x: f64) {
-    if !x.is_finite() || x == 0.0 {
+    let Some(d) = own_digits(s, x, |s, x| {
         use std::fmt::Write as _;
         let _ = write!(s, "{x:e}");
+    }) else {
         return;
-    }
-    let d = Digits::of(x);
-    if d.may_be_a_tie(x) {
-        use std::fmt::Write as _;
-        let _ = write!(s, "{x:e}");
-        return;
-    }
+    };
     let digits = d.digits();
     if d.negative {
         s.push('-');
@@ -122,24 +129,18 @@ pub(crate) fn push_exp(s: &mut String, x: f64) {
         s.push_str(&digits[1..]);
     }
     s.push('e');
-    let mut b = itoa::Buffer::new();
-    s.push_str(b.format(d.exp - 1));
+    push_int(s, i64::from(d.exp - 1));
 }
 
 /// Appends the text of `format!("{x}")`: plain decimals, never an exponent (`0.00015`,
 /// `-120`, `1000000000000000000000`).
 pub(crate) fn push_plain(s: &mut String, x: f64) {
-    if !x.is_finite() || x == 0.0 {
+    let Some(d) = own_digits(s, x, |s, x| {
         use std::fmt::Write as _;
         let _ = write!(s, "{x}");
+    }) else {
         return;
-    }
-    let d = Digits::of(x);
-    if d.may_be_a_tie(x) {
-        use std::fmt::Write as _;
-        let _ = write!(s, "{x}");
-        return;
-    }
+    };
     let digits = d.digits();
     let n = d.len as i32;
     if d.negative {

@@ -311,13 +311,11 @@ impl Basis {
         // A[:, z_j] = −M[:, j], so tmp −= A y means tmp += M[:, j]·y; the rows that row
         // relations tie are formed from them after the pass
         // (`relations::DerivedRows`).
-        match cols.derived.as_deref() {
-            Some(d) => {
-                let before = d.before(tmp);
-                add_columns_pooled(cols, &zcols, &mut tmp[..d.read]);
-                d.derive(tmp, &before);
-            }
-            None => add_columns_pooled(cols, &zcols, &mut tmp[..self.n]),
+        let derived = cols.derived.as_deref();
+        let before = derived.map(|d| d.before(tmp));
+        add_columns_pooled(cols, &zcols, &mut tmp[..derived.map_or(self.n, |d| d.read)]);
+        if let (Some(d), Some(b)) = (derived, before) {
+            d.derive(tmp, &b);
         }
     }
 
