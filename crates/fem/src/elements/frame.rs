@@ -185,17 +185,37 @@ impl Line<'_> {
         } else {
             [end[0], end[1], 0.0, end[2], end[3], 0.0]
         };
-        let intens = loads
+        // Each distributed load's factor, start intensities and slopes, once an element (on
+        // the stack for up to four loads), not once a sample.
+        let mut few = [(0.0, [0.0; 2], 0.0, 0.0); 4];
+        let mut many = Vec::new();
+        let mut count = 0;
+        for (fc, q1, q2) in loads
             .iter()
-            .filter_map(|(fc, ld)| line_local_intensity(ld, c, s).map(|(a, b)| (*fc, a, b)));
+            .filter_map(|(fc, ld)| line_local_intensity(ld, c, s).map(|(a, b)| (*fc, a, b)))
+        {
+            let load = (fc, q1, (q2[0] - q1[0]) / l, (q2[1] - q1[1]) / l);
+            if count < few.len() {
+                few[count] = load;
+            } else {
+                if count == few.len() {
+                    many.extend_from_slice(&few);
+                }
+                many.push(load);
+            }
+            count += 1;
+        }
+        let intens = if count <= few.len() {
+            &few[..count]
+        } else {
+            &many[..]
+        };
         let diagram = (0..DIAGRAM_SAMPLES)
             .map(|i| {
                 let x = l * i as f64 / (DIAGRAM_SAMPLES - 1) as f64;
                 let (mut ia, mut it, mut im) = (0.0, 0.0, 0.0);
-                for (fc, q1, q2) in intens.clone() {
+                for &(fc, q1, da, dt) in intens {
                     // ∫0^x q, ∫0^x q(x − s) ds for linear q
-                    let da = (q2[0] - q1[0]) / l;
-                    let dt = (q2[1] - q1[1]) / l;
                     ia += fc * (q1[0] * x + da * x * x / 2.0);
                     it += fc * (q1[1] * x + dt * x * x / 2.0);
                     im += fc * (q1[1] * x * x / 2.0 + dt * x.powi(3) / 6.0);

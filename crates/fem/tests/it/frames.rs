@@ -418,3 +418,83 @@ fn self_weight_on_an_inclined_frame_is_global() {
         .fold(f64::MIN, f64::max);
     close(mmax, 2.0 * 5.0 * 3.0 / 8.0, 1e-12);
 }
+
+/// A fixed-fixed beam under a uniform load given as six loads on its one element (more than
+/// the four a frame's recovery keeps on the stack; two of them triangular, in both frames and
+/// both groups): the textbook values of the uniform load, `M = −qL²/12` at the ends, `qL²/24`
+/// at midspan, `V = qL/2`, at every diagram sample `M(x) = q(6Lx − 6x² − L²)/12`.
+#[test]
+fn six_loads_on_one_frame_sum_as_one() {
+    let (l, q) = (6.0, 5.0);
+    let mut m = Model::new();
+    let ids = beam(&mut m, l, 1, FrameSection::new(1.0, 1.0, 1.0));
+    m.fix(ids[0]);
+    m.fix(ids[1]);
+    let parts: [([f64; 2], [f64; 2], LoadFrame, LoadGroup); 6] = [
+        (
+            [0.0, -q / 4.0],
+            [0.0, -q / 4.0],
+            LoadFrame::Global,
+            LoadGroup::Variable,
+        ),
+        (
+            [0.0, -q / 4.0],
+            [0.0, -q / 4.0],
+            LoadFrame::Local,
+            LoadGroup::Constant,
+        ),
+        (
+            [0.0, -q / 8.0],
+            [0.0, -q / 8.0],
+            LoadFrame::Global,
+            LoadGroup::Constant,
+        ),
+        (
+            [0.0, -q / 8.0],
+            [0.0, -q / 8.0],
+            LoadFrame::Local,
+            LoadGroup::Variable,
+        ),
+        // a triangle 0 → q/4 and its mirror q/4 → 0 sum to a uniform q/4
+        (
+            [0.0, 0.0],
+            [0.0, -q / 4.0],
+            LoadFrame::Global,
+            LoadGroup::Variable,
+        ),
+        (
+            [0.0, -q / 4.0],
+            [0.0, 0.0],
+            LoadFrame::Local,
+            LoadGroup::Constant,
+        ),
+    ];
+    for (start, end, frame, group) in parts {
+        m.add_load(
+            group,
+            Load::Distributed {
+                element: unilateral_fem::ElementId(0),
+                start,
+                end,
+                frame,
+            },
+        );
+    }
+    let r = solve(&m, 1.0);
+    let dg = &r.lines[0].diagram;
+    assert_eq!(dg.len(), 11);
+    close(dg[0].m, -q * l * l / 12.0, 1e-12);
+    close(dg[5].m, q * l * l / 24.0, 1e-12);
+    close(dg[10].m, -q * l * l / 12.0, 1e-12);
+    close(dg[0].q, q * l / 2.0, 1e-12);
+    for d in dg {
+        let x = d.s;
+        let want = q * (6.0 * l * x - 6.0 * x * x - l * l) / 12.0;
+        assert!(
+            (d.m - want).abs() < 1e-12 * q * l * l,
+            "M({x}) = {} != {want}",
+            d.m
+        );
+        assert!((d.q - q * (l / 2.0 - x)).abs() < 1e-12 * q * l, "V({x})");
+    }
+}
