@@ -33,6 +33,12 @@
 //!   `pairs_NNN.vtu` as part 1 (no pairs files when the model has no pairs), `timestep` = the
 //!   load parameter `p`.
 //!
+//! A run into the directory of an earlier one writes its files over the old ones in place
+//! (cheaper for the file system than new files renamed over them); the collection is removed
+//! before the first frame is written and written after the last, so that a collection names the
+//! frames of one run. Frames of an earlier run numbered beyond this run's are left as they were
+//! (not in the collection); after a failure, the files this run wrote are removed.
+//!
 //! The snapshots are the start of the path (`p = 0`), the loads of all events of the traced
 //! path (when the results there can be recovered, also beyond the target) and the reported
 //! solution, sorted by `p` without repeats. Each `.vtu` also carries its load as the field
@@ -80,15 +86,17 @@ pub fn write_vtk_with(
     dir: &Path,
     format: VtkFormat,
 ) -> io::Result<Vec<PathBuf>> {
-    write_frames(analysis, dir, format, VTK_BLOCK)
+    write_frames(analysis, dir, format, VTK_BLOCK, &|_| false)
 }
 
-/// [`write_vtk_with`], the frames' pairs read from the path `block` frames at a time.
+/// [`write_vtk_with`], the frames' pairs read from the path `block` frames at a time; the
+/// frames `i` with `lost(i)` are taken as not recovered (for tests: none is, in use).
 fn write_frames(
     analysis: &Analysis,
     dir: &Path,
     format: VtkFormat,
     block: usize,
+    lost: &(dyn Fn(usize) -> bool + Sync),
 ) -> io::Result<Vec<PathBuf>> {
     let model = analysis.condensed.model();
     crate::finite::analysis(analysis)?;
@@ -96,21 +104,37 @@ fn write_frames(
     let mesh = MeshGeometry::new(model, format);
     let pairs = PairGeometry::new(model, analysis, format);
     std::fs::create_dir_all(dir)?;
-    // The width of the frame numbers as planned (the names in messages while the frames are
-    // made); the files get the width of the frames actually made when they are renamed.
+    // The width of the frame numbers as planned: the names the frames are written under; the
+    // width of the frames actually made is the files' at the end.
     let planned_width = plan.items().saturating_sub(1).to_string().len().max(3);
     let mut pvd = String::from(
         "<?xml version=\"1.0\"?>\n\
          <VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n\
          \x20 <Collection>\n",
     );
-    // Each frame is recovered, made and written on the thread pool into a `.part` file (each
-    // file's bytes do not depend on the number of threads). The frames' pairs are read from
-    // the path a block at a time ([`VTK_BLOCK`] frames), so that a path of thousands of frames
-    // holds one block of pairs and a structure per thread, not every frame at once. Only when
-    // every frame is made and checked are the files renamed, numbered in load order without
-    // the frames that could not be recovered, and the collection written.
+    // Each frame is recovered, made and written on the thread pool straight into its file (each
+    // file's bytes do not depend on the number of threads). The frames' pairs are read from the
+    // path a block at a time ([`VTK_BLOCK`] frames), so that a path of thousands of frames holds
+    // one block of pairs and a structure per thread, not every frame at once.
+    //
+    // The files get their final names as planned, so that a run into the directory of an
+    // earlier one rewrites the files in place: creating a file and renaming it over the old one
+    // cost the file system several times the writing (on the 1000-bearing beam, a fifth of the
+    // run's CPU, the writers queued on the directory's lock). Only frames that could not be
+    // recovered (their numbers are closed up) or fewer frames than planned (a narrower number)
+    // make renames. The collection is removed before the first frame is written and written
+    // after the last, so that a collection in the directory names the frames of one run.
+    let name_of = |part: usize, i: usize, width: usize| {
+        if part == 0 {
+            format!("mesh_{i:0width$}.vtu")
+        } else {
+            format!("pairs_{i:0width$}.vtu")
+        }
+    };
     let make = |i: usize, snap: &Snapshot| -> io::Result<Option<Vec<PathBuf>>> {
+        if lost(i) {
+            return Ok(None);
+        }
         let recovered;
         let snap = if snap.pending {
             let Ok(r) = analysis.recover_pairs(snap.p, &snap.pairs) else {
@@ -128,25 +152,38 @@ fn write_frames(
             snap
         };
         let mut files = Vec::with_capacity(2);
-        let name = format!("mesh_{i:0planned_width$}.vtu");
-        let text = mesh.vtu(model, snap).finish(&name)?;
-        files.push(write_file(dir, &part_name(i, 0), &text)?);
+        let name = name_of(0, i, planned_width);
+        let file = mesh.vtu(model, snap).finish_parts(&name)?;
+        mesh.size.note(&file);
+        files.push(file.write_over(dir, &name)?);
         if pairs.m > 0 {
-            let name = format!("pairs_{i:0planned_width$}.vtu");
-            let text = pairs.vtu(snap).finish(&name)?;
-            files.push(write_file(dir, &part_name(i, 1), &text)?);
+            let name = name_of(1, i, planned_width);
+            let file = pairs.vtu(snap).finish_parts(&name)?;
+            pairs.size.note(&file);
+            files.push(file.write_over(dir, &name)?);
         }
         Ok(Some(files))
     };
+    match std::fs::remove_file(dir.join(PVD_FILE)) {
+        Err(e) if e.kind() != io::ErrorKind::NotFound => return Err(e),
+        _ => {}
+    }
     let mut made: Vec<(f64, io::Result<Option<Vec<PathBuf>>>)> = Vec::new();
-    for block in plan.blocks(analysis, block) {
+    // The next block's pairs (a product of the contact matrix with the block's breakpoints,
+    // on one thread) are formed while the frames of this one are made.
+    let mut blocks = plan.blocks(analysis, block);
+    let mut next = blocks.next();
+    while let Some(block) = next.take() {
         let first = made.len();
-        made.par_extend(
-            block
-                .par_iter()
-                .enumerate()
-                .map(|(j, snap)| (snap.p, make(first + j, snap))),
-        );
+        let frames = || {
+            made.par_extend(
+                block
+                    .par_iter()
+                    .enumerate()
+                    .map(|(j, snap)| (snap.p, make(first + j, snap))),
+            );
+        };
+        next = rayon::join(|| blocks.next(), frames).0;
         if made[first..].iter().any(|(_, r)| r.is_err()) {
             break;
         }
@@ -173,20 +210,24 @@ fn write_frames(
             .find_map(|(_, r)| r.err())
             .expect("one frame failed"));
     }
-    let width = made.len().saturating_sub(1).to_string().len().max(3);
+    let frames = made
+        .iter()
+        .filter(|(_, r)| matches!(r, Ok(Some(_))))
+        .count();
+    let width = frames.saturating_sub(1).to_string().len().max(3);
     let mut written = Vec::new();
     let mut k = 0usize;
+    // In load order, a frame's number is never above its planned one: renaming in that order
+    // never meets a file of this run not yet renamed.
     for (p, files) in made {
         let Some(files) = files? else { continue };
         for (part, file) in files.into_iter().enumerate() {
-            let name = if part == 0 {
-                format!("mesh_{k:0width$}.vtu")
-            } else {
-                format!("pairs_{k:0width$}.vtu")
-            };
+            let name = name_of(part, k, width);
             dataset(&mut pvd, p, part, &name);
             let to = dir.join(&name);
-            std::fs::rename(&file, &to)?;
+            if file != to {
+                std::fs::rename(&file, &to)?;
+            }
             written.push(to);
         }
         k += 1;
@@ -199,11 +240,6 @@ fn write_frames(
 
 /// Frames whose pairs are read from the path at once ([`FramePlan::blocks`]).
 const VTK_BLOCK: usize = 256;
-
-/// The temporary name of part `part` of frame `i` while the frames are made.
-fn part_name(i: usize, part: usize) -> String {
-    format!(".frame_{i}_{part}.vtu.part")
-}
 
 /// [`write_vtk`] for a caller that holds the model apart: `model` must be the model `analysis`
 /// was made from; a model whose node, element or pair counts do not match gives an
@@ -476,6 +512,31 @@ struct MeshGeometry {
     cell_ids: Body,
     /// Which result arrays the model's elements can make non-zero.
     kinds: ElementKinds,
+    /// The largest file made so far.
+    size: Size,
+}
+
+/// The largest sizes of the files of one kind made so far, for the next file's buffers: a
+/// frame's buffers are then allocated once, not grown by doubling (copying each file's
+/// hundreds of kilobytes several times).
+#[derive(Debug, Default)]
+struct Size {
+    xml: std::sync::atomic::AtomicUsize,
+    data: std::sync::atomic::AtomicUsize,
+}
+
+impl Size {
+    fn reserve(&self, b: &mut Body) {
+        use std::sync::atomic::Ordering::Relaxed;
+        b.xml.reserve(self.xml.load(Relaxed));
+        b.data.reserve(self.data.load(Relaxed));
+    }
+
+    fn note(&self, f: &Finished) {
+        use std::sync::atomic::Ordering::Relaxed;
+        self.xml.fetch_max(f.head.len(), Relaxed);
+        self.data.fetch_max(f.data.len(), Relaxed);
+    }
 }
 
 /// Whether a model has plane elements (quadrilaterals, triangles) and line elements (frames,
@@ -569,11 +630,18 @@ impl MeshGeometry {
             grid,
             cell_ids,
             kinds: ElementKinds::of(model),
+            size: Size::default(),
         }
     }
 
     fn vtu(&self, model: &Model, snap: &Snapshot) -> Body {
-        let mut s = header(self.grid.format, snap, self.n_points, self.n_cells);
+        let mut s = header(
+            self.grid.format,
+            snap,
+            self.n_points,
+            self.n_cells,
+            &self.size,
+        );
         if let Some(r) = snap.results.as_deref() {
             point_results(&mut s, r, self.kinds);
         }
@@ -685,6 +753,8 @@ struct PairGeometry {
     normals: Vec<[f64; 2]>,
     tangents: Vec<[f64; 2]>,
     friction: Vec<f64>,
+    /// The largest file made so far.
+    size: Size,
 }
 
 impl PairGeometry {
@@ -751,6 +821,7 @@ impl PairGeometry {
             friction: (0..m)
                 .map(|i| c.friction.get(i).copied().unwrap_or(0.0))
                 .collect(),
+            size: Size::default(),
         }
     }
 
@@ -765,7 +836,7 @@ impl PairGeometry {
     }
 
     fn vtu(&self, snap: &Snapshot) -> Body {
-        let mut s = header(self.grid.format, snap, self.n_points, self.m);
+        let mut s = header(self.grid.format, snap, self.n_points, self.m, &self.size);
         let pairs = &snap.pairs[..];
         let have = pairs.len() == self.m && snap.results.is_some();
         if let (true, Some(r)) = (have, snap.results.as_deref()) {
@@ -856,8 +927,9 @@ fn state_code(s: PairState) -> i64 {
 
 /// The start of an unstructured-grid file up to the opening `<Piece>`, with the load as the
 /// field `TimeValue` and the field `reported` (1 in the files of the reported load, else 0).
-fn header(format: VtkFormat, snap: &Snapshot, points: usize, cells: usize) -> Body {
+fn header(format: VtkFormat, snap: &Snapshot, points: usize, cells: usize, size: &Size) -> Body {
     let mut b = Body::new(format);
+    size.reserve(&mut b);
     let mut s = String::from("<?xml version=\"1.0\"?>\n");
     s.push_str(b.file_tag());
     s.push_str(
@@ -1083,20 +1155,17 @@ impl Body {
         } else {
             &mut own
         };
-        let mut bad = None;
-        for v in values {
-            // −0 is written as 0, as in the text.
-            let v = if v == 0.0 { 0.0 } else { v };
-            if !v.is_finite() && bad.is_none() {
-                bad = Some(v);
-            }
-            match ty {
-                "Float64" => raw.extend_from_slice(&v.to_le_bytes()),
-                "Int64" => raw.extend_from_slice(&(v as i64).to_le_bytes()),
-                "Int32" => raw.extend_from_slice(&(v as i32).to_le_bytes()),
-                _ => raw.push(v as u8), // UInt8
-            }
-        }
+        // The type chosen once an array, not once a value.
+        let bad = match ty {
+            "Float64" => encode(raw, values, |r, v| r.extend_from_slice(&v.to_le_bytes())),
+            "Int64" => encode(raw, values, |r, v| {
+                r.extend_from_slice(&(v as i64).to_le_bytes());
+            }),
+            "Int32" => encode(raw, values, |r, v| {
+                r.extend_from_slice(&(v as i32).to_le_bytes());
+            }),
+            _ => encode(raw, values, |r, v| r.push(v as u8)), // UInt8
+        };
         self.note_value(name, bad);
         if raw_format {
             let bytes = (self.data.len() - start - 8) as u64;
@@ -1126,6 +1195,12 @@ impl Body {
     /// it was written (ascii or binary); a non-finite one is refused here, named by its array.
     /// The XML written so far must end with `</UnstructuredGrid>` (or `</Collection>`).
     pub(crate) fn finish(self, file: &str) -> io::Result<Vec<u8>> {
+        self.finish_parts(file).map(Finished::into_bytes)
+    }
+
+    /// [`Body::finish`] as its parts, for a writer that writes them one after the other (the
+    /// appended data of a path's frames, gigabytes in all, not copied once more).
+    pub(crate) fn finish_parts(self, file: &str) -> io::Result<Finished> {
         if let Some(e) = self.failed {
             return Err(e);
         }
@@ -1136,22 +1211,97 @@ impl Body {
             }
             .into());
         }
-        let mut out = Vec::with_capacity(self.xml.len() + self.data.len() + 64);
+        let mut head = Vec::with_capacity(self.xml.len() + 2 * self.marks.len() + 64);
         let mut at = 0;
         for &(place, offset) in &self.marks {
-            out.extend_from_slice(&self.xml.as_bytes()[at..place]);
-            out.extend_from_slice(offset.to_string().as_bytes());
+            head.extend_from_slice(&self.xml.as_bytes()[at..place]);
+            head.extend_from_slice(itoa::Buffer::new().format(offset).as_bytes());
             at = place;
         }
-        out.extend_from_slice(&self.xml.as_bytes()[at..]);
-        if !self.is_ascii() {
-            out.extend_from_slice(b"  <AppendedData encoding=\"raw\">\n   _");
-            out.extend_from_slice(&self.data);
-            out.extend_from_slice(b"\n  </AppendedData>\n");
-        }
-        out.extend_from_slice(b"</VTKFile>\n");
-        Ok(out)
+        head.extend_from_slice(&self.xml.as_bytes()[at..]);
+        let tail: &'static [u8] = if self.is_ascii() {
+            b"</VTKFile>\n"
+        } else {
+            head.extend_from_slice(b"  <AppendedData encoding=\"raw\">\n   _");
+            b"\n  </AppendedData>\n</VTKFile>\n"
+        };
+        Ok(Finished {
+            head,
+            data: self.data,
+            tail,
+        })
     }
+}
+
+/// A finished file in three parts: the XML (and the start of the appended data), the appended
+/// data (empty in ascii) and the end ([`Body::finish_parts`]).
+pub(crate) struct Finished {
+    head: Vec<u8>,
+    data: Vec<u8>,
+    tail: &'static [u8],
+}
+
+impl Finished {
+    fn into_bytes(self) -> Vec<u8> {
+        let mut out = self.head;
+        out.reserve_exact(self.data.len() + self.tail.len());
+        out.extend_from_slice(&self.data);
+        out.extend_from_slice(self.tail);
+        out
+    }
+
+    /// Writes the file `dir/name` over its old bytes, if any: the file is not truncated first
+    /// but cut to its new length after the writing. Truncating a file frees its blocks, and
+    /// on a file system mounted with `discard` a thread waits for the device to discard them
+    /// (on the 1000-bearing beam, a quarter of the writers' waits); a frame rewritten by a
+    /// second run is mostly the same size and keeps its blocks.
+    fn write_over(&self, dir: &Path, name: &str) -> io::Result<PathBuf> {
+        use std::io::{IoSlice, Write as _};
+        let path = dir.join(name);
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)?;
+        // One system call for the parts where it takes them all: a page that two parts share
+        // is then written whole, never read back from the device first.
+        let mut parts = [
+            IoSlice::new(&self.head),
+            IoSlice::new(&self.data),
+            IoSlice::new(self.tail),
+        ];
+        let mut rest = &mut parts[..];
+        while !rest.is_empty() {
+            match f.write_vectored(rest) {
+                Ok(0) => return Err(io::ErrorKind::WriteZero.into()),
+                Ok(n) => IoSlice::advance_slices(&mut rest, n),
+                Err(e) if e.kind() == io::ErrorKind::Interrupted => {}
+                Err(e) => return Err(e),
+            }
+        }
+        let len = (self.head.len() + self.data.len() + self.tail.len()) as u64;
+        if f.metadata()?.len() != len {
+            f.set_len(len)?;
+        }
+        Ok(path)
+    }
+}
+
+/// Appends `values` to `raw` by `put`, −0 as 0 (as in the text); the first non-finite value.
+fn encode(
+    raw: &mut Vec<u8>,
+    values: impl IntoIterator<Item = f64>,
+    put: impl Fn(&mut Vec<u8>, f64),
+) -> Option<f64> {
+    let mut bad = None;
+    for v in values {
+        let v = if v == 0.0 { 0.0 } else { v };
+        if !v.is_finite() && bad.is_none() {
+            bad = Some(v);
+        }
+        put(raw, v);
+    }
+    bad
 }
 
 fn zlib(bytes: &[u8]) -> io::Result<Vec<u8>> {
@@ -1294,7 +1444,7 @@ mod block_tests {
         );
         let read = |block: usize| -> Vec<(String, Vec<u8>)> {
             let dir = tempfile::tempdir().unwrap();
-            let files = write_frames(&a, dir.path(), VtkFormat::Binary, block).unwrap();
+            let files = write_frames(&a, dir.path(), VtkFormat::Binary, block, &|_| false).unwrap();
             files
                 .iter()
                 .map(|f| {
@@ -1323,5 +1473,52 @@ mod block_tests {
             .find(|l| l.contains(&reported))
             .expect("the reported frame");
         assert!(line.contains("timestep=\"1\""), "{line}");
+    }
+
+    /// A second run into a directory rewrites its files in place: files longer than the new
+    /// ones are cut to them, and frames that could not be recovered leave no gap (the frames
+    /// after them are renamed down, in load order). The bytes of each frame are those of the
+    /// same frame written alone into an empty directory; the collection names the new frames.
+    #[test]
+    fn a_second_run_rewrites_the_files_and_closes_up_lost_frames() {
+        let file =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/sheet-pile-wall.toml");
+        let unilateral_io::Problem::Structural(problem) =
+            unilateral_io::read_problem(&file).unwrap()
+        else {
+            panic!("a structural model");
+        };
+        let a = unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap();
+        let fresh = tempfile::tempdir().unwrap();
+        let whole = write_frames(&a, fresh.path(), VtkFormat::Binary, 7, &|_| false).unwrap();
+        assert_eq!(whole.len(), 2 * 31 + 1);
+        let bytes = |f: &Path| std::fs::read(f).unwrap();
+        // An earlier run's files under every name, each longer than the new one.
+        let dir = tempfile::tempdir().unwrap();
+        for f in &whole {
+            let mut old = bytes(f);
+            old.extend(std::iter::repeat_n(b'#', 5000));
+            std::fs::write(dir.path().join(f.file_name().unwrap()), old).unwrap();
+        }
+        let lost = |i: usize| i % 3 == 1;
+        let kept: Vec<usize> = (0..31).filter(|&i| !lost(i)).collect();
+        let got = write_frames(&a, dir.path(), VtkFormat::Binary, 7, &lost).unwrap();
+        assert_eq!(got.len(), 2 * kept.len() + 1);
+        for (k, &i) in kept.iter().enumerate() {
+            for part in 0..2 {
+                let new = &got[2 * k + part];
+                let name = if part == 0 { "mesh" } else { "pairs" };
+                assert_eq!(new, &dir.path().join(format!("{name}_{k:03}.vtu")));
+                assert!(
+                    bytes(new) == bytes(&whole[2 * i + part]),
+                    "{} differs from frame {i}",
+                    new.display()
+                );
+            }
+        }
+        let pvd = String::from_utf8(bytes(got.last().unwrap())).unwrap();
+        assert_eq!(pvd.matches("<DataSet").count(), 2 * kept.len());
+        assert!(pvd.contains(&format!("file=\"pairs_{:03}.vtu\"", kept.len() - 1)));
+        assert!(!pvd.contains(&format!("file=\"mesh_{:03}.vtu\"", kept.len())));
     }
 }
