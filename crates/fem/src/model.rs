@@ -825,13 +825,13 @@ impl Model {
                     end,
                     ..
                 } => {
-                    refused(elem(element)?.as_ref(), element)?;
+                    refused(&*elem(element)?, element)?;
                     finite(&[start[0], start[1], end[0], end[1]])?;
                 }
                 Load::BodyForce { element, force } => {
                     let unit = elem(element)?;
                     finite(&force)?;
-                    refused(unit.as_ref(), element)?;
+                    refused(&*unit, element)?;
                 }
                 Load::Settlement { node, dof, value } => {
                     self.check_node(|| format!("load {li}"), node)?;
@@ -855,7 +855,7 @@ impl Model {
                 } => {
                     let unit = elem(element)?;
                     finite(&[uniform, gradient])?;
-                    refused(unit.as_ref(), element)?;
+                    refused(&*unit, element)?;
                 }
             }
         }

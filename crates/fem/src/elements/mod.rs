@@ -80,19 +80,21 @@ pub(crate) trait ElementUnit {
     ) -> Recovered;
 }
 
-/// The unit of an element: the one place that maps each kind of [`Element`] to its code.
-pub(crate) fn unit(el: &Element) -> Box<dyn ElementUnit + '_> {
+/// The unit of an element: the one place that maps each kind of [`Element`] to its code. On
+/// the stack (it derefs to the [`ElementUnit`]): a load path's frames ask for every element's
+/// unit thousands of times.
+pub(crate) fn unit(el: &Element) -> Unit<'_> {
     match el {
         Element::Frame {
             nodes,
             section,
             releases,
-        } => Box::new(frame::Line {
+        } => Unit::Line(frame::Line {
             nodes,
             section,
             releases: Some(*releases),
         }),
-        Element::Bar { nodes, section } => Box::new(frame::Line {
+        Element::Bar { nodes, section } => Unit::Line(frame::Line {
             nodes,
             section,
             releases: None,
@@ -102,7 +104,7 @@ pub(crate) fn unit(el: &Element) -> Box<dyn ElementUnit + '_> {
             material,
             analysis,
             formulation,
-        } => Box::new(quad::Quad {
+        } => Unit::Quad(quad::Quad {
             nodes,
             material,
             analysis: *analysis,
@@ -112,11 +114,30 @@ pub(crate) fn unit(el: &Element) -> Box<dyn ElementUnit + '_> {
             nodes,
             material,
             analysis,
-        } => Box::new(tri::Tri {
+        } => Unit::Tri(tri::Tri {
             nodes,
             material,
             analysis: *analysis,
         }),
+    }
+}
+
+/// An element's unit of code ([`unit`]).
+pub(crate) enum Unit<'a> {
+    Line(frame::Line<'a>),
+    Quad(quad::Quad<'a>),
+    Tri(tri::Tri<'a>),
+}
+
+impl<'a> std::ops::Deref for Unit<'a> {
+    type Target = dyn ElementUnit + 'a;
+
+    fn deref(&self) -> &Self::Target {
+        match self {
+            Unit::Line(u) => u,
+            Unit::Quad(u) => u,
+            Unit::Tri(u) => u,
+        }
     }
 }
 
