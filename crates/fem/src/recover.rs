@@ -3,37 +3,76 @@
 //! equilibrium check of the whole structure.
 
 use crate::condense::Condensed;
+use crate::elements::frame::LinePrepared;
 use crate::elements::spring::{spring_force, spring_matrix};
-use crate::elements::{element_stiffness, unit as element_unit, ElemMat, Recovered};
+use crate::elements::{element_stiffness, unit as element_unit, ElemMat, Recovered, Unit};
 use crate::error::FemError;
 use crate::model::{ElementId, Endpoint, Load};
 use crate::results::{ratio, ContactLoadVector, Equilibrium, LinkValues, Reaction, Results};
 use faer::linalg::solvers::SolveCore;
 use faer::{Conj, Mat};
 
-/// The elements' global stiffness matrices of a condensed model, formed once the model is
-/// recovered a second time (the frames of a load path recover it thousands of times, and
-/// forming every element's matrix again each time cost more than the rest of a recovery).
+/// The elements' global stiffness matrices of a condensed model, and its line elements
+/// prepared for recovery ([`Line::prepare`](crate::elements::frame::Line::prepare)), formed
+/// once the model is recovered a second time (the frames of a load path recover it thousands
+/// of times, and forming every element's matrix again each time cost more than the rest of a
+/// recovery).
 #[derive(Debug, Default)]
 pub(crate) struct ElementCache {
     recoveries: std::sync::atomic::AtomicUsize,
-    k: std::sync::OnceLock<Vec<ElemMat>>,
+    kept: std::sync::OnceLock<Kept>,
+}
+
+/// What [`ElementCache`] keeps, element by element.
+#[derive(Debug)]
+struct Kept {
+    k: Vec<ElemMat>,
+    /// A line element's recovery data for its element loads in the model's order (the order
+    /// of [`Condensed::results_of`]'s loads of the element); `None` for other elements.
+    lines: Vec<Option<LinePrepared>>,
 }
 
 impl ElementCache {
-    /// The matrices when they are kept (from the second call on), `None` at the first call.
-    fn get(&self, model: &crate::model::Model) -> Option<&[ElemMat]> {
+    /// What is kept (from the second call on), `None` at the first call.
+    fn get(&self, model: &crate::model::Model) -> Option<&Kept> {
         use std::sync::atomic::Ordering;
         if self.recoveries.fetch_add(1, Ordering::Relaxed) == 0 {
             return None;
         }
-        Some(self.k.get_or_init(|| {
-            model
-                .elements
-                .iter()
-                .map(|el| element_stiffness(model, el))
-                .collect()
+        Some(self.kept.get_or_init(|| {
+            let mut loads: Vec<Vec<&Load>> = vec![Vec::new(); model.elements.len()];
+            for (_, l) in &model.loads {
+                if let Some(e) = load_element(l).and_then(|e| loads.get_mut(e)) {
+                    e.push(l);
+                }
+            }
+            Kept {
+                k: model
+                    .elements
+                    .iter()
+                    .map(|el| element_stiffness(model, el))
+                    .collect(),
+                lines: model
+                    .elements
+                    .iter()
+                    .zip(&loads)
+                    .map(|(el, loads)| match element_unit(el) {
+                        Unit::Line(line) => Some(line.prepare(model, loads.iter().copied())),
+                        _ => None,
+                    })
+                    .collect(),
+            }
         }))
+    }
+}
+
+/// The element an element load acts on; `None` for a load on nodes or links.
+fn load_element(l: &Load) -> Option<usize> {
+    match l {
+        Load::Distributed { element, .. }
+        | Load::BodyForce { element, .. }
+        | Load::Temperature { element, .. } => Some(element.0),
+        _ => None,
     }
 }
 
@@ -240,12 +279,7 @@ impl Condensed {
 
         // element loads per element, in the model's order: one list with each element's range
         // (`start[e]..start[e + 1]`), not a vector per element
-        let element_of = |l: &Load| match l {
-            Load::Distributed { element, .. }
-            | Load::BodyForce { element, .. }
-            | Load::Temperature { element, .. } => Some(element.0),
-            _ => None,
-        };
+        let element_of = load_element;
         // a stable sort keeps each element's loads in the model's order
         let mut by_element: Vec<(usize, f64, &Load)> = model
             .loads
@@ -281,7 +315,7 @@ impl Condensed {
             let unit = element_unit(el);
             let formed;
             let em = match kept {
-                Some(k) => &k[ei],
+                Some(k) => &k.k[ei],
                 None => {
                     formed = element_stiffness(model, el);
                     &formed
@@ -295,7 +329,15 @@ impl Condensed {
                 r[em.dofs[a]] += fa;
                 r_mag[em.dofs[a]] += fa.abs();
             }
-            match unit.recover(model, ElementId(ei), &ue, loads_of(ei)) {
+            let recovered = match kept.and_then(|k| k.lines[ei].as_ref()) {
+                Some(line) => line.recover(
+                    ElementId(ei),
+                    &ue,
+                    loads_of(ei).iter().map(|&(factor, _)| factor),
+                ),
+                None => unit.recover(model, ElementId(ei), &ue, loads_of(ei)),
+            };
+            match recovered {
                 Recovered::Line(line) => lines.push(line),
                 Recovered::Plane { result, at_nodes } => {
                     for (nd, s) in unit.nodes().iter().zip(&at_nodes) {

@@ -72,6 +72,35 @@ impl Line<'_> {
         }
     }
 
+    /// What the recovery of the element's end forces and diagram needs that does not depend
+    /// on its displacements or its loads' factors: the local stiffness and geometry, and each
+    /// of `loads` (in their order) as local equivalent nodal forces and local intensities.
+    /// Kept by a structure whose frames are recovered at every frame of a load path.
+    pub(crate) fn prepare<'l>(
+        &self,
+        model: &Model,
+        loads: impl Iterator<Item = &'l Load>,
+    ) -> LinePrepared {
+        let (k, n, l, c, s) = self.local_k(model);
+        let loads = loads
+            .map(|load| PreparedLoad {
+                local: self
+                    .equivalent_load_array(model, load)
+                    .map(|(fe, _)| to_local_vec(&fe[..n], c, s)),
+                intensity: line_local_intensity(load, c, s)
+                    .map(|(q1, q2)| (q1, (q2[0] - q1[0]) / l, (q2[1] - q1[1]) / l)),
+            })
+            .collect();
+        LinePrepared {
+            k,
+            n,
+            l,
+            c,
+            s,
+            loads,
+        }
+    }
+
     fn dofs(&self) -> Vec<usize> {
         if self.is_frame() {
             self.nodes
@@ -162,77 +191,8 @@ impl Line<'_> {
         ue: &[f64],
         loads: &[(f64, &Load)],
     ) -> Recovered {
-        // The element's matrix and vectors on the stack (a hinged frame's condensation and the
-        // diagram still allocate): a load path's frames recover every element thousands of
-        // times.
-        let (k, n, l, c, s) = self.local_k(model);
-        let ul = to_local_vec(ue, c, s);
-        let mut fl = [0.0; 6];
-        for (fc, load) in loads {
-            if let Some((fe, _)) = self.equivalent_load_array(model, load) {
-                let fe = to_local_vec(&fe[..n], c, s);
-                for a in 0..n {
-                    fl[a] += fc * fe[a];
-                }
-            }
-        }
-        let mut end = [0.0; 6];
-        for a in 0..n {
-            end[a] = (0..n).map(|b| k[a * n + b] * ul[b]).sum::<f64>() - fl[a];
-        }
-        let end6 = if n == 6 {
-            [end[0], end[1], end[2], end[3], end[4], end[5]]
-        } else {
-            [end[0], end[1], 0.0, end[2], end[3], 0.0]
-        };
-        // Each distributed load's factor, start intensities and slopes, once an element (on
-        // the stack for up to four loads), not once a sample.
-        let mut few = [(0.0, [0.0; 2], 0.0, 0.0); 4];
-        let mut many = Vec::new();
-        let mut count = 0;
-        for (fc, q1, q2) in loads
-            .iter()
-            .filter_map(|(fc, ld)| line_local_intensity(ld, c, s).map(|(a, b)| (*fc, a, b)))
-        {
-            let load = (fc, q1, (q2[0] - q1[0]) / l, (q2[1] - q1[1]) / l);
-            if count < few.len() {
-                few[count] = load;
-            } else {
-                if count == few.len() {
-                    many.extend_from_slice(&few);
-                }
-                many.push(load);
-            }
-            count += 1;
-        }
-        let intens = if count <= few.len() {
-            &few[..count]
-        } else {
-            &many[..]
-        };
-        let diagram = (0..DIAGRAM_SAMPLES)
-            .map(|i| {
-                let x = l * i as f64 / (DIAGRAM_SAMPLES - 1) as f64;
-                let (mut ia, mut it, mut im) = (0.0, 0.0, 0.0);
-                for &(fc, q1, da, dt) in intens {
-                    // ∫0^x q, ∫0^x q(x − s) ds for linear q
-                    ia += fc * (q1[0] * x + da * x * x / 2.0);
-                    it += fc * (q1[1] * x + dt * x * x / 2.0);
-                    im += fc * (q1[1] * x * x / 2.0 + dt * x.powi(3) / 6.0);
-                }
-                DiagramPoint {
-                    s: x,
-                    n: -end6[0] - ia,
-                    q: end6[1] + it,
-                    m: -end6[2] + end6[1] * x + im,
-                }
-            })
-            .collect();
-        Recovered::Line(LineResult {
-            element: id,
-            end_forces: end6,
-            diagram,
-        })
+        self.prepare(model, loads.iter().map(|&(_, load)| load))
+            .recover(id, ue, loads.iter().map(|&(fc, _)| fc))
     }
 }
 
@@ -405,6 +365,89 @@ fn to_global_mat(k: &[f64], n: usize, c: f64, s: f64) -> Vec<f64> {
         out
     };
     product(&t, true, &product(k, false, &t))
+}
+
+/// A line element prepared for recovery ([`Line::prepare`]).
+#[derive(Debug, Clone)]
+pub(crate) struct LinePrepared {
+    /// Local stiffness after releases (`n × n` in the first entries).
+    k: [f64; 36],
+    n: usize,
+    l: f64,
+    c: f64,
+    s: f64,
+    loads: Vec<PreparedLoad>,
+}
+
+/// One load of a prepared line element: its local equivalent nodal forces (per unit factor)
+/// and its local start intensities `[axial, transverse]` with their slopes along the element.
+#[derive(Debug, Clone)]
+struct PreparedLoad {
+    local: Option<[f64; 6]>,
+    intensity: Option<([f64; 2], f64, f64)>,
+}
+
+impl LinePrepared {
+    /// End forces and diagram for the element displacements `ue` (global, the element's DOF
+    /// order) with the factors of the prepared loads, in their order.
+    pub(crate) fn recover(
+        &self,
+        id: ElementId,
+        ue: &[f64],
+        factors: impl ExactSizeIterator<Item = f64> + Clone,
+    ) -> Recovered {
+        assert_eq!(
+            factors.len(),
+            self.loads.len(),
+            "a factor for every prepared load of element {}",
+            id.0
+        );
+        let (k, n, l, c, s) = (&self.k, self.n, self.l, self.c, self.s);
+        let ul = to_local_vec(ue, c, s);
+        let mut fl = [0.0; 6];
+        for (fc, load) in factors.clone().zip(&self.loads) {
+            if let Some(fe) = &load.local {
+                for a in 0..n {
+                    fl[a] += fc * fe[a];
+                }
+            }
+        }
+        let mut end = [0.0; 6];
+        for a in 0..n {
+            end[a] = (0..n).map(|b| k[a * n + b] * ul[b]).sum::<f64>() - fl[a];
+        }
+        let end6 = if n == 6 {
+            [end[0], end[1], end[2], end[3], end[4], end[5]]
+        } else {
+            [end[0], end[1], 0.0, end[2], end[3], 0.0]
+        };
+        let intens = factors
+            .zip(&self.loads)
+            .filter_map(|(fc, load)| load.intensity.map(|(q1, da, dt)| (fc, q1, da, dt)));
+        let diagram = (0..DIAGRAM_SAMPLES)
+            .map(|i| {
+                let x = l * i as f64 / (DIAGRAM_SAMPLES - 1) as f64;
+                let (mut ia, mut it, mut im) = (0.0, 0.0, 0.0);
+                for (fc, q1, da, dt) in intens.clone() {
+                    // ∫0^x q, ∫0^x q(x − s) ds for linear q
+                    ia += fc * (q1[0] * x + da * x * x / 2.0);
+                    it += fc * (q1[1] * x + dt * x * x / 2.0);
+                    im += fc * (q1[1] * x * x / 2.0 + dt * x.powi(3) / 6.0);
+                }
+                DiagramPoint {
+                    s: x,
+                    n: -end6[0] - ia,
+                    q: end6[1] + it,
+                    m: -end6[2] + end6[1] * x + im,
+                }
+            })
+            .collect();
+        Recovered::Line(LineResult {
+            element: id,
+            end_forces: end6,
+            diagram,
+        })
+    }
 }
 
 /// Local distributed load on a line element: intensities (axial, transverse) at start and end.
