@@ -40,12 +40,13 @@ pub fn push_n(s: &mut String, v: f64) {
     if h < 0 {
         s.push('-');
     }
-    let _ = write!(s, "{int}");
+    s.push_str(itoa::Buffer::new().format(int));
     if frac != 0 {
-        if frac % 10 == 0 {
-            let _ = write!(s, ".{}", frac / 10);
-        } else {
-            let _ = write!(s, ".{frac:02}");
+        // `.d` or `.dd`, the digits of `frac` without a trailing zero
+        s.push('.');
+        s.push(char::from(b'0' + (frac / 10) as u8));
+        if frac % 10 != 0 {
+            s.push(char::from(b'0' + (frac % 10) as u8));
         }
     }
 }
@@ -529,7 +530,12 @@ mod tests {
             99.999,
             -0.3,
             1e6 + 0.25,
-        ] {
+        ]
+        .into_iter()
+        // every hundredth from -20 to 20, and values between them, of every sign and size
+        .chain((-200_000..200_000).map(|i| f64::from(i) * 0.000_1 + 0.000_049))
+        .chain((0..2000).map(|i| (-1.0f64).powi(i) * 1.37f64.powi(i / 20) * 0.731))
+        {
             let r = (v * 100.0f64).round() / 100.0;
             let want = format!("{r:.2}");
             let want = want.trim_end_matches('0').trim_end_matches('.');
