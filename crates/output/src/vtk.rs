@@ -1258,11 +1258,22 @@ impl Finished {
     fn write_over(&self, dir: &Path, name: &str) -> io::Result<PathBuf> {
         use std::io::{IoSlice, Write as _};
         let path = dir.join(name);
-        let mut f = std::fs::OpenOptions::new()
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&path)?;
+        let open = || {
+            std::fs::OpenOptions::new()
+                .write(true)
+                .create(true)
+                .truncate(false)
+                .open(&path)
+        };
+        // A file of an earlier run that may not be written (read-only) is replaced, as a
+        // file renamed over it would have been.
+        let mut f = match open() {
+            Err(e) if e.kind() == io::ErrorKind::PermissionDenied && path.is_file() => {
+                std::fs::remove_file(&path)?;
+                open()?
+            }
+            r => r?,
+        };
         // One system call for the parts where it takes them all: a page that two parts share
         // is then written whole, never read back from the device first.
         let mut parts = [
@@ -1500,6 +1511,12 @@ mod block_tests {
             old.extend(std::iter::repeat_n(b'#', 5000));
             std::fs::write(dir.path().join(f.file_name().unwrap()), old).unwrap();
         }
+        // one of them read-only: replaced as a file renamed over it would be (a user that
+        // may write any file, such as root, writes it over)
+        let locked = dir.path().join("mesh_002.vtu");
+        let mut perms = std::fs::metadata(&locked).unwrap().permissions();
+        perms.set_readonly(true);
+        std::fs::set_permissions(&locked, perms).unwrap();
         let lost = |i: usize| i % 3 == 1;
         let kept: Vec<usize> = (0..31).filter(|&i| !lost(i)).collect();
         let got = write_frames(&a, dir.path(), VtkFormat::Binary, 7, &lost).unwrap();
