@@ -77,8 +77,9 @@ pub struct Condensed {
     pub(crate) model: Model,
     pub(crate) asm: Assembled,
     pub(crate) llt: Option<Llt<usize, f64>>,
-    /// The elements' global stiffness matrices, kept from the second recovery on (a load path's
-    /// frames recover the structure thousands of times; one recovery keeps nothing).
+    /// The elements' global stiffness matrices and the line elements' recovery data, kept from
+    /// the second recovery on (a load path's frames recover the structure thousands of times;
+    /// one recovery keeps nothing).
     pub(crate) element_k: crate::recover::ElementCache,
 }
 

@@ -34,10 +34,12 @@
 //!   load parameter `p`.
 //!
 //! A run into the directory of an earlier one writes its files over the old ones in place
-//! (cheaper for the file system than new files renamed over them); the collection is removed
-//! before the first frame is written and written after the last, so that a collection names the
-//! frames of one run. Frames of an earlier run numbered beyond this run's are left as they were
-//! (not in the collection); after a failure, the files this run wrote are removed.
+//! (cheaper for the file system than new files renamed over them; a symbolic link, a file with
+//! other hard links or a read-only file is replaced instead, as a rename would). The collection
+//! is removed before the first frame is written and written after the last, so that a
+//! collection names the frames of one run. Files of an earlier run that this run does not
+//! write stay in the directory, outside the collection; after a failure, the files this run
+//! wrote are removed (with the earlier run's files they had replaced).
 //!
 //! The snapshots are the start of the path (`p = 0`), the loads of all events of the traced
 //! path (when the results there can be recovered, also beyond the target) and the reported
@@ -151,16 +153,30 @@ fn write_frames(
         } else {
             snap
         };
-        let mut files = Vec::with_capacity(2);
+        // Both files made (and their numbers checked) before either is written; a file of
+        // this frame written before a failure is removed.
+        let mut parts = Vec::with_capacity(2);
         let name = name_of(0, i, planned_width);
         let file = mesh.vtu(model, snap).finish_parts(&name)?;
         mesh.size.note(&file);
-        files.push(file.write_over(dir, &name)?);
+        parts.push((name, file));
         if pairs.m > 0 {
             let name = name_of(1, i, planned_width);
             let file = pairs.vtu(snap).finish_parts(&name)?;
             pairs.size.note(&file);
-            files.push(file.write_over(dir, &name)?);
+            parts.push((name, file));
+        }
+        let mut files = Vec::with_capacity(parts.len());
+        for (name, file) in &parts {
+            match file.write_over(dir, name) {
+                Ok(path) => files.push(path),
+                Err(e) => {
+                    for f in &files {
+                        let _ = std::fs::remove_file(f);
+                    }
+                    return Err(e);
+                }
+            }
         }
         Ok(Some(files))
     };
@@ -218,15 +234,25 @@ fn write_frames(
     let mut written = Vec::new();
     let mut k = 0usize;
     // In load order, a frame's number is never above its planned one: renaming in that order
-    // never meets a file of this run not yet renamed.
-    for (p, files) in made {
-        let Some(files) = files? else { continue };
-        for (part, file) in files.into_iter().enumerate() {
+    // never meets a file of this run not yet renamed. Should a rename fail, every file of
+    // this run is removed, as after a failed frame.
+    let mut frames = made
+        .into_iter()
+        .filter_map(|(p, files)| files.ok().flatten().map(|f| (p, f)));
+    while let Some((p, files)) = frames.next() {
+        for (part, file) in files.iter().enumerate() {
             let name = name_of(part, k, width);
             dataset(&mut pvd, p, part, &name);
             let to = dir.join(&name);
-            if file != to {
-                std::fs::rename(&file, &to)?;
+            if file != &to {
+                if let Err(e) = std::fs::rename(file, &to) {
+                    let rest = files[part..].iter().cloned();
+                    let later = frames.by_ref().flat_map(|(_, f)| f);
+                    for f in written.iter().cloned().chain(rest).chain(later) {
+                        let _ = std::fs::remove_file(f);
+                    }
+                    return Err(e);
+                }
             }
             written.push(to);
         }
@@ -1256,24 +1282,33 @@ impl Finished {
     /// (on the 1000-bearing beam, a quarter of the writers' waits); a frame rewritten by a
     /// second run is mostly the same size and keeps its blocks.
     fn write_over(&self, dir: &Path, name: &str) -> io::Result<PathBuf> {
-        use std::io::{IoSlice, Write as _};
         let path = dir.join(name);
-        let open = || {
-            std::fs::OpenOptions::new()
-                .write(true)
-                .create(true)
-                .truncate(false)
-                .open(&path)
-        };
-        // A file of an earlier run that may not be written (read-only) is replaced, as a
-        // file renamed over it would have been.
-        let mut f = match open() {
-            Err(e) if e.kind() == io::ErrorKind::PermissionDenied && path.is_file() => {
+        // What a file renamed over the old one would not have touched is replaced, not written
+        // through: a symbolic link, a file with other hard links (a snapshot made with
+        // `cp -al` or `rsync --link-dest`), a read-only file.
+        if let Ok(old) = std::fs::symlink_metadata(&path) {
+            if !old.is_dir() && (shared(&old) || old.permissions().readonly()) {
                 std::fs::remove_file(&path)?;
-                open()?
             }
-            r => r?,
-        };
+        }
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)?;
+        match self.write_into(&mut f) {
+            Ok(()) => Ok(path),
+            Err(e) => {
+                // Not a mix of this run's bytes and an earlier run's.
+                drop(f);
+                let _ = std::fs::remove_file(&path);
+                Err(e)
+            }
+        }
+    }
+
+    fn write_into(&self, f: &mut std::fs::File) -> io::Result<()> {
+        use std::io::{IoSlice, Write as _};
         // One system call for the parts where it takes them all: a page that two parts share
         // is then written whole, never read back from the device first.
         let mut parts = [
@@ -1294,8 +1329,18 @@ impl Finished {
         if f.metadata()?.len() != len {
             f.set_len(len)?;
         }
-        Ok(path)
+        Ok(())
     }
+}
+
+/// Whether the directory entry of `meta` is not the file's only name: a symbolic link, or a
+/// file with other hard links.
+fn shared(meta: &std::fs::Metadata) -> bool {
+    #[cfg(unix)]
+    let linked = std::os::unix::fs::MetadataExt::nlink(meta) > 1;
+    #[cfg(not(unix))]
+    let linked = false;
+    meta.file_type().is_symlink() || linked
 }
 
 /// Appends `values` to `raw` by `put`, −0 as 0 (as in the text); the first non-finite value.
@@ -1511,12 +1556,17 @@ mod block_tests {
             old.extend(std::iter::repeat_n(b'#', 5000));
             std::fs::write(dir.path().join(f.file_name().unwrap()), old).unwrap();
         }
-        // one of them read-only: replaced as a file renamed over it would be (a user that
-        // may write any file, such as root, writes it over)
-        let locked = dir.path().join("mesh_002.vtu");
+        // One of them read-only and one with a second name in a snapshot directory: both
+        // replaced, as files renamed over them would be (the new file not read-only, even for
+        // a user such as root who may write a read-only file; the snapshot not touched).
+        let locked = dir.path().join("mesh_000.vtu");
         let mut perms = std::fs::metadata(&locked).unwrap().permissions();
         perms.set_readonly(true);
         std::fs::set_permissions(&locked, perms).unwrap();
+        let snapshot = tempfile::tempdir().unwrap();
+        let kept_name = snapshot.path().join("pairs_003.vtu");
+        std::fs::hard_link(dir.path().join("pairs_003.vtu"), &kept_name).unwrap();
+        let kept_bytes = bytes(&kept_name);
         let lost = |i: usize| i % 3 == 1;
         let kept: Vec<usize> = (0..31).filter(|&i| !lost(i)).collect();
         let got = write_frames(&a, dir.path(), VtkFormat::Binary, 7, &lost).unwrap();
@@ -1533,9 +1583,38 @@ mod block_tests {
                 );
             }
         }
+        assert!(!std::fs::metadata(&locked).unwrap().permissions().readonly());
+        assert!(
+            bytes(&kept_name) == kept_bytes,
+            "the snapshot's file was written through"
+        );
         let pvd = String::from_utf8(bytes(got.last().unwrap())).unwrap();
         assert_eq!(pvd.matches("<DataSet").count(), 2 * kept.len());
         assert!(pvd.contains(&format!("file=\"pairs_{:03}.vtu\"", kept.len() - 1)));
         assert!(!pvd.contains(&format!("file=\"mesh_{:03}.vtu\"", kept.len())));
+    }
+
+    /// A frame that cannot be written (its name taken by a directory) fails the run, and every
+    /// file the run wrote is removed, the other part of that frame with them: no collection,
+    /// no frame of a half-made run.
+    #[test]
+    fn a_failed_write_leaves_no_file_of_the_run() {
+        let file =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/sheet-pile-wall.toml");
+        let unilateral_io::Problem::Structural(problem) =
+            unilateral_io::read_problem(&file).unwrap()
+        else {
+            panic!("a structural model");
+        };
+        let a = unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("pairs_005.vtu")).unwrap();
+        let e = write_frames(&a, dir.path(), VtkFormat::Binary, 7, &|_| false).unwrap_err();
+        assert!(!e.to_string().is_empty());
+        let left: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(left, ["pairs_005.vtu"], "{left:?}");
     }
 }

@@ -419,9 +419,9 @@ fn self_weight_on_an_inclined_frame_is_global() {
     close(mmax, 2.0 * 5.0 * 3.0 / 8.0, 1e-12);
 }
 
-/// A fixed-fixed beam under a uniform load given as six loads on its one element (more than
-/// the four a frame's recovery keeps on the stack; two of them triangular, in both frames and
-/// both groups): the textbook values of the uniform load, `M = −qL²/12` at the ends, `qL²/24`
+/// A fixed-fixed beam under a uniform load given as six loads on its one element (two of them
+/// triangular, in both frames and both groups), recovered once and again (the second time from
+/// the element's kept data): the textbook values of the uniform load, `M = −qL²/12` at the ends, `qL²/24`
 /// at midspan, `V = qL/2`, at every diagram sample `M(x) = q(6Lx − 6x² − L²)/12`.
 #[test]
 fn six_loads_on_one_frame_sum_as_one() {
@@ -480,7 +480,12 @@ fn six_loads_on_one_frame_sum_as_one() {
             },
         );
     }
-    let r = solve(&m, 1.0);
+    let c = m.condense().unwrap();
+    let first = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
+    let again = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
+    assert_eq!(first, again);
+    let r = first;
+    assert!(r.equilibrium.relative() < 1e-10, "{:?}", r.equilibrium);
     let dg = &r.lines[0].diagram;
     assert_eq!(dg.len(), 11);
     close(dg[0].m, -q * l * l / 12.0, 1e-12);
