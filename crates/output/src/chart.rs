@@ -36,7 +36,7 @@ pub fn end_load(sol: &ContactSolution) -> Option<f64> {
 
 /// The values the charts draw. With a tightening `c > 0` (the paper's procedure), the path
 /// as traced, with `c` in it ([`ContactSolution::traced_on_segments`]), at its breakpoints
-/// (above [`MAX_SAMPLES`], at that many spread evenly over them by their index): exact there,
+/// (above `MAX_SAMPLES` = 200, at that many spread evenly over them by their index): exact there,
 /// linear in between, and never mixed with values without the tightening. Without one, the
 /// same breakpoints are the solution of the problem at their loads (the start, every event),
 /// and the end (on a ray, a little beyond the last event) is evaluated on the path's last

@@ -19,8 +19,8 @@ pub const PATH_CSV: &str = "path.csv";
 /// Writes `pairs.csv`, `steps.csv` and `path.csv` into `dir` (created if needed), without
 /// units in the column names ([`write_contact_csv_with`]).
 ///
-/// A non-finite number in the solution is an error carrying a [`NonFiniteOutput`]
-/// ([`NonFiniteOutput::in_io_error`]), and then nothing is written; a solution that cannot be
+/// A non-finite number in the solution is an error carrying a [`NonFiniteOutput`](crate::NonFiniteOutput)
+/// ([`in_io_error`](crate::NonFiniteOutput::in_io_error)), and then nothing is written; a solution that cannot be
 /// evaluated at a breakpoint is an error carrying the [`unilateral_contact::ContactError`].
 pub fn write_contact_csv(
     sol: &ContactSolution,

@@ -33,7 +33,7 @@ fn header(s: &mut String, title: &str, about: &About) {
     }
 }
 
-/// How much a summary says: everything (`verbose`), or — for more than [`SUMMARY_PAIRS`]
+/// How much a summary says: everything (`verbose`), or — for more than [`SUMMARY_PAIRS`](crate::history::SUMMARY_PAIRS)
 /// pairs — counts of states, the first and last events, and the pairs with the largest forces
 /// and slips.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -1,7 +1,7 @@
 //! A tiny hand-written SVG writer: shapes, text, number formatting, nice ticks and colour maps.
 //!
 //! Text is written in one of two ways ([`TextMode`]), chosen once for every picture drawn
-//! through [`Svg`]: as strokes of the built-in font ([`font`](crate::font)), so that a
+//! through [`Svg`]: as strokes of the built-in font ([`font`]), so that a
 //! standalone `.svg` renders the same on a machine without any font (PNG conversion), or as
 //! real SVG `<text>`, which a browser shows in any script and which can be searched and
 //! copied (the pictures inside `report.html`). The mode is taken when a picture is started:
