@@ -279,12 +279,11 @@ impl Condensed {
 
         // element loads per element, in the model's order: one list with each element's range
         // (`start[e]..start[e + 1]`), not a vector per element
-        let element_of = load_element;
         // a stable sort keeps each element's loads in the model's order
         let mut by_element: Vec<(usize, f64, &Load)> = model
             .loads
             .iter()
-            .filter_map(|(g, l)| element_of(l).map(|e| (e, applied.case_factor[g.0], l)))
+            .filter_map(|(g, l)| load_element(l).map(|e| (e, applied.case_factor[g.0], l)))
             .collect();
         by_element.sort_by_key(|&(e, _, _)| e);
         let mut start = vec![0usize; model.elements.len() + 1];

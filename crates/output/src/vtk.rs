@@ -171,9 +171,7 @@ fn write_frames(
             match file.write_over(dir, name) {
                 Ok(path) => files.push(path),
                 Err(e) => {
-                    for f in &files {
-                        let _ = std::fs::remove_file(f);
-                    }
+                    remove_quietly(&files);
                     return Err(e);
                 }
             }
@@ -216,11 +214,7 @@ fn write_frames(
         made.push((0.0, make(0, &empty)));
     }
     if made.iter().any(|(_, r)| r.is_err()) {
-        for (_, f) in &made {
-            for f in f.iter().flatten().flatten() {
-                let _ = std::fs::remove_file(f);
-            }
-        }
+        remove_quietly(made.iter().flat_map(|(_, f)| f.iter().flatten().flatten()));
         return Err(made
             .into_iter()
             .find_map(|(_, r)| r.err())
@@ -248,9 +242,7 @@ fn write_frames(
                 if let Err(e) = std::fs::rename(file, &to) {
                     let rest = files[part..].iter().cloned();
                     let later = frames.by_ref().flat_map(|(_, f)| f);
-                    for f in written.iter().cloned().chain(rest).chain(later) {
-                        let _ = std::fs::remove_file(f);
-                    }
+                    remove_quietly(written.iter().cloned().chain(rest).chain(later));
                     return Err(e);
                 }
             }
@@ -262,6 +254,13 @@ fn write_frames(
     check_numbers(PVD_FILE, &pvd)?;
     written.push(write_file(dir, PVD_FILE, pvd.as_bytes())?);
     Ok(written)
+}
+
+/// Removes the files of a run that failed (a file already gone is no further failure).
+fn remove_quietly<P: AsRef<Path>>(files: impl IntoIterator<Item = P>) {
+    for f in files {
+        let _ = std::fs::remove_file(f);
+    }
 }
 
 /// Frames whose pairs are read from the path at once ([`FramePlan::blocks`]).
@@ -1477,12 +1476,8 @@ mod tests {
 mod block_tests {
     use super::*;
 
-    /// The frames' pairs are read from the path a block at a time: whatever the block, the
-    /// same files with the same bytes, the reported solution in its place among the frames
-    /// (the bundled sheet pile wall is traced past its target: events follow the reported
-    /// load), numbered in load order.
-    #[test]
-    fn the_frames_do_not_depend_on_the_block() {
+    /// The bundled sheet pile wall, analysed (traced past its target: 31 frames).
+    fn sheet_pile_wall() -> Analysis {
         let file =
             Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/sheet-pile-wall.toml");
         let unilateral_io::Problem::Structural(problem) =
@@ -1490,7 +1485,16 @@ mod block_tests {
         else {
             panic!("a structural model");
         };
-        let a = unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap();
+        unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap()
+    }
+
+    /// The frames' pairs are read from the path a block at a time: whatever the block, the
+    /// same files with the same bytes, the reported solution in its place among the frames
+    /// (the bundled sheet pile wall is traced past its target: events follow the reported
+    /// load), numbered in load order.
+    #[test]
+    fn the_frames_do_not_depend_on_the_block() {
+        let a = sheet_pile_wall();
         let plan = FramePlan::new(&a);
         let (_, _, at) = plan.reported.expect("a reported solution");
         assert!(
@@ -1537,14 +1541,7 @@ mod block_tests {
     /// same frame written alone into an empty directory; the collection names the new frames.
     #[test]
     fn a_second_run_rewrites_the_files_and_closes_up_lost_frames() {
-        let file =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/sheet-pile-wall.toml");
-        let unilateral_io::Problem::Structural(problem) =
-            unilateral_io::read_problem(&file).unwrap()
-        else {
-            panic!("a structural model");
-        };
-        let a = unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap();
+        let a = sheet_pile_wall();
         let fresh = tempfile::tempdir().unwrap();
         let whole = write_frames(&a, fresh.path(), VtkFormat::Binary, 7, &|_| false).unwrap();
         assert_eq!(whole.len(), 2 * 31 + 1);
@@ -1599,14 +1596,7 @@ mod block_tests {
     /// no frame of a half-made run.
     #[test]
     fn a_failed_write_leaves_no_file_of_the_run() {
-        let file =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/sheet-pile-wall.toml");
-        let unilateral_io::Problem::Structural(problem) =
-            unilateral_io::read_problem(&file).unwrap()
-        else {
-            panic!("a structural model");
-        };
-        let a = unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap();
+        let a = sheet_pile_wall();
         let dir = tempfile::tempdir().unwrap();
         std::fs::create_dir(dir.path().join("pairs_005.vtu")).unwrap();
         let e = write_frames(&a, dir.path(), VtkFormat::Binary, 7, &|_| false).unwrap_err();

@@ -533,24 +533,20 @@ fn kept_line_data_recover_as_a_first_recovery() {
         m.fix(n0);
         m.pin(n2);
         let e = unilateral_fem::ElementId;
+        let dist = |element: usize, start, end, frame| Load::Distributed {
+            element: e(element),
+            start,
+            end,
+            frame,
+        };
         let loads = [
             (
                 LoadGroup::Variable,
-                Load::Distributed {
-                    element: e(1),
-                    start: [0.0, -2.0],
-                    end: [1.0, -5.0],
-                    frame: LoadFrame::Global,
-                },
+                dist(1, [0.0, -2.0], [1.0, -5.0], LoadFrame::Global),
             ),
             (
                 LoadGroup::Constant,
-                Load::Distributed {
-                    element: e(0),
-                    start: [0.5, -1.0],
-                    end: [0.0, -3.0],
-                    frame: LoadFrame::Local,
-                },
+                dist(0, [0.5, -1.0], [0.0, -3.0], LoadFrame::Local),
             ),
             (
                 LoadGroup::Constant,
@@ -569,21 +565,11 @@ fn kept_line_data_recover_as_a_first_recovery() {
             ),
             (
                 LoadGroup::Variable,
-                Load::Distributed {
-                    element: e(2),
-                    start: [2.0, 0.0],
-                    end: [-1.0, 0.0],
-                    frame: LoadFrame::Local,
-                },
+                dist(2, [2.0, 0.0], [-1.0, 0.0], LoadFrame::Local),
             ),
             (
                 LoadGroup::Constant,
-                Load::Distributed {
-                    element: e(1),
-                    start: [0.0, 4.0],
-                    end: [0.0, 4.0],
-                    frame: LoadFrame::Local,
-                },
+                dist(1, [0.0, 4.0], [0.0, 4.0], LoadFrame::Local),
             ),
             (
                 LoadGroup::Variable,
