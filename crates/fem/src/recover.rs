@@ -4,7 +4,7 @@
 
 use crate::condense::Condensed;
 use crate::elements::frame::LinePrepared;
-use crate::elements::spring::{spring_force, spring_matrix};
+use crate::elements::spring::{spring_direction, spring_force, spring_matrix};
 use crate::elements::{element_stiffness, unit as element_unit, ElemMat, Recovered, Unit};
 use crate::error::FemError;
 use crate::model::{ElementId, Endpoint, Load};
@@ -30,6 +30,14 @@ struct Kept {
     /// A line element's recovery data for its element loads in the model's order (the order
     /// of [`Condensed::results_of`]'s loads of the element); `None` for other elements.
     lines: Vec<Option<LinePrepared>>,
+    /// Each spring's matrix and unit direction.
+    springs: Vec<(ElemMat, [f64; 2])>,
+    /// The element loads by element ([`ElementLoads`]).
+    loads: ElementLoads,
+    /// The model's size ([`model_size`]).
+    size: f64,
+    /// The number of line elements.
+    line_count: usize,
 }
 
 impl ElementCache {
@@ -40,29 +48,96 @@ impl ElementCache {
             return None;
         }
         Some(self.kept.get_or_init(|| {
-            let mut loads: Vec<Vec<&Load>> = vec![Vec::new(); model.elements.len()];
-            for (_, l) in &model.loads {
-                if let Some(e) = load_element(l).and_then(|e| loads.get_mut(e)) {
-                    e.push(l);
-                }
-            }
+            let loads = ElementLoads::new(model);
+            let lines: Vec<Option<LinePrepared>> = model
+                .elements
+                .iter()
+                .enumerate()
+                .map(|(e, el)| match element_unit(el) {
+                    Unit::Line(line) => {
+                        Some(line.prepare(model, loads.of(e).iter().map(|&li| &model.loads[li].1)))
+                    }
+                    _ => None,
+                })
+                .collect();
             Kept {
                 k: model
                     .elements
                     .iter()
                     .map(|el| element_stiffness(model, el))
                     .collect(),
-                lines: model
-                    .elements
+                line_count: lines.iter().flatten().count(),
+                lines,
+                springs: model
+                    .springs
                     .iter()
-                    .zip(&loads)
-                    .map(|(el, loads)| match element_unit(el) {
-                        Unit::Line(line) => Some(line.prepare(model, loads.iter().copied())),
-                        _ => None,
-                    })
+                    .map(|sp| (spring_matrix(sp), spring_direction(sp)))
                     .collect(),
+                loads,
+                size: model_size(model),
             }
         }))
+    }
+}
+
+/// The element loads of a model element by element, each element's in the model's order:
+/// one list of load indices with each element's range (`start[e]..start[e + 1]`).
+#[derive(Debug)]
+struct ElementLoads {
+    order: Vec<usize>,
+    start: Vec<usize>,
+}
+
+impl ElementLoads {
+    fn new(model: &crate::model::Model) -> Self {
+        // a stable sort keeps each element's loads in the model's order
+        let mut by_element: Vec<(usize, usize)> = model
+            .loads
+            .iter()
+            .enumerate()
+            .filter_map(|(li, (_, l))| load_element(l).map(|e| (e, li)))
+            .collect();
+        by_element.sort_by_key(|&(e, _)| e);
+        let mut start = vec![0usize; model.elements.len() + 1];
+        for &(e, _) in &by_element {
+            start[e + 1] += 1;
+        }
+        for e in 0..model.elements.len() {
+            start[e + 1] += start[e];
+        }
+        Self {
+            order: by_element.into_iter().map(|(_, li)| li).collect(),
+            start,
+        }
+    }
+
+    /// The indices of element `e`'s loads.
+    fn of(&self, e: usize) -> &[usize] {
+        &self.order[self.start[e]..self.start[e + 1]]
+    }
+}
+
+/// The model's size, the scale of moments against forces: its larger extent along x or y
+/// (1 for a model at one point).
+fn model_size(model: &crate::model::Model) -> f64 {
+    let extent = |c: usize| {
+        let (lo, hi) = model
+            .nodes
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
+                (a.0.min(p[c]), a.1.max(p[c]))
+            });
+        if hi >= lo {
+            hi - lo
+        } else {
+            0.0
+        }
+    };
+    let size = extent(0).max(extent(1));
+    if size > 0.0 {
+        size
+    } else {
+        1.0
     }
 }
 
@@ -277,36 +352,25 @@ impl Condensed {
             .map(|i| [u[3 * i], u[3 * i + 1], u[3 * i + 2]])
             .collect();
 
-        // element loads per element, in the model's order: one list with each element's range
-        // (`start[e]..start[e + 1]`), not a vector per element
-        // a stable sort keeps each element's loads in the model's order
-        let mut by_element: Vec<(usize, f64, &Load)> = model
-            .loads
-            .iter()
-            .filter_map(|(g, l)| load_element(l).map(|e| (e, applied.case_factor[g.0], l)))
-            .collect();
-        by_element.sort_by_key(|&(e, _, _)| e);
-        let mut start = vec![0usize; model.elements.len() + 1];
-        for &(e, _, _) in &by_element {
-            start[e + 1] += 1;
-        }
-        for e in 0..model.elements.len() {
-            start[e + 1] += start[e];
-        }
-        let element_loads: Vec<(f64, &Load)> =
-            by_element.into_iter().map(|(_, k, l)| (k, l)).collect();
-        let loads_of = |e: usize| &element_loads[start[e]..start[e + 1]];
+        let kept = self.element_k.get(model);
+        let formed_loads;
+        let element_loads = match kept {
+            Some(k) => &k.loads,
+            None => {
+                formed_loads = ElementLoads::new(model);
+                &formed_loads
+            }
+        };
 
         // residual r = K u − f, element by element
         let f = &applied.f;
         let mut r: Vec<f64> = f.iter().map(|v| -v).collect();
         // magnitude of the forces that meet at each DOF (the scale of its residual)
         let mut r_mag: Vec<f64> = f.iter().map(|v| v.abs()).collect();
-        let mut lines = Vec::new();
+        let mut lines = Vec::with_capacity(kept.map_or(0, |k| k.line_count));
         let mut planes = Vec::new();
         let mut stress_sum: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
         let mut stress_cnt = vec![0usize; nn];
-        let kept = self.element_k.get(model);
         // One buffer for every element's displacements (a path's frames recover thousands of
         // times).
         let mut ue: Vec<f64> = Vec::with_capacity(12);
@@ -328,13 +392,17 @@ impl Condensed {
                 r[em.dofs[a]] += fa;
                 r_mag[em.dofs[a]] += fa.abs();
             }
+            let loads = element_loads.of(ei);
+            let factor = |li: usize| applied.case_factor[model.loads[li].0 .0];
             let recovered = match kept.and_then(|k| k.lines[ei].as_ref()) {
-                Some(line) => line.recover(
-                    ElementId(ei),
-                    &ue,
-                    loads_of(ei).iter().map(|&(factor, _)| factor),
-                ),
-                None => unit.recover(model, ElementId(ei), &ue, loads_of(ei)),
+                Some(line) => line.recover(ElementId(ei), &ue, loads.iter().map(|&li| factor(li))),
+                None => {
+                    let loads: Vec<(f64, &Load)> = loads
+                        .iter()
+                        .map(|&li| (factor(li), &model.loads[li].1))
+                        .collect();
+                    unit.recover(model, ElementId(ei), &ue, &loads)
+                }
             };
             match recovered {
                 Recovered::Line(line) => lines.push(line),
@@ -349,17 +417,24 @@ impl Condensed {
                 }
             }
         }
-        let mut spring_forces = Vec::new();
+        let mut spring_forces = Vec::with_capacity(model.springs.len());
         let mut ground = [0.0; 3];
-        for sp in &model.springs {
-            let em = spring_matrix(sp);
+        for (si, sp) in model.springs.iter().enumerate() {
+            let formed;
+            let (em, d) = match kept {
+                Some(k) => (&k.springs[si].0, k.springs[si].1),
+                None => {
+                    formed = spring_matrix(sp);
+                    (&formed, spring_direction(sp))
+                }
+            };
             let n = em.dofs.len();
             for a in 0..n {
                 let fa = (0..n).map(|b| em.k[a * n + b] * u[em.dofs[b]]).sum::<f64>();
                 r[em.dofs[a]] += fa;
                 r_mag[em.dofs[a]] += fa.abs();
             }
-            spring_forces.push(spring_force(model, sp, &u, &mut ground));
+            spring_forces.push(spring_force(model, sp, d, &u, &mut ground));
         }
         // generalized residuals
         let mut res_i = vec![0.0; n_i];
@@ -449,21 +524,7 @@ impl Condensed {
             .map(|i| (stress_cnt[i] > 0).then(|| stress_sum[i].map(|v| v / stress_cnt[i] as f64)))
             .collect();
         // moment scale: forces times the model's size (its extent)
-        let extent = |c: usize| {
-            let (lo, hi) = model
-                .nodes
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-                    (a.0.min(p[c]), a.1.max(p[c]))
-                });
-            if hi >= lo {
-                hi - lo
-            } else {
-                0.0
-            }
-        };
-        let size = extent(0).max(extent(1));
-        let size = if size > 0.0 { size } else { 1.0 };
+        let size = kept.map_or_else(|| model_size(model), |k| k.size);
         // Relative residuals, each against forces (or moments) of its own units, so that they
         // do not depend on the units of the model: the largest residual at a free translation
         // over the largest force meeting at one (or the largest applied force, reaction or

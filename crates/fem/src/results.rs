@@ -86,8 +86,9 @@ pub struct LineResult {
     /// Forces exerted by the nodes on the element, local axes:
     /// `[N1, V1, M1, N2, V2, M2]` (axial, transverse, moment at start and end).
     pub end_forces: [f64; 6],
-    /// `N`, `Q`, `M` sampled at equal intervals along the element.
-    pub diagram: Vec<DiagramPoint>,
+    /// `N`, `Q`, `M` sampled at [`DIAGRAM_SAMPLES`] equal intervals along the element (a
+    /// fixed array: a path's frames recover every element thousands of times).
+    pub diagram: [DiagramPoint; DIAGRAM_SAMPLES],
 }
 
 /// Stresses in a plane element.

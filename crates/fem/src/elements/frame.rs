@@ -87,14 +87,24 @@ impl Line<'_> {
                 local: self
                     .equivalent_load_array(model, load)
                     .map(|(fe, _)| to_local_vec(&fe[..n], c, s)),
-                intensity: line_local_intensity(load, c, s)
-                    .map(|(q1, q2)| (q1, (q2[0] - q1[0]) / l, (q2[1] - q1[1]) / l)),
+                integrals: line_local_intensity(load, c, s).map(|(q1, q2)| {
+                    let (da, dt) = ((q2[0] - q1[0]) / l, (q2[1] - q1[1]) / l);
+                    std::array::from_fn(|i| {
+                        let x = sample_at(l, i);
+                        // ∫0^x q, ∫0^x q(x − s) ds for linear q
+                        [
+                            q1[0] * x + da * x * x / 2.0,
+                            q1[1] * x + dt * x * x / 2.0,
+                            q1[1] * x * x / 2.0 + dt * x.powi(3) / 6.0,
+                        ]
+                    })
+                }),
             })
             .collect();
         LinePrepared {
             k,
             n,
-            l,
+            samples: std::array::from_fn(|i| sample_at(l, i)),
             c,
             s,
             loads,
@@ -373,18 +383,26 @@ pub(crate) struct LinePrepared {
     /// Local stiffness after releases (`n × n` in the first entries).
     k: [f64; 36],
     n: usize,
-    l: f64,
+    /// The diagram's sample positions.
+    samples: [f64; DIAGRAM_SAMPLES],
     c: f64,
     s: f64,
     loads: Vec<PreparedLoad>,
 }
 
 /// One load of a prepared line element: its local equivalent nodal forces (per unit factor)
-/// and its local start intensities `[axial, transverse]` with their slopes along the element.
+/// and, for a load with intensities, at each of the diagram's samples `x` the integrals of its
+/// local intensities (per unit factor): `∫0^x q_axial`, `∫0^x q_transverse` and
+/// `∫0^x q_transverse(x − s) ds` — what each recovery multiplies by the load's factor.
 #[derive(Debug, Clone)]
 struct PreparedLoad {
     local: Option<[f64; 6]>,
-    intensity: Option<([f64; 2], f64, f64)>,
+    integrals: Option<[[f64; 3]; DIAGRAM_SAMPLES]>,
+}
+
+/// The `i`-th of the diagram's samples along an element of length `l`.
+fn sample_at(l: f64, i: usize) -> f64 {
+    l * i as f64 / (DIAGRAM_SAMPLES - 1) as f64
 }
 
 impl LinePrepared {
@@ -402,7 +420,7 @@ impl LinePrepared {
             "a factor for every prepared load of element {}",
             id.0
         );
-        let (k, n, l, c, s) = (&self.k, self.n, self.l, self.c, self.s);
+        let (k, n, c, s) = (&self.k, self.n, self.c, self.s);
         let ul = to_local_vec(ue, c, s);
         let mut fl = [0.0; 6];
         for (fc, load) in factors.clone().zip(&self.loads) {
@@ -421,27 +439,29 @@ impl LinePrepared {
         } else {
             [end[0], end[1], 0.0, end[2], end[3], 0.0]
         };
-        let intens = factors
-            .zip(&self.loads)
-            .filter_map(|(fc, load)| load.intensity.map(|(q1, da, dt)| (fc, q1, da, dt)));
-        let diagram = (0..DIAGRAM_SAMPLES)
-            .map(|i| {
-                let x = l * i as f64 / (DIAGRAM_SAMPLES - 1) as f64;
-                let (mut ia, mut it, mut im) = (0.0, 0.0, 0.0);
-                for (fc, q1, da, dt) in intens.clone() {
-                    // ∫0^x q, ∫0^x q(x − s) ds for linear q
-                    ia += fc * (q1[0] * x + da * x * x / 2.0);
-                    it += fc * (q1[1] * x + dt * x * x / 2.0);
-                    im += fc * (q1[1] * x * x / 2.0 + dt * x.powi(3) / 6.0);
+        let mut diagram = self.samples.map(|x| DiagramPoint {
+            s: x,
+            n: 0.0,
+            q: 0.0,
+            m: 0.0,
+        });
+        // The loads' integrals summed over the loads in their order, each times its factor
+        // (`n`, `q`, `m` hold the sums until the end forces are added).
+        for (fc, load) in factors.zip(&self.loads) {
+            if let Some(integrals) = &load.integrals {
+                for (d, g) in diagram.iter_mut().zip(integrals) {
+                    d.n += fc * g[0];
+                    d.q += fc * g[1];
+                    d.m += fc * g[2];
                 }
-                DiagramPoint {
-                    s: x,
-                    n: -end6[0] - ia,
-                    q: end6[1] + it,
-                    m: -end6[2] + end6[1] * x + im,
-                }
-            })
-            .collect();
+            }
+        }
+        for d in &mut diagram {
+            let (ia, it, im) = (d.n, d.q, d.m);
+            d.n = -end6[0] - ia;
+            d.q = end6[1] + it;
+            d.m = -end6[2] + end6[1] * d.s + im;
+        }
         Recovered::Line(LineResult {
             element: id,
             end_forces: end6,

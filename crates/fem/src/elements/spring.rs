@@ -58,7 +58,24 @@ pub(crate) fn spring_matrix(s: &Spring) -> ElemMat {
 /// The force (tension, elongation positive) or moment of a spring for the physical
 /// displacements `u`; adds the force the spring exerts on the structure from the ground (none
 /// between two nodes but a couple) to `ground` (`[Fx, Fy, M about the origin]`).
-pub(crate) fn spring_force(model: &Model, sp: &Spring, u: &[f64], ground: &mut [f64; 3]) -> f64 {
+/// The unit direction of a translational spring (`[0, 0]` for a rotational one): what
+/// [`spring_force`] takes, kept by a structure recovered at every frame of a path.
+pub(crate) fn spring_direction(sp: &Spring) -> [f64; 2] {
+    match sp.kind {
+        SpringKind::Translational { direction, .. } => unit(direction),
+        SpringKind::Rotational { .. } => [0.0; 2],
+    }
+}
+
+/// The force of spring `sp` (along its unit direction `d`, [`spring_direction`]) under the
+/// displacements `u`; adds the spring's forces on the ground to `ground`.
+pub(crate) fn spring_force(
+    model: &Model,
+    sp: &Spring,
+    d: [f64; 2],
+    u: &[f64],
+    ground: &mut [f64; 3],
+) -> f64 {
     let ua = |d: usize| match sp.a {
         Endpoint::Ground => 0.0,
         Endpoint::Node(a) => u[3 * a.0 + d],
@@ -66,12 +83,7 @@ pub(crate) fn spring_force(model: &Model, sp: &Spring, u: &[f64], ground: &mut [
     let b = sp.b.0;
     let pos = model.nodes[b];
     match sp.kind {
-        SpringKind::Translational {
-            direction,
-            stiffness,
-        } => {
-            let l = direction[0].hypot(direction[1]);
-            let d = [direction[0] / l, direction[1] / l];
+        SpringKind::Translational { stiffness, .. } => {
             let e = d[0] * (u[3 * b] - ua(0)) + d[1] * (u[3 * b + 1] - ua(1));
             let force = stiffness * e;
             let fb = [-force * d[0], -force * d[1]];

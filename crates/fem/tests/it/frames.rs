@@ -532,6 +532,20 @@ fn kept_line_data_recover_as_a_first_recovery() {
         m.add_bar(n0, n2, s);
         m.fix(n0);
         m.pin(n2);
+        // springs: their matrices and directions are kept too
+        m.add_spring(Spring {
+            a: Endpoint::Node(n0),
+            b: n1,
+            kind: SpringKind::Translational {
+                direction: [2.0, -3.0],
+                stiffness: 40.0,
+            },
+        });
+        m.add_spring(Spring {
+            a: Endpoint::Ground,
+            b: n1,
+            kind: SpringKind::Rotational { stiffness: 90.0 },
+        });
         let e = unilateral_fem::ElementId;
         let dist = |element: usize, start, end, frame| Load::Distributed {
             element: e(element),
@@ -596,6 +610,11 @@ fn kept_line_data_recover_as_a_first_recovery() {
     let first_other = fresh.recover(&LinkValues::bonded(&fresh, -1.3)).unwrap();
     assert_eq!(other, first_other);
     assert!(other != first, "the load moves the results");
+    assert!(
+        other.spring_forces.iter().all(|f| f.abs() > 1e-6),
+        "the springs carry force: {:?}",
+        other.spring_forces
+    );
     assert!(
         first.equilibrium.relative() < 1e-10,
         "{:?}",
