@@ -97,37 +97,54 @@ fn write_all(
         Ok(())
     };
     // Everything is evaluated once; each picture is drawn twice: with the stroke font for
-    // its standalone file (renders with no fonts), with real text inline in the HTML.
-    let samples = chart::samples(solution)?;
+    // its standalone file (renders with no fonts), with real text inline in the HTML. The
+    // path's two evaluations, and then the eight drawings, run side by side on the thread
+    // pool; each drawing sets its text mode on the thread that draws it.
+    let (samples, columns) = rayon::join(
+        || chart::samples(solution),
+        || chart::scheme_columns(solution),
+    );
+    let (samples, columns) = (samples?, columns?);
     let selected = chart::select(solution, &samples, options.pairs.as_deref());
-    let columns = chart::scheme_columns(solution)?;
     let draw = |mode: TextMode| {
-        svg::with_text_mode(mode, || {
-            let structure = match (model, analysis) {
-                (Some(m), Some(a)) => Some(structure_svg(m, a, options)),
-                _ => None,
-            };
-            DrawnPictures {
-                map: chart::scheme_map_svg(solution, &columns),
-                structure,
-                forces: chart::chart(
+        let chart = |kind: ChartKind| {
+            svg::with_text_mode(mode, || {
+                chart::chart(
                     solution,
                     &samples,
                     &selected,
-                    ChartKind::Forces,
+                    kind,
                     options.units.as_deref(),
-                ),
-                displacements: chart::chart(
-                    solution,
-                    &samples,
-                    &selected,
-                    ChartKind::Displacements,
-                    options.units.as_deref(),
-                ),
-            }
-        })
+                )
+            })
+        };
+        let ((map, structure), (forces, displacements)) = rayon::join(
+            || {
+                rayon::join(
+                    || svg::with_text_mode(mode, || chart::scheme_map_svg(solution, &columns)),
+                    || match (model, analysis) {
+                        (Some(m), Some(a)) => {
+                            Some(svg::with_text_mode(mode, || structure_svg(m, a, options)))
+                        }
+                        _ => None,
+                    },
+                )
+            },
+            || {
+                rayon::join(
+                    || chart(ChartKind::Forces),
+                    || chart(ChartKind::Displacements),
+                )
+            },
+        );
+        DrawnPictures {
+            map,
+            structure,
+            forces,
+            displacements,
+        }
     };
-    let files = draw(TextMode::Strokes);
+    let (files, inline) = rayon::join(|| draw(TextMode::Strokes), || draw(TextMode::Real));
     // Every picture is checked before any file is written (the inline ones draw the same
     // numbers).
     check_finite(SCHEME_MAP_SVG, &files.map)?;
@@ -143,7 +160,6 @@ fn write_all(
         put(STRUCTURE_SVG, s)?;
     }
     drop(files);
-    let inline = draw(TextMode::Real);
     let html = report_html(
         model,
         analysis,
