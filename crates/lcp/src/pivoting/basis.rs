@@ -7,11 +7,10 @@
 //! updates `K⁻¹` by a rank-one formula in `O(k²)`. `K⁻¹` is recomputed from the data by a
 //! fresh LU factorisation (`faer`) every few pivots and whenever its accuracy degrades.
 
-use faer::Mat;
 use rayon::prelude::*;
 
 use crate::pivoting::columns::Columns;
-use crate::pivoting::kernel::{lu_in_place, KernelInverse};
+use crate::pivoting::kernel::{KernelInverse, RefactorWork};
 use crate::pivoting::simd::{self, dot};
 
 /// Revised representation of a complementary basis.
@@ -34,6 +33,8 @@ pub(crate) struct Basis {
     kinv: KernelInverse,
     /// Changes so far ([`Basis::version`]).
     version: u64,
+    /// The refactorisations' memory.
+    work: RefactorWork,
 }
 
 /// The kernel matrix was numerically singular.
@@ -59,6 +60,7 @@ impl Basis {
             s_pos: vec![NONE; 2 * n + 1],
             kinv: KernelInverse::default(),
             version: 0,
+            work: RefactorWork::default(),
         }
     }
 
@@ -107,8 +109,12 @@ impl Basis {
         // the factors straight into the kernel inverse's buffer. At the refactorisation's peak
         // `K`'s factors, the old inverse's buffer and faer's scratch: three `k × k` matrices
         // instead of the five of `partial_piv_lu` and `inverse`.
-        let mut lu = Mat::<f64>::from_fn(k, k, |a, b| cols.entry(self.r_rows[a], self.s_cols[b]));
-        let (fwd, bwd) = lu_in_place(&mut lu);
+        // The kernel's copy and faer's scratch are kept from one refactorisation to the next.
+        let (r_rows, s_cols) = (&self.r_rows, &self.s_cols);
+        let (fwd, bwd) = self
+            .work
+            .lu_in_place(k, |a, b| cols.entry(r_rows[a], s_cols[b]));
+        let (lu, scratch) = self.work.factors(k);
         let perm = faer::perm::PermRef::new_checked(&fwd, &bwd, k);
         let umax = (0..k).map(|i| lu[(i, i)].abs()).fold(0.0f64, f64::max);
         let umin = (0..k)
@@ -118,7 +124,7 @@ impl Basis {
             return Err(SingularBasis);
         }
         // K⁻¹ has rows indexed like the columns of K (S) and columns like its rows (R).
-        self.kinv.assign_lu_inverse(lu.as_ref(), perm);
+        self.kinv.assign_lu_inverse(lu, perm, scratch);
         Ok(())
     }
 
@@ -670,6 +676,7 @@ fn add_columns(cols: &Columns, zcols: &[(usize, f64)], out: &mut [f64], offset: 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use faer::Mat;
     use std::sync::Arc;
 
     use crate::pivoting::columns::ColumnStore;

@@ -32,30 +32,110 @@ fn refactor_par() -> faer::Par {
 /// Columns per task of the parallel passes.
 pub(crate) const PARALLEL_BLOCK: usize = 64;
 
-/// `a` factorised in place by faer's LU with partial pivoting (`lu_in_place`, what
-/// `partial_piv_lu` runs on a copy before splitting it into separate `L` and `U`): the unit
-/// lower and upper factors in `a`, and the row permutation's forward and inverse indices for
-/// [`KernelInverse::assign_lu_inverse`].
+/// The memory of a refactorisation, kept between refactorisations: the kernel's `k × k` copy
+/// that is factorised in place and faer's scratch. A fresh allocation of each (tens of MB at
+/// k = 1500) was mapped from the system and faulted in page by page at every refactorisation
+/// (with the kernel inverse's growth, a tenth of the 1000-bearing beam's CPU as page faults).
+/// A clone starts empty: the memory is a cache, not a value.
+#[derive(Default)]
+pub(crate) struct RefactorWork {
+    lu: Vec<f64>,
+    scratch: Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
+}
+
+impl std::fmt::Debug for RefactorWork {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RefactorWork")
+            .field("lu", &self.lu.len())
+            .field(
+                "scratch",
+                &self.scratch.as_ref().map(|(req, _)| req.size_bytes()),
+            )
+            .finish()
+    }
+}
+
+impl Clone for RefactorWork {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl RefactorWork {
+    /// A `k × k` matrix (column major) filled by `entry`, factorised in place by faer's LU with
+    /// partial pivoting (`lu_in_place`, what `partial_piv_lu` runs on a copy before splitting
+    /// it into separate `L` and `U`): the unit lower and upper factors, and the row
+    /// permutation's forward and inverse indices for [`KernelInverse::assign_lu_inverse`].
+    /// The factors are read by [`RefactorWork::factors`].
+    pub fn lu_in_place(
+        &mut self,
+        k: usize,
+        entry: impl Fn(usize, usize) -> f64,
+    ) -> (Vec<usize>, Vec<usize>) {
+        use faer::dyn_stack::MemStack;
+        use faer::linalg::lu::partial_pivoting::factor;
+        let par = refactor_par();
+        let need = factor::lu_in_place_scratch::<usize, f64>(k, k, par, Default::default());
+        self.lu.clear();
+        self.lu.extend(
+            (0..k)
+                .flat_map(|b| (0..k).map(move |a| (a, b)))
+                .map(|(a, b)| entry(a, b)),
+        );
+        let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
+        let scratch = Self::scratch_of(&mut self.scratch, need);
+        factor::lu_in_place(
+            faer::MatMut::from_column_major_slice_mut(&mut self.lu[..], k, k),
+            &mut fwd,
+            &mut bwd,
+            par,
+            MemStack::new(scratch),
+            Default::default(),
+        );
+        (fwd, bwd)
+    }
+
+    /// The factors of the last [`RefactorWork::lu_in_place`] (of order `k`), and the scratch
+    /// for [`KernelInverse::assign_lu_inverse`].
+    pub fn factors(
+        &mut self,
+        k: usize,
+    ) -> (
+        faer::MatRef<'_, f64>,
+        &mut Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
+    ) {
+        (
+            faer::MatRef::from_column_major_slice(&self.lu[..k * k], k, k),
+            &mut self.scratch,
+        )
+    }
+
+    /// The scratch for a step that needs `need` (kept, grown when too small).
+    fn scratch_of(
+        kept: &mut Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
+        need: faer::dyn_stack::StackReq,
+    ) -> &mut faer::dyn_stack::MemBuffer {
+        // A buffer made for `have` serves `need` when it is as long and at least as aligned
+        // (its start is aligned to `have`'s alignment; `need`'s size assumes an aligned start).
+        let fits = |have: &faer::dyn_stack::StackReq| {
+            need.size_bytes() <= have.size_bytes() && need.align_bytes() <= have.align_bytes()
+        };
+        if !kept.as_ref().is_some_and(|(have, _)| fits(have)) {
+            let req = kept.take().map_or(need, |(have, _)| need.or(have));
+            *kept = Some((req, faer::dyn_stack::MemBuffer::new(req)));
+        }
+        &mut kept.as_mut().expect("scratch just made").1
+    }
+}
+
+/// `a` factorised in place by faer's LU with partial pivoting ([`RefactorWork::lu_in_place`]
+/// on a matrix of the caller's).
+#[cfg(test)]
 pub(crate) fn lu_in_place(a: &mut faer::Mat<f64>) -> (Vec<usize>, Vec<usize>) {
-    use faer::dyn_stack::{MemBuffer, MemStack};
-    use faer::linalg::lu::partial_pivoting::factor;
     let k = a.nrows();
-    let par = refactor_par();
-    let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
-    let mut scratch = MemBuffer::new(factor::lu_in_place_scratch::<usize, f64>(
-        k,
-        k,
-        par,
-        Default::default(),
-    ));
-    factor::lu_in_place(
-        a.as_mut(),
-        &mut fwd,
-        &mut bwd,
-        par,
-        MemStack::new(&mut scratch),
-        Default::default(),
-    );
+    let mut work = RefactorWork::default();
+    let (fwd, bwd) = work.lu_in_place(k, |i, j| a[(i, j)]);
+    a.copy_from(work.factors(k).0);
     (fwd, bwd)
 }
 
@@ -75,21 +155,22 @@ impl KernelInverse {
         &mut self,
         lu: faer::MatRef<'_, f64>,
         perm: faer::perm::PermRef<'_, usize>,
+        scratch: &mut Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
     ) {
-        use faer::dyn_stack::{MemBuffer, MemStack};
+        use faer::dyn_stack::MemStack;
         use faer::linalg::lu::partial_pivoting::inverse;
         let k = lu.nrows();
         self.reserve(k);
         let par = refactor_par();
-        let mut scratch = MemBuffer::new(inverse::inverse_scratch::<usize, f64>(k, par));
+        let scratch =
+            RefactorWork::scratch_of(scratch, inverse::inverse_scratch::<usize, f64>(k, par));
         let out = faer::MatMut::from_column_major_slice_with_stride_mut(
             &mut self.data[..],
             k,
             k,
             self.ld,
         );
-        inverse::inverse(out, lu, lu, perm, par, MemStack::new(&mut scratch));
-        drop(scratch);
+        inverse::inverse(out, lu, lu, perm, par, MemStack::new(scratch));
         let mut gmax = 0.0f64;
         for b in 0..k {
             for v in &self.data[b * self.ld..b * self.ld + k] {
@@ -460,6 +541,7 @@ mod tests {
         g.assign_lu_inverse(
             lu.as_ref(),
             faer::perm::PermRef::new_checked(&fwd, &bwd, a.nrows()),
+            &mut None,
         );
         g
     }
@@ -569,16 +651,19 @@ mod tests {
     #[test]
     fn in_place_inverse_is_faers() {
         let mut g = KernelInverse::default();
+        // one workspace for every order, as a basis keeps it: its memory, left from a larger
+        // or smaller order, never shows in the factors
+        let mut work = RefactorWork::default();
         for k in [1usize, 2, 7, 33, 130, 300, 520, 64, 5] {
             let a = Mat::<f64>::from_fn(k, k, |i, j| {
                 ((i * 31 + j * 17 + k) as f64).sin() + if i == j { 0.5 } else { 0.0 }
             });
             let want = a.partial_piv_lu().inverse();
             // factorised by what `Basis::refactor` runs
-            let mut lu = a.clone();
-            let (fwd, bwd) = lu_in_place(&mut lu);
+            let (fwd, bwd) = work.lu_in_place(k, |i, j| a[(i, j)]);
+            let (lu, scratch) = work.factors(k);
             let perm = faer::perm::PermRef::new_checked(&fwd, &bwd, k);
-            g.assign_lu_inverse(lu.as_ref(), perm);
+            g.assign_lu_inverse(lu, perm, scratch);
             assert_eq!(g.k, k);
             let mut gmax = 0.0f64;
             for j in 0..k {
