@@ -775,9 +775,13 @@ struct PairGeometry {
     point_sign: Vec<f64>,
     /// `<Points>` and `<Cells>`.
     grid: Body,
+    /// The points' pair numbers (the last point array of a frame with results).
+    point_ids: Body,
+    /// The cells' normals, tangents, friction coefficients and pair numbers (the last cell
+    /// arrays).
+    cell_constants: Body,
     normals: Vec<[f64; 2]>,
     tangents: Vec<[f64; 2]>,
-    friction: Vec<f64>,
     /// The largest file made so far.
     size: Size,
 }
@@ -829,11 +833,32 @@ impl PairGeometry {
         int_array(&mut grid, "UInt8", "types", types);
         grid.push_str("      </Cells>\n");
         let c = &a.condensed;
-        let pad = |v: &[[f64; 2]]| {
+        let pad = |v: &[[f64; 2]]| -> Vec<[f64; 2]> {
             (0..m)
                 .map(|i| v.get(i).copied().unwrap_or([0.0; 2]))
                 .collect()
         };
+        let normals = pad(&c.normals);
+        let tangents = pad(&c.tangents);
+        // The arrays that are the same in every frame, made once.
+        let mut point_ids = Body::new(format);
+        int_array(
+            &mut point_ids,
+            "Int64",
+            "pair",
+            point_pair.iter().map(|&i| i as i64),
+        );
+        let mut cell_constants = Body::new(format);
+        let v3 = |v: &[f64; 2]| [v[0], v[1], 0.0];
+        f64_array(&mut cell_constants, "normal", &[], normals.iter().map(v3));
+        f64_array(&mut cell_constants, "tangent", &[], tangents.iter().map(v3));
+        f64_array(
+            &mut cell_constants,
+            "friction",
+            &[],
+            (0..m).map(|i| [c.friction.get(i).copied().unwrap_or(0.0)]),
+        );
+        int_array(&mut cell_constants, "Int64", "pair", 0..m as i64);
         Self {
             m,
             n_points: point_node.len(),
@@ -841,11 +866,10 @@ impl PairGeometry {
             point_pair,
             point_sign,
             grid,
-            normals: pad(&c.normals),
-            tangents: pad(&c.tangents),
-            friction: (0..m)
-                .map(|i| c.friction.get(i).copied().unwrap_or(0.0))
-                .collect(),
+            point_ids,
+            cell_constants,
+            normals,
+            tangents,
             size: Size::default(),
         }
     }
@@ -901,12 +925,7 @@ impl PairGeometry {
             f64_array(&mut s, "x_t", &[], per_point(|r| r.x_t));
             f64_array(&mut s, "z_n", &[], per_point(|r| r.z_n));
             f64_array(&mut s, "z_t", &[], per_point(|r| r.z_t));
-            int_array(
-                &mut s,
-                "Int64",
-                "pair",
-                self.point_pair.iter().map(|&i| i as i64),
-            );
+            s.append(&self.point_ids);
             s.push_str("      </PointData>\n");
         }
         s.append(&self.grid);
@@ -929,11 +948,7 @@ impl PairGeometry {
                 pairs.iter().enumerate().map(|(i, r)| self.force(i, r)),
             );
         }
-        let v3 = |v: &[f64; 2]| [v[0], v[1], 0.0];
-        f64_array(&mut s, "normal", &[], self.normals.iter().map(v3));
-        f64_array(&mut s, "tangent", &[], self.tangents.iter().map(v3));
-        f64_array(&mut s, "friction", &[], self.friction.iter().map(|&f| [f]));
-        int_array(&mut s, "Int64", "pair", 0..self.m as i64);
+        s.append(&self.cell_constants);
         s.push_str("      </CellData>\n");
         s.push_str(FOOTER);
         s
