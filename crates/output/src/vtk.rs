@@ -266,6 +266,28 @@ fn remove_quietly<P: AsRef<Path>>(files: impl IntoIterator<Item = P>) {
 /// Frames whose pairs are read from the path at once ([`FramePlan::blocks`]).
 const VTK_BLOCK: usize = 256;
 
+/// The ends of the blocks of `n` frames read at most `size` at a time: a first block of an
+/// eighth of `size` (its product is formed before any frame is made, while the other threads
+/// wait; each later one while the frames of the one before are made), then blocks of equal
+/// size (within one). Never a lone frame among more: the product of one column is formed by
+/// another kernel than that of many, whose sums may differ in their last bits.
+fn block_ends(n: usize, size: usize) -> Vec<usize> {
+    let size = size.max(2);
+    let first = (size / 8).max(2);
+    if n <= first + 1 {
+        return vec![n];
+    }
+    let rest = n - first;
+    let blocks = rest.div_ceil(size).min(rest / 2);
+    let mut ends = vec![first];
+    let mut end = first;
+    for b in 0..blocks {
+        end += rest / blocks + usize::from(b < rest % blocks);
+        ends.push(end);
+    }
+    ends
+}
+
 /// [`write_vtk`] for a caller that holds the model apart: `model` must be the model `analysis`
 /// was made from; a model whose node, element or pair counts do not match gives an
 /// [`io::ErrorKind::InvalidInput`] error. The analysis knows its model: prefer [`write_vtk`].
@@ -460,17 +482,14 @@ impl<'a> FramePlan<'a> {
     fn blocks(&self, a: &'a Analysis, size: usize) -> impl Iterator<Item = Vec<Snapshot<'a>>> + '_ {
         let n = self.frames.len();
         let at = self.reported.map_or(n + 1, |(_, _, at)| at);
-        // Blocks of equal size (within one), never a lone frame after full blocks: the product
-        // of one column is formed by another kernel than that of many, whose sums may differ
-        // in their last bits.
-        let size = n.div_ceil(n.div_ceil(size.max(1)).max(1)).max(1);
+        let mut ends = block_ends(n, size).into_iter();
         let mut start = 0usize;
         let mut reported_done = self.reported.is_none();
         std::iter::from_fn(move || {
             if start >= n && reported_done {
                 return None;
             }
-            let end = (start + size).min(n);
+            let end = ends.next().unwrap_or(n);
             let part = &self.frames[start..end];
             let loads: Vec<f64> = part.iter().map(|f| f.0).collect();
             let at_loads = || -> Vec<Option<Vec<PairResult>>> {
@@ -1501,6 +1520,29 @@ mod block_tests {
             panic!("a structural model");
         };
         unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap()
+    }
+
+    /// The blocks of frames cover every frame once, in order: a small first one, then blocks
+    /// of at most the size asked (within one of each other), none of one frame among more.
+    #[test]
+    fn blocks_cover_the_frames_without_a_lone_frame() {
+        assert_eq!(block_ends(624, 256), vec![32, 230, 427, 624]);
+        assert_eq!(block_ends(31, 256), vec![31]);
+        assert_eq!(block_ends(40, 256), vec![32, 40]);
+        assert_eq!(block_ends(0, 256), vec![0]);
+        for size in [1, 2, 3, 5, 16, 256] {
+            for n in 0..600 {
+                let ends = block_ends(n, size);
+                assert_eq!(ends.last(), Some(&n), "n {n}, size {size}");
+                let mut start = 0;
+                for &e in &ends {
+                    let len = e - start;
+                    assert!(len >= 2 || n < 2, "n {n}, size {size}: {ends:?}");
+                    assert!(len <= size.max(2) + 1, "n {n}, size {size}: {ends:?}");
+                    start = e;
+                }
+            }
+        }
     }
 
     /// The frames' pairs are read from the path a block at a time: whatever the block, the
