@@ -486,8 +486,7 @@ impl ContactSolution {
         let w = faer::Mat::from_fn(m, k, |i, j| {
             (zs[j][m + i] * down - zs[j][2 * m + i] * down) / 2.0
         });
-        let normal = product(&zone.rnn, &zn) + product(&zone.rnt, &w);
-        let tangential = product(&zone.rtn, &zn) + product(&zone.rtt, &w);
+        let (normal, tangential) = zone_products(zone, &zn, &w);
         let (fs, ds) = (
             self.engine.units.user_force(1.0),
             self.engine.units.user_displacement(1.0),
@@ -649,16 +648,60 @@ fn pair_results_scaled(
         .collect()
 }
 
+/// Columns of the traced values formed by one task ([`zone_products`]): a fixed number, so
+/// that the tasks, and the bits, do not depend on the number of threads.
+const PRODUCT_COLUMNS: usize = 32;
+
+/// `(R_nn·Z_n + R_nt·W, R_tn·Z_n + R_tt·W)`, a task of [`PRODUCT_COLUMNS`] columns at a time
+/// on the thread pool (the last task takes the remainder, never a lone column after others:
+/// faer forms the product with one column by another kernel, whose sums may differ in their
+/// last bits). A column's sums are those of the product with its task's columns.
+fn zone_products(
+    zone: &ContactZone,
+    zn: &faer::Mat<f64>,
+    w: &faer::Mat<f64>,
+) -> (faer::Mat<f64>, faer::Mat<f64>) {
+    use rayon::prelude::*;
+    let (m, k) = (zn.nrows(), zn.ncols());
+    let mut starts: Vec<usize> = (0..k).step_by(PRODUCT_COLUMNS).collect();
+    if starts.len() > 1 && k - starts[starts.len() - 1] == 1 {
+        starts.pop();
+    }
+    let parts: Vec<(usize, faer::Mat<f64>, faer::Mat<f64>)> = starts
+        .par_iter()
+        .enumerate()
+        .map(|(i, &a)| {
+            let b = starts.get(i + 1).copied().unwrap_or(k);
+            let (zc, wc) = (zn.as_ref().subcols(a, b - a), w.as_ref().subcols(a, b - a));
+            (
+                a,
+                product(zone.rnn.as_ref(), zc) + product(zone.rnt.as_ref(), wc),
+                product(zone.rtn.as_ref(), zc) + product(zone.rtt.as_ref(), wc),
+            )
+        })
+        .collect();
+    let mut normal = faer::Mat::zeros(m, k);
+    let mut tangential = faer::Mat::zeros(m, k);
+    for (a, nc, tc) in parts {
+        normal.as_mut().subcols_mut(a, nc.ncols()).copy_from(&nc);
+        tangential
+            .as_mut()
+            .subcols_mut(a, tc.ncols())
+            .copy_from(&tc);
+    }
+    (normal, tangential)
+}
+
 /// `a·b` on one thread, whatever faer's global parallelism: faer's parallel product of a matrix
 /// and one column splits the sums by thread, so its last bits would depend on the number of
 /// threads (a block of breakpoints with one step, m ≥ 256).
-fn product(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> faer::Mat<f64> {
+fn product(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> faer::Mat<f64> {
     let mut out = faer::Mat::zeros(a.nrows(), b.ncols());
     faer::linalg::matmul::matmul(
         out.as_mut(),
         faer::Accum::Replace,
-        a.as_ref(),
-        b.as_ref(),
+        a,
+        b,
         1.0,
         faer::Par::Seq,
     );

@@ -201,3 +201,47 @@ fn traced_forces_from_the_blocks_are_those_of_the_dense_lcp() {
     }
     assert!(checked > 30, "{checked} points");
 }
+
+/// The traced values at many points are formed in tasks of a fixed number of columns on the
+/// thread pool: asked all at once (several tasks, a remainder), in pairs, or in a different
+/// order, every point's values are the same, bit for bit, and each is that of its own point
+/// (the columns of the tasks put back in their places).
+#[test]
+fn traced_values_do_not_depend_on_the_points_asked_with_them() {
+    let zone = beam_on_supports(120, 5);
+    let settings = SolveSettings {
+        follow: Follow::ToEnd,
+        tightening: 1.0,
+        ..Default::default()
+    };
+    let sol = solve(&zone, &settings).unwrap();
+    let segments = sol.steps.len();
+    assert!(segments > 70, "a path of {segments} steps: several tasks");
+    let points: Vec<(usize, f64)> = (0..segments)
+        .map(|k| (k, [0.0, 0.25, 0.5][k % 3]))
+        .collect();
+    let bits = |r: &unilateral_contact::PairResult| [r.x_n, r.x_t, r.z_n, r.z_t].map(f64::to_bits);
+    let all = sol.traced_on_segments(&points).unwrap();
+    assert_eq!(all.len(), points.len());
+    let reversed: Vec<(usize, f64)> = points.iter().rev().copied().collect();
+    let back = sol.traced_on_segments(&reversed).unwrap();
+    for (i, pair) in points.chunks(2).enumerate() {
+        let two = sol.traced_on_segments(pair).unwrap();
+        for (j, got) in two.iter().enumerate() {
+            let k = 2 * i + j;
+            let (want, rev) = (&all[k], &back[points.len() - 1 - k]);
+            match (got, want, rev) {
+                (Some((p, g)), Some((q, w)), Some((r, v))) => {
+                    assert_eq!((p.to_bits(), q.to_bits()), (q.to_bits(), r.to_bits()));
+                    for ((a, b), c) in g.iter().zip(w).zip(v) {
+                        assert_eq!(bits(a), bits(b), "point {k}, pair {}", a.name);
+                        assert_eq!(bits(a), bits(c), "point {k}, pair {}", a.name);
+                        assert_eq!(a.state, b.state);
+                    }
+                }
+                (None, None, None) => {}
+                other => panic!("point {k}: {other:?}"),
+            }
+        }
+    }
+}
