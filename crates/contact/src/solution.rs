@@ -390,6 +390,28 @@ impl ContactSolution {
         &self,
         at: &[(usize, f64)],
     ) -> Result<Vec<Option<(f64, Vec<PairResult>)>>, ContactError> {
+        self.traced_points(at, &self.engine.names)
+    }
+
+    /// [`ContactSolution::traced_on_segments`] with every pair's `name` left empty: for a
+    /// caller that knows the pairs by their place (pair `i` is `zone().pair_names[i]`) and asks
+    /// for many points (a name is an allocation a pair a point: at the 300-bearing beam's 622
+    /// breakpoints, a tenth of its tables' CPU).
+    #[allow(clippy::type_complexity)]
+    pub fn traced_on_segments_unnamed(
+        &self,
+        at: &[(usize, f64)],
+    ) -> Result<Vec<Option<(f64, Vec<PairResult>)>>, ContactError> {
+        self.traced_points(at, &[])
+    }
+
+    /// The traced points with the pairs named by `names` (empty: unnamed).
+    #[allow(clippy::type_complexity)]
+    fn traced_points(
+        &self,
+        at: &[(usize, f64)],
+        names: &[String],
+    ) -> Result<Vec<Option<(f64, Vec<PairResult>)>>, ContactError> {
         let bps = &self.path.breakpoints;
         let n = 3 * self.pairs();
         let mut loads = Vec::new();
@@ -525,16 +547,16 @@ impl ContactSolution {
                     x[2 * m + i] = -x_t;
                 }
             }
-            let pairs = pair_results_scaled(&x, &zs[j], &self.engine.names, fs, ds);
-            if let Some(r) = pairs
+            let pairs = pair_results_scaled(&x, &zs[j], names, fs, ds);
+            if let Some(i) = pairs
                 .iter()
-                .find(|r| ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()))
+                .position(|r| ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()))
             {
                 return Err(ContactError::OutOfRange(format!(
                     "the forces and displacements of pair {} on the traced path at p = {p} \
                      exceed the floating-point range (about 1.8e308): express the model in \
                      other units",
-                    r.name
+                    self.engine.names.get(i).map_or("?", String::as_str)
                 )));
             }
             out.push(Some((p, pairs)));
@@ -604,6 +626,7 @@ pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
 /// Pair results with round-off judged relative to `max(‖x‖∞, force_scale)` for forces and
 /// `max(‖z‖∞, displacement_scale)` for displacements: a normal force of `4e-16` in a zone whose
 /// loads are of order one is round-off of zero, and the pair is open (touching), not stuck.
+/// The pairs are named by `names` (left unnamed where it has no name: empty for all).
 fn pair_results_scaled(
     x: &[f64],
     z: &[f64],
@@ -611,7 +634,7 @@ fn pair_results_scaled(
     force_scale: f64,
     displacement_scale: f64,
 ) -> Vec<PairResult> {
-    let m = names.len();
+    let m = x.len() / 3;
     let xmax = x.iter().fold(force_scale, |a, b| a.max(b.abs()));
     let zmax = z.iter().fold(displacement_scale, |a, b| a.max(b.abs()));
     let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
@@ -637,7 +660,7 @@ fn pair_results_scaled(
                 x_t
             };
             PairResult {
-                name: names[i].clone(),
+                name: names.get(i).cloned().unwrap_or_default(),
                 x_n,
                 x_t,
                 z_n,

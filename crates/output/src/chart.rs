@@ -644,7 +644,8 @@ pub fn scheme_columns(sol: &ContactSolution) -> Result<Vec<SchemeColumn>, Contac
         .collect();
     let m = sol.pairs();
     let mut out = Vec::with_capacity(segs.len());
-    for (&(k, fin, p_from, p_to), v) in segs.iter().zip(sol.traced_on_segments(&at)?) {
+    // Only the states are read: the pairs unnamed.
+    for (&(k, fin, p_from, p_to), v) in segs.iter().zip(sol.traced_on_segments_unnamed(&at)?) {
         let Some((_, pairs)) = v else { continue };
         let mut states: Vec<PairState> = pairs.iter().map(|r| r.state).collect();
         if fin {

@@ -106,7 +106,9 @@ pub fn write_contact_csv_with(
         let mut out = std::io::BufWriter::new(std::fs::File::create(&part)?);
         out.write_all(path.as_bytes())?;
         let mut io_error = None;
-        breakpoint_blocks(sol, |steps, block| {
+        // The pairs named by their place (the breakpoints' own names left empty).
+        let names = &sol.zone().pair_names;
+        breakpoint_blocks(sol, false, |steps, block| {
             // Formatting the numbers is most of this file's time: each step's rows are
             // formatted on the thread pool, then written in order (the same bytes).
             use rayon::prelude::*;
@@ -127,7 +129,7 @@ pub fn write_contact_csv_with(
                         rows.push(',');
                         push_int(&mut rows, i as i64 + 1);
                         rows.push(',');
-                        push_csv_field(&mut rows, &p.name);
+                        push_csv_field(&mut rows, names.get(i).map_or("", String::as_str));
                         for v in [p.x_n, p.x_t, p.z_n, p.z_t] {
                             rows.push(',');
                             push_full(&mut rows, v);

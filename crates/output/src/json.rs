@@ -139,7 +139,7 @@ pub(crate) fn breakpoint_pairs(
     sol: &ContactSolution,
 ) -> Result<Vec<Option<Vec<PairResult>>>, PathOutputError> {
     let mut out = Vec::with_capacity(sol.steps.len());
-    breakpoint_blocks(sol, |_, block| {
+    breakpoint_blocks(sol, true, |_, block| {
         out.extend(block);
         Ok(())
     })?;
@@ -156,8 +156,12 @@ pub(crate) fn breakpoint_pairs(
 /// every breakpoint (which cost far more than the path); each block of [`BREAKPOINT_BLOCK`]
 /// breakpoints is formed, handed over and dropped, so a writer that streams holds no more
 /// than one block.
+///
+/// With `named` false the pairs' names are left empty (pair `i` is `sol.zone().pair_names[i]`):
+/// a writer that names the pairs by their place saves an allocation a pair a breakpoint.
 pub(crate) fn breakpoint_blocks(
     sol: &ContactSolution,
+    named: bool,
     mut f: impl FnMut(&[LoadStep], Vec<Option<Vec<PairResult>>>) -> Result<(), PathOutputError>,
 ) -> Result<(), PathOutputError> {
     let check = |steps: &[LoadStep],
@@ -187,7 +191,12 @@ pub(crate) fn breakpoint_blocks(
     // tightening is evaluated at the steps' loads instead, as its reported solution was.
     for block in sol.steps.chunks(BREAKPOINT_BLOCK) {
         let points: Vec<(usize, f64)> = block.iter().map(|st| (st.index, 0.0)).collect();
-        let at = match sol.traced_on_segments(&points) {
+        let traced = if named {
+            sol.traced_on_segments(&points)
+        } else {
+            sol.traced_on_segments_unnamed(&points)
+        };
+        let at = match traced {
             Err(unilateral_contact::ContactError::OutOfRange(_)) if sol.tightening == 0.0 => {
                 let loads: Vec<f64> = block.iter().map(|s| s.p).collect();
                 sol.at_many(&loads)?
@@ -457,7 +466,7 @@ impl serde::Serialize for StepsWithPairs<'_> {
         let mut seq = s.serialize_seq(Some(steps.len()))?;
         let mut failed: Option<S::Error> = None;
         let mut k = 0usize;
-        let formed = breakpoint_blocks(self.sol, |_, block| {
+        let formed = breakpoint_blocks(self.sol, true, |_, block| {
             for pairs in block {
                 let step = StepWithPairs {
                     step: steps.get(k).unwrap_or(&Value::Null),

@@ -502,7 +502,8 @@ impl<'a> FramePlan<'a> {
                 Vec::new()
             } else if self.from_breakpoints {
                 let points: Vec<(usize, f64)> = part.iter().map(|&(_, k)| (k, 0.0)).collect();
-                match a.solution.traced_on_segments(&points) {
+                // The frames read the pairs by their place: unnamed.
+                match a.solution.traced_on_segments_unnamed(&points) {
                     Ok(v) => v.into_iter().map(|x| x.map(|(_, pairs)| pairs)).collect(),
                     Err(_) => at_loads(),
                 }

@@ -223,6 +223,19 @@ fn traced_values_do_not_depend_on_the_points_asked_with_them() {
     let bits = |r: &unilateral_contact::PairResult| [r.x_n, r.x_t, r.z_n, r.z_t].map(f64::to_bits);
     let all = sol.traced_on_segments(&points).unwrap();
     assert_eq!(all.len(), points.len());
+    // unnamed: the same values and states, the names left empty
+    let unnamed = sol.traced_on_segments_unnamed(&points).unwrap();
+    for (a, u) in all.iter().zip(&unnamed) {
+        let (Some((p, a)), Some((q, u))) = (a, u) else {
+            assert!(a.is_none() && u.is_none());
+            continue;
+        };
+        assert_eq!(p.to_bits(), q.to_bits());
+        for ((x, y), name) in a.iter().zip(u).zip(&zone.pair_names) {
+            assert_eq!((bits(x), x.state), (bits(y), y.state));
+            assert_eq!((&x.name, y.name.as_str()), (name, ""));
+        }
+    }
     let reversed: Vec<(usize, f64)> = points.iter().rev().copied().collect();
     let back = sol.traced_on_segments(&reversed).unwrap();
     for (i, pair) in points.chunks(2).enumerate() {
