@@ -2299,3 +2299,59 @@ fn pictures_carry_the_files_units() {
     let forces = std::fs::read_to_string(plain.path("r/load-path-forces.svg")).unwrap();
     assert!(forces.contains("x_n (normal force") && !forces.contains("x_n ["));
 }
+
+/// The tables and the report are written over an earlier run's files in place: a second run
+/// into a directory whose `path.csv` is longer than the new one, whose `pairs.csv` is a
+/// symbolic link and whose `report.html` is read-only gives, byte for byte, the files of a run
+/// into an empty directory, and the file the link named keeps its bytes.
+#[cfg(unix)]
+#[test]
+fn tables_and_report_are_written_over_an_earlier_runs_files() {
+    let cmd = TestCommand::new(&["solve"]);
+    let (file, _) = beam_zone_file(cmd.dir.path(), 4, 3);
+    let run = |csv: &str, rep: &str| {
+        let out = Command::new(env!("CARGO_BIN_EXE_unilateral"))
+            .arg("solve")
+            .arg(&file)
+            .args(["--csv", csv, "--report", rep])
+            .current_dir(cmd.dir.path())
+            .output()
+            .expect("run unilateral");
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run("fresh_csv", "fresh_rep");
+    std::fs::create_dir_all(cmd.path("csv")).unwrap();
+    std::fs::create_dir_all(cmd.path("rep")).unwrap();
+    std::fs::write(cmd.path("csv/path.csv"), vec![b'x'; 1 << 20]).unwrap();
+    let other = cmd.path("other.txt");
+    std::fs::write(&other, b"not a table").unwrap();
+    std::os::unix::fs::symlink(&other, cmd.path("csv/pairs.csv")).unwrap();
+    std::fs::write(cmd.path("rep/report.html"), b"old").unwrap();
+    let mut ro = std::fs::metadata(cmd.path("rep/report.html"))
+        .unwrap()
+        .permissions();
+    ro.set_readonly(true);
+    std::fs::set_permissions(cmd.path("rep/report.html"), ro).unwrap();
+    run("csv", "rep");
+    for (a, b) in [("fresh_csv", "csv"), ("fresh_rep", "rep")] {
+        let mut names: Vec<_> = std::fs::read_dir(cmd.path(a))
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        names.sort();
+        assert!(names.len() >= 3, "{names:?}");
+        for n in names {
+            let (fa, fb) = (cmd.path(a).join(&n), cmd.path(b).join(&n));
+            assert!(
+                std::fs::read(&fa).unwrap() == std::fs::read(&fb).unwrap(),
+                "{} differs",
+                fb.display()
+            );
+        }
+    }
+    assert_eq!(std::fs::read(&other).unwrap(), b"not a table");
+}

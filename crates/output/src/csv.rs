@@ -95,15 +95,15 @@ pub fn write_contact_csv_with(
         String::new()
     };
     path.push('\n');
-    // path.csv is long (steps × pairs rows): it is streamed block by block into a file beside
-    // the final one and renamed when complete, so nothing is left half-written on an error and
-    // no more than one block of values is held.
+    // path.csv is long (steps × pairs rows): it is streamed block by block (no more than one
+    // block of values is held) over the file an earlier run left, in place
+    // ([`crate::overwrite`]); on an error the file is removed, so nothing is left half-written.
     std::fs::create_dir_all(dir)?;
     let c = dir.join(PATH_CSV);
-    let part = dir.join(format!("{PATH_CSV}.part"));
     let streamed = (|| -> std::io::Result<()> {
         use std::io::Write as _;
-        let mut out = std::io::BufWriter::new(std::fs::File::create(&part)?);
+        let mut out = std::io::BufWriter::new(crate::overwrite::open_over(&c)?);
+        let mut len = path.len() as u64;
         out.write_all(path.as_bytes())?;
         let mut io_error = None;
         // The pairs named by their place (the breakpoints' own names left empty).
@@ -140,6 +140,7 @@ pub fn write_contact_csv_with(
                 })
                 .collect();
             for rows in texts {
+                len += rows.len() as u64;
                 if let Err(e) = out.write_all(rows.as_bytes()) {
                     io_error = Some(e);
                     return Ok(());
@@ -154,17 +155,19 @@ pub fn write_contact_csv_with(
         if let Some(e) = io_error {
             return Err(e);
         }
-        out.flush()
+        let f = out
+            .into_inner()
+            .map_err(std::io::IntoInnerError::into_error)?;
+        crate::overwrite::cut_to(&f, len)
     })();
     if let Err(e) = streamed {
-        let _ = std::fs::remove_file(&part);
+        let _ = std::fs::remove_file(&c);
         return Err(e);
     }
     let a = dir.join("pairs.csv");
     let b = dir.join("steps.csv");
-    std::fs::write(&a, pairs)?;
-    std::fs::write(&b, steps)?;
-    std::fs::rename(&part, &c)?;
+    crate::overwrite::write_over(&a, pairs.as_bytes())?;
+    crate::overwrite::write_over(&b, steps.as_bytes())?;
     Ok(vec![a, b, c])
 }
 
@@ -291,7 +294,7 @@ pub fn write_structural_csv_with(
 
 fn write_table(dir: &Path, name: &str, text: String) -> std::io::Result<std::path::PathBuf> {
     let path = dir.join(name);
-    std::fs::write(&path, text)?;
+    crate::overwrite::write_over(&path, text.as_bytes())?;
     Ok(path)
 }
 

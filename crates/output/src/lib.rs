@@ -36,6 +36,7 @@ mod decimal;
 mod finite;
 pub mod font;
 mod json;
+mod overwrite;
 mod report;
 mod structure;
 mod summary;

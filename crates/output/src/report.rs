@@ -89,7 +89,7 @@ fn write_all(
     let mut written = Vec::new();
     let mut put = |name: &str, text: &str| -> Result<(), ReportError> {
         let path = dir.join(name);
-        std::fs::write(&path, text).map_err(|source| ReportError::Io {
+        crate::overwrite::write_over(&path, text.as_bytes()).map_err(|source| ReportError::Io {
             path: path.clone(),
             source,
         })?;

@@ -1317,19 +1317,7 @@ impl Finished {
     /// second run is mostly the same size and keeps its blocks.
     fn write_over(&self, dir: &Path, name: &str) -> io::Result<PathBuf> {
         let path = dir.join(name);
-        // What a file renamed over the old one would not have touched is replaced, not written
-        // through: a symbolic link, a file with other hard links (a snapshot made with
-        // `cp -al` or `rsync --link-dest`), a read-only file.
-        if let Ok(old) = std::fs::symlink_metadata(&path) {
-            if !old.is_dir() && (shared(&old) || old.permissions().readonly()) {
-                std::fs::remove_file(&path)?;
-            }
-        }
-        let mut f = std::fs::OpenOptions::new()
-            .write(true)
-            .create(true)
-            .truncate(false)
-            .open(&path)?;
+        let mut f = crate::overwrite::open_over(&path)?;
         match self.write_into(&mut f) {
             Ok(()) => Ok(path),
             Err(e) => {
@@ -1360,21 +1348,8 @@ impl Finished {
             }
         }
         let len = (self.head.len() + self.data.len() + self.tail.len()) as u64;
-        if f.metadata()?.len() != len {
-            f.set_len(len)?;
-        }
-        Ok(())
+        crate::overwrite::cut_to(f, len)
     }
-}
-
-/// Whether the directory entry of `meta` is not the file's only name: a symbolic link, or a
-/// file with other hard links.
-fn shared(meta: &std::fs::Metadata) -> bool {
-    #[cfg(unix)]
-    let linked = std::os::unix::fs::MetadataExt::nlink(meta) > 1;
-    #[cfg(not(unix))]
-    let linked = false;
-    meta.file_type().is_symlink() || linked
 }
 
 /// Appends `values` to `raw` by `put`, −0 as 0 (as in the text); the first non-finite value.
