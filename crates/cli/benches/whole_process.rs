@@ -31,8 +31,9 @@
 //! profile one run by hand); otherwise they go to a temporary folder removed after each size.
 //!
 //! Every case writes `--json`; the column `solve s` is its `timings.solve`, the solve alone. A
-//! case whose run takes less than a second is run seven times and the run of median wall time
-//! is shown (its CPU, solve and peak memory with it).
+//! case whose run takes less than a second is run seven times into the same directory (each
+//! run after the first writing over the files of the one before) and the run of median wall
+//! time is shown (its CPU, solve and peak memory with it).
 //!
 //! The contact zone is `unilateral_oracle::fixtures::beam::beam_on_supports(m, 7)` (a continuous
 //! beam on `m` frictional supports).
@@ -247,7 +248,9 @@ struct Run {
 /// Runs the binary under `/usr/bin/time` and reads its figures.
 /// A run of the binary: once when it takes a second or more, else the median (by wall time)
 /// of [`SHORT_RUNS`] runs, so that a run of milliseconds is not one sample of the machine's
-/// noise.
+/// noise. The runs write into the same directory: from the second on (and from the first
+/// when `UNILATERAL_BENCH_KEEP` keeps an earlier benchmark's files) a run's files are written
+/// over an earlier run's, as when a user runs a model again.
 fn run(args: &[&str], dir: &Path) -> Run {
     let first = run_once(args, dir);
     if first.wall >= 1.0 {

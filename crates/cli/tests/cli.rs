@@ -2338,12 +2338,18 @@ fn tables_and_report_are_written_over_an_earlier_runs_files() {
     std::fs::set_permissions(cmd.path("rep/report.html"), ro).unwrap();
     run("csv", "rep");
     for (a, b) in [("fresh_csv", "csv"), ("fresh_rep", "rep")] {
-        let mut names: Vec<_> = std::fs::read_dir(cmd.path(a))
-            .unwrap()
-            .map(|e| e.unwrap().file_name())
-            .collect();
-        names.sort();
+        let names_in = |d: &str| {
+            let mut names: Vec<_> = std::fs::read_dir(cmd.path(d))
+                .unwrap()
+                .map(|e| e.unwrap().file_name())
+                .collect();
+            names.sort();
+            names
+        };
+        let names = names_in(a);
         assert!(names.len() >= 3, "{names:?}");
+        // the same files, and no `.part` file left beside them
+        assert_eq!(names_in(b), names);
         for n in names {
             let (fa, fb) = (cmd.path(a).join(&n), cmd.path(b).join(&n));
             assert!(

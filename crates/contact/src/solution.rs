@@ -615,7 +615,9 @@ impl ContactSolution {
     }
 }
 
-/// Pair results from the LCP's `x` and `z`.
+/// Pair results from the LCP's `x` and `z` (both `3m` long, `[n; t+; t-]` blocks): `m` pairs,
+/// pair `i` named `names[i]` (`names` has one name a pair; a pair without one is left
+/// unnamed).
 ///
 /// Round-off is judged relative to the largest force and displacement of the solution itself;
 /// [`crate::solve`] judges it relative to the scale of the data as well.

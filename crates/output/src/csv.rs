@@ -96,13 +96,15 @@ pub fn write_contact_csv_with(
     };
     path.push('\n');
     // path.csv is long (steps × pairs rows): it is streamed block by block (no more than one
-    // block of values is held) over the file an earlier run left, in place
-    // ([`crate::overwrite`]); on an error the file is removed, so nothing is left half-written.
+    // block of values is held) over the file an earlier run left, moved aside and put back
+    // when complete ([`crate::overwrite::Aside`]); on an error the file is removed, so no
+    // path.csv is left half-written.
     std::fs::create_dir_all(dir)?;
     let c = dir.join(PATH_CSV);
-    let streamed = (|| -> std::io::Result<()> {
+    let (aside, file) = crate::overwrite::Aside::open(&c)?;
+    let streamed = (|| -> std::io::Result<(std::fs::File, u64)> {
         use std::io::Write as _;
-        let mut out = std::io::BufWriter::new(crate::overwrite::open_over(&c)?);
+        let mut out = std::io::BufWriter::new(file);
         let mut len = path.len() as u64;
         out.write_all(path.as_bytes())?;
         let mut io_error = None;
@@ -158,11 +160,14 @@ pub fn write_contact_csv_with(
         let f = out
             .into_inner()
             .map_err(std::io::IntoInnerError::into_error)?;
-        crate::overwrite::cut_to(&f, len)
+        Ok((f, len))
     })();
-    if let Err(e) = streamed {
-        let _ = std::fs::remove_file(&c);
-        return Err(e);
+    match streamed {
+        Ok((f, len)) => aside.finish(f, len)?,
+        Err(e) => {
+            aside.abandon();
+            return Err(e);
+        }
     }
     let a = dir.join("pairs.csv");
     let b = dir.join("steps.csv");

@@ -10,6 +10,12 @@
 //! through: a symbolic link, a file with other hard links (a snapshot made with `cp -al` or
 //! `rsync --link-dest`), a read-only file. A file whose writing fails is removed: never a mix of
 //! this run's bytes and an earlier run's (the earlier file is lost then).
+//!
+//! [`Aside`] (the tables and the report) first renames the old file to a `.part` name beside
+//! it, writes over that and renames it back when complete (0.09 ms for the same table): a run
+//! killed while writing leaves no file of that name rather than one that mixes two runs' bytes
+//! (a `.part` file is left). The ParaView frames ([`open_over`]) are written under their own
+//! names, two renames a file being too many for thousands of frames.
 
 use std::fs::File;
 use std::io;
@@ -37,19 +43,62 @@ pub(crate) fn cut_to(f: &File, len: u64) -> io::Result<()> {
     Ok(())
 }
 
-/// Writes `bytes` as the whole content of `path`, over its old bytes ([`open_over`]); a failed
-/// write removes the file.
+/// A file being written beside its place: the old file of `path` (if any) renamed to
+/// `path.part` and written over there ([`open_over`]), renamed back by [`Aside::finish`].
+pub(crate) struct Aside {
+    part: std::path::PathBuf,
+    path: std::path::PathBuf,
+}
+
+impl Aside {
+    /// Moves the old file aside and opens it (or a new one) to be written over.
+    pub(crate) fn open(path: &Path) -> io::Result<(Self, File)> {
+        let mut part = path.as_os_str().to_owned();
+        part.push(".part");
+        let aside = Self {
+            part: part.into(),
+            path: path.to_path_buf(),
+        };
+        if let Ok(old) = std::fs::symlink_metadata(path) {
+            if old.is_file() {
+                std::fs::rename(path, &aside.part)?;
+            }
+        }
+        let f = open_over(&aside.part)?;
+        Ok((aside, f))
+    }
+
+    /// Cuts the file to the `len` bytes written and puts it in its place.
+    pub(crate) fn finish(self, f: File, len: u64) -> io::Result<()> {
+        let done = cut_to(&f, len).and_then(|()| {
+            drop(f);
+            std::fs::rename(&self.part, &self.path)
+        });
+        if done.is_err() {
+            self.abandon();
+        }
+        done
+    }
+
+    /// Removes the file after a failure.
+    pub(crate) fn abandon(self) {
+        let _ = std::fs::remove_file(&self.part);
+    }
+}
+
+/// Writes `bytes` as the whole content of `path`, over the old file's bytes moved aside
+/// ([`Aside`]); a failed write removes the file.
 pub(crate) fn write_over(path: &Path, bytes: &[u8]) -> io::Result<()> {
     use std::io::Write as _;
-    let mut f = open_over(path)?;
-    let written = f
-        .write_all(bytes)
-        .and_then(|()| cut_to(&f, bytes.len() as u64));
-    if written.is_err() {
-        drop(f);
-        let _ = std::fs::remove_file(path);
+    let (aside, mut f) = Aside::open(path)?;
+    match f.write_all(bytes) {
+        Ok(()) => aside.finish(f, bytes.len() as u64),
+        Err(e) => {
+            drop(f);
+            aside.abandon();
+            Err(e)
+        }
     }
-    written
 }
 
 /// Whether the directory entry of `meta` is not the file's only name: a symbolic link, or a
