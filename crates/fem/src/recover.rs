@@ -36,8 +36,6 @@ struct Kept {
     loads: ElementLoads,
     /// The model's size ([`model_size`]).
     size: f64,
-    /// The number of line elements.
-    line_count: usize,
 }
 
 impl ElementCache {
@@ -66,7 +64,6 @@ impl ElementCache {
                     .iter()
                     .map(|el| element_stiffness(model, el))
                     .collect(),
-                line_count: lines.iter().flatten().count(),
                 lines,
                 springs: model
                     .springs
@@ -367,7 +364,7 @@ impl Condensed {
         let mut r: Vec<f64> = f.iter().map(|v| -v).collect();
         // magnitude of the forces that meet at each DOF (the scale of its residual)
         let mut r_mag: Vec<f64> = f.iter().map(|v| v.abs()).collect();
-        let mut lines = Vec::with_capacity(kept.map_or(0, |k| k.line_count));
+        let mut lines = Vec::with_capacity(kept.map_or(0, |k| k.lines.iter().flatten().count()));
         let mut planes = Vec::new();
         let mut stress_sum: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
         let mut stress_cnt = vec![0usize; nn];

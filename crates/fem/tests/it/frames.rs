@@ -430,59 +430,32 @@ fn six_loads_on_one_frame_sum_as_one() {
     let ids = beam(&mut m, l, 1, FrameSection::new(1.0, 1.0, 1.0));
     m.fix(ids[0]);
     m.fix(ids[1]);
-    let parts: [([f64; 2], [f64; 2], LoadFrame, LoadGroup); 6] = [
-        (
-            [0.0, -q / 4.0],
-            [0.0, -q / 4.0],
-            LoadFrame::Global,
-            LoadGroup::Variable,
-        ),
-        (
-            [0.0, -q / 4.0],
-            [0.0, -q / 4.0],
-            LoadFrame::Local,
-            LoadGroup::Constant,
-        ),
-        (
-            [0.0, -q / 8.0],
-            [0.0, -q / 8.0],
-            LoadFrame::Global,
-            LoadGroup::Constant,
-        ),
-        (
-            [0.0, -q / 8.0],
-            [0.0, -q / 8.0],
-            LoadFrame::Local,
-            LoadGroup::Variable,
-        ),
+    // (start, end) transverse intensities, the load's frame and group
+    let (g, lo) = (LoadFrame::Global, LoadFrame::Local);
+    let (v, c) = (LoadGroup::Variable, LoadGroup::Constant);
+    let parts: [(f64, f64, LoadFrame, LoadGroup); 6] = [
+        (q / 4.0, q / 4.0, g, v),
+        (q / 4.0, q / 4.0, lo, c),
+        (q / 8.0, q / 8.0, g, c),
+        (q / 8.0, q / 8.0, lo, v),
         // a triangle 0 → q/4 and its mirror q/4 → 0 sum to a uniform q/4
-        (
-            [0.0, 0.0],
-            [0.0, -q / 4.0],
-            LoadFrame::Global,
-            LoadGroup::Variable,
-        ),
-        (
-            [0.0, -q / 4.0],
-            [0.0, 0.0],
-            LoadFrame::Local,
-            LoadGroup::Constant,
-        ),
+        (0.0, q / 4.0, g, v),
+        (q / 4.0, 0.0, lo, c),
     ];
     for (start, end, frame, group) in parts {
         m.add_load(
             group,
             Load::Distributed {
                 element: unilateral_fem::ElementId(0),
-                start,
-                end,
+                start: [0.0, -start],
+                end: [0.0, -end],
                 frame,
             },
         );
     }
-    let c = m.condense().unwrap();
-    let first = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
-    let again = c.recover(&LinkValues::bonded(&c, 1.0)).unwrap();
+    let cm = m.condense().unwrap();
+    let first = cm.recover(&LinkValues::bonded(&cm, 1.0)).unwrap();
+    let again = cm.recover(&LinkValues::bonded(&cm, 1.0)).unwrap();
     assert_eq!(first, again);
     let r = first;
     assert!(r.equilibrium.relative() < 1e-10, "{:?}", r.equilibrium);

@@ -40,17 +40,14 @@ pub(crate) const PARALLEL_BLOCK: usize = 64;
 #[derive(Default)]
 pub(crate) struct RefactorWork {
     lu: Vec<f64>,
-    scratch: Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
+    scratch: Scratch,
 }
 
 impl std::fmt::Debug for RefactorWork {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("RefactorWork")
             .field("lu", &self.lu.len())
-            .field(
-                "scratch",
-                &self.scratch.as_ref().map(|(req, _)| req.size_bytes()),
-            )
+            .field("scratch", &self.scratch)
             .finish()
     }
 }
@@ -58,6 +55,33 @@ impl std::fmt::Debug for RefactorWork {
 impl Clone for RefactorWork {
     fn clone(&self) -> Self {
         Self::default()
+    }
+}
+
+/// faer's scratch, kept for the next step that needs no more ([`Scratch::get`]).
+#[derive(Default)]
+pub(crate) struct Scratch(Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>);
+
+impl Scratch {
+    /// The scratch for a step that needs `need` (the kept one, grown when too small).
+    fn get(&mut self, need: faer::dyn_stack::StackReq) -> &mut faer::dyn_stack::MemBuffer {
+        // A buffer made for `have` serves `need` when it is as long and at least as aligned
+        // (its start is aligned to `have`'s alignment; `need`'s size assumes an aligned start).
+        let fits = |have: &faer::dyn_stack::StackReq| {
+            need.size_bytes() <= have.size_bytes() && need.align_bytes() <= have.align_bytes()
+        };
+        if !self.0.as_ref().is_some_and(|(have, _)| fits(have)) {
+            let req = self.0.take().map_or(need, |(have, _)| need.or(have));
+            self.0 = Some((req, faer::dyn_stack::MemBuffer::new(req)));
+        }
+        &mut self.0.as_mut().expect("scratch just made").1
+    }
+}
+
+impl std::fmt::Debug for Scratch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let bytes = self.0.as_ref().map(|(req, _)| req.size_bytes());
+        f.debug_tuple("Scratch").field(&bytes).finish()
     }
 }
 
@@ -83,7 +107,7 @@ impl RefactorWork {
                 .map(|(a, b)| entry(a, b)),
         );
         let (mut fwd, mut bwd) = (vec![0usize; k], vec![0usize; k]);
-        let scratch = Self::scratch_of(&mut self.scratch, need);
+        let scratch = self.scratch.get(need);
         factor::lu_in_place(
             faer::MatMut::from_column_major_slice_mut(&mut self.lu[..], k, k),
             &mut fwd,
@@ -97,34 +121,11 @@ impl RefactorWork {
 
     /// The factors of the last [`RefactorWork::lu_in_place`] (of order `k`), and the scratch
     /// for [`KernelInverse::assign_lu_inverse`].
-    pub fn factors(
-        &mut self,
-        k: usize,
-    ) -> (
-        faer::MatRef<'_, f64>,
-        &mut Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
-    ) {
+    pub fn factors(&mut self, k: usize) -> (faer::MatRef<'_, f64>, &mut Scratch) {
         (
             faer::MatRef::from_column_major_slice(&self.lu[..k * k], k, k),
             &mut self.scratch,
         )
-    }
-
-    /// The scratch for a step that needs `need` (kept, grown when too small).
-    fn scratch_of(
-        kept: &mut Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
-        need: faer::dyn_stack::StackReq,
-    ) -> &mut faer::dyn_stack::MemBuffer {
-        // A buffer made for `have` serves `need` when it is as long and at least as aligned
-        // (its start is aligned to `have`'s alignment; `need`'s size assumes an aligned start).
-        let fits = |have: &faer::dyn_stack::StackReq| {
-            need.size_bytes() <= have.size_bytes() && need.align_bytes() <= have.align_bytes()
-        };
-        if !kept.as_ref().is_some_and(|(have, _)| fits(have)) {
-            let req = kept.take().map_or(need, |(have, _)| need.or(have));
-            *kept = Some((req, faer::dyn_stack::MemBuffer::new(req)));
-        }
-        &mut kept.as_mut().expect("scratch just made").1
     }
 }
 
@@ -155,15 +156,14 @@ impl KernelInverse {
         &mut self,
         lu: faer::MatRef<'_, f64>,
         perm: faer::perm::PermRef<'_, usize>,
-        scratch: &mut Option<(faer::dyn_stack::StackReq, faer::dyn_stack::MemBuffer)>,
+        scratch: &mut Scratch,
     ) {
         use faer::dyn_stack::MemStack;
         use faer::linalg::lu::partial_pivoting::inverse;
         let k = lu.nrows();
         self.reserve(k);
         let par = refactor_par();
-        let scratch =
-            RefactorWork::scratch_of(scratch, inverse::inverse_scratch::<usize, f64>(k, par));
+        let scratch = scratch.get(inverse::inverse_scratch::<usize, f64>(k, par));
         let out = faer::MatMut::from_column_major_slice_with_stride_mut(
             &mut self.data[..],
             k,
@@ -541,7 +541,7 @@ mod tests {
         g.assign_lu_inverse(
             lu.as_ref(),
             faer::perm::PermRef::new_checked(&fwd, &bwd, a.nrows()),
-            &mut None,
+            &mut Scratch::default(),
         );
         g
     }
