@@ -103,7 +103,7 @@ pub(crate) fn write_over(path: &Path, bytes: &[u8]) -> io::Result<()> {
 
 /// Whether the directory entry of `meta` is not the file's only name: a symbolic link, or a
 /// file with other hard links.
-pub(crate) fn shared(meta: &std::fs::Metadata) -> bool {
+fn shared(meta: &std::fs::Metadata) -> bool {
     #[cfg(unix)]
     let linked = std::os::unix::fs::MetadataExt::nlink(meta) > 1;
     #[cfg(not(unix))]
