@@ -1,15 +1,15 @@
-//! The shortest decimal text of an `f64` that reads back as the same number, in the two
-//! layouts the files use, written straight into a `String`: exactly the text of the standard
-//! library's `{x:e}` ([`push_exp`]) and `{x}` ([`push_plain`]).
+//! The shortest decimal text of an `f64` that reads back as the same number, written straight
+//! into a `String`: exactly the text of the standard library's `{x:e}` ([`push_exp`]), the
+//! layout of the CSV tables.
 //!
-//! The long tables and the ascii ParaView files write millions of numbers; the standard
-//! library's formatting goes through `core::fmt` and its slower shortest-digit search, and was
-//! most of the ascii `--vtk` run's formatting. The digits here come from `zmij` (the shortest
-//! digits, as the standard library's, which differ only where the number lies exactly halfway
-//! between two candidates: there the standard library's are taken); the layout is this
-//! module's own, so the bytes do not depend on how `zmij` lays its text out. The tests compare
-//! both layouts with the standard library's on millions of numbers (a review compared them on
-//! 245 million, the hardest near-halfway case of every exponent among them).
+//! The long tables write millions of numbers; the standard library's formatting goes through
+//! `core::fmt` and its slower shortest-digit search. The digits here come from `zmij` (the
+//! shortest digits, as the standard library's, which differ only where the number lies exactly
+//! halfway between two candidates: there the standard library's are taken); the layout is
+//! this module's own, so the bytes do not depend on how `zmij` lays its text out. The tests
+//! compare the text with the standard library's on millions of numbers (a review compared
+//! them on 245 million, the hardest near-halfway case of every exponent among them). The ascii
+//! ParaView files, whose text no earlier file fixes, take `zmij`'s own text (`vtk.rs`).
 
 /// The shortest digits of a finite nonzero `x`: `±0.d₁d₂…dₙ × 10^exp`, `d₁` and `dₙ` nonzero.
 struct Digits {
@@ -93,12 +93,6 @@ fn parse_exponent(t: &[u8]) -> i32 {
         .fold(0i32, |a, &c| a * 10 + i32::from(c.wrapping_sub(b'0')))
 }
 
-fn push_zeros(s: &mut String, count: i32) {
-    for _ in 0..count.max(0) {
-        s.push('0');
-    }
-}
-
 /// The digits of `x` where this module writes its text: a finite nonzero number that is no
 /// halfway case (else the standard library writes it, with `std_text`).
 fn own_digits(s: &mut String, x: f64, std_text: fn(&mut String, f64)) -> Option<Digits> {
@@ -132,35 +126,6 @@ pub(crate) fn push_exp(s: &mut String, x: f64) {
     push_int(s, i64::from(d.exp - 1));
 }
 
-/// Appends the text of `format!("{x}")`: plain decimals, never an exponent (`0.00015`,
-/// `-120`, `1000000000000000000000`).
-pub(crate) fn push_plain(s: &mut String, x: f64) {
-    let Some(d) = own_digits(s, x, |s, x| {
-        use std::fmt::Write as _;
-        let _ = write!(s, "{x}");
-    }) else {
-        return;
-    };
-    let digits = d.digits();
-    let n = d.len as i32;
-    if d.negative {
-        s.push('-');
-    }
-    if d.exp <= 0 {
-        s.push_str("0.");
-        push_zeros(s, -d.exp);
-        s.push_str(digits);
-    } else if d.exp < n {
-        let e = d.exp as usize;
-        s.push_str(&digits[..e]);
-        s.push('.');
-        s.push_str(&digits[e..]);
-    } else {
-        s.push_str(digits);
-        push_zeros(s, d.exp - n);
-    }
-}
-
 /// Appends the decimal text of an integer (`format!("{v}")`).
 pub(crate) fn push_int(s: &mut String, v: i64) {
     let mut b = itoa::Buffer::new();
@@ -175,9 +140,6 @@ mod tests {
         let mut e = String::new();
         push_exp(&mut e, x);
         assert_eq!(e, format!("{x:e}"), "{{:e}} of {:#018x}", x.to_bits());
-        let mut p = String::new();
-        push_plain(&mut p, x);
-        assert_eq!(p, format!("{x}"), "{{}} of {:#018x}", x.to_bits());
     }
 
     /// A fixed sequence of 64-bit words (splitmix64), so that a failure can be replayed.

@@ -908,6 +908,19 @@ impl PairGeometry {
         let mut s = header(self.grid.format, snap, self.n_points, self.m, &self.size);
         let pairs = &snap.pairs[..];
         let have = pairs.len() == self.m && snap.results.is_some();
+        // Each pair's numbers are written at its points and at its cell: in ascii, formatted
+        // once.
+        let texts = PairTexts::new(self, if have && s.is_ascii() { pairs } else { &[] });
+        let at = |i: usize, k: usize, v: f64, negate: bool| Formatted {
+            v,
+            text: texts.get(i, k),
+            negate,
+        };
+        const ZERO: Formatted = Formatted {
+            v: 0.0,
+            text: "0",
+            negate: false,
+        };
         if let (true, Some(r)) = (have, snap.results.as_deref()) {
             s.push_str("      <PointData Scalars=\"state\" Vectors=\"force\">\n");
             let disp = |n: usize| r.displacements.get(n).copied().unwrap_or([0.0; 3]);
@@ -931,20 +944,27 @@ impl PairGeometry {
                 self.point_pair
                     .iter()
                     .zip(&self.point_sign)
-                    .map(|(&i, &sign)| self.force(i, &pairs[i]).map(|f| sign * f)),
+                    .map(|(&i, &sign)| {
+                        let f = self.force(i, &pairs[i]);
+                        let minus = sign < 0.0;
+                        [at(i, 4, f[0], minus), at(i, 5, f[1], minus), ZERO]
+                    }),
             );
-            let per_point =
-                |f: fn(&PairResult) -> f64| self.point_pair.iter().map(move |&i| [f(&pairs[i])]);
             int_array(
                 &mut s,
                 "Int32",
                 "state",
                 self.point_pair.iter().map(|&i| state_code(pairs[i].state)),
             );
-            f64_array(&mut s, "x_n", &[], per_point(|r| r.x_n));
-            f64_array(&mut s, "x_t", &[], per_point(|r| r.x_t));
-            f64_array(&mut s, "z_n", &[], per_point(|r| r.z_n));
-            f64_array(&mut s, "z_t", &[], per_point(|r| r.z_t));
+            let per_point = |k: usize, f: fn(&PairResult) -> f64| {
+                self.point_pair
+                    .iter()
+                    .map(move |&i| [at(i, k, f(&pairs[i]), false)])
+            };
+            f64_array(&mut s, "x_n", &[], per_point(0, |r| r.x_n));
+            f64_array(&mut s, "x_t", &[], per_point(1, |r| r.x_t));
+            f64_array(&mut s, "z_n", &[], per_point(2, |r| r.z_n));
+            f64_array(&mut s, "z_t", &[], per_point(3, |r| r.z_t));
             s.append(&self.point_ids);
             s.push_str("      </PointData>\n");
         }
@@ -957,21 +977,65 @@ impl PairGeometry {
                 "state",
                 pairs.iter().map(|r| state_code(r.state)),
             );
-            f64_array(&mut s, "x_n", &[], pairs.iter().map(|r| [r.x_n]));
-            f64_array(&mut s, "x_t", &[], pairs.iter().map(|r| [r.x_t]));
-            f64_array(&mut s, "z_n", &[], pairs.iter().map(|r| [r.z_n]));
-            f64_array(&mut s, "z_t", &[], pairs.iter().map(|r| [r.z_t]));
+            let per_cell = |k: usize, f: fn(&PairResult) -> f64| {
+                pairs
+                    .iter()
+                    .enumerate()
+                    .map(move |(i, r)| [at(i, k, f(r), false)])
+            };
+            f64_array(&mut s, "x_n", &[], per_cell(0, |r| r.x_n));
+            f64_array(&mut s, "x_t", &[], per_cell(1, |r| r.x_t));
+            f64_array(&mut s, "z_n", &[], per_cell(2, |r| r.z_n));
+            f64_array(&mut s, "z_t", &[], per_cell(3, |r| r.z_t));
             f64_array(
                 &mut s,
                 "force",
                 &["fx", "fy", "fz"],
-                pairs.iter().enumerate().map(|(i, r)| self.force(i, r)),
+                pairs.iter().enumerate().map(|(i, r)| {
+                    let f = self.force(i, r);
+                    [at(i, 4, f[0], false), at(i, 5, f[1], false), ZERO]
+                }),
             );
         }
         s.append(&self.cell_constants);
         s.push_str("      </CellData>\n");
         s.push_str(FOOTER);
         s
+    }
+}
+
+/// The text of each pair's `x_n, x_t, z_n, z_t` and force components `fx, fy` (in that order),
+/// made once for a frame's ascii pairs file; none for a binary one (whose arrays take the
+/// values).
+struct PairTexts {
+    text: String,
+    /// Where each text ends (six a pair).
+    ends: Vec<usize>,
+}
+
+impl PairTexts {
+    const FIELDS: usize = 6;
+
+    fn new(g: &PairGeometry, pairs: &[PairResult]) -> Self {
+        let mut text = String::with_capacity(pairs.len() * Self::FIELDS * 20);
+        let mut ends = Vec::with_capacity(pairs.len() * Self::FIELDS);
+        for (i, r) in pairs.iter().enumerate() {
+            let f = g.force(i, r);
+            for v in [r.x_n, r.x_t, r.z_n, r.z_t, f[0], f[1]] {
+                num(&mut text, v);
+                ends.push(text.len());
+            }
+        }
+        Self { text, ends }
+    }
+
+    /// Field `k` of pair `i` (empty when none were made).
+    fn get(&self, i: usize, k: usize) -> &str {
+        let j = i * Self::FIELDS + k;
+        match self.ends.get(j) {
+            Some(&end) => &self.text[if j == 0 { 0 } else { self.ends[j - 1] }..end],
+            None => "",
+        }
     }
 }
 
@@ -1014,13 +1078,60 @@ fn header(format: VtkFormat, snap: &Snapshot, points: usize, cells: usize, size:
 /// The end of an unstructured grid (the [`Body`] adds the appended data and `</VTKFile>`).
 const FOOTER: &str = "    </Piece>\n  </UnstructuredGrid>\n";
 
+/// A value of a `Float64` array: its number, and how an ascii file writes it.
+trait Value: Copy {
+    fn value(self) -> f64;
+    fn push_text(self, s: &mut String);
+}
+
+impl Value for f64 {
+    fn value(self) -> f64 {
+        self
+    }
+    fn push_text(self, s: &mut String) {
+        num(s, self)
+    }
+}
+
+/// A value whose text [`num`] made once for several arrays (a pair's forces and displacements
+/// appear at its points and at its cell), negated where `negate`: the text of `−v` is that of
+/// `v` with its sign changed (`0` stays `0`).
+#[derive(Clone, Copy)]
+struct Formatted<'a> {
+    v: f64,
+    text: &'a str,
+    negate: bool,
+}
+
+impl Value for Formatted<'_> {
+    fn value(self) -> f64 {
+        if self.negate {
+            -self.v
+        } else {
+            self.v
+        }
+    }
+    fn push_text(self, s: &mut String) {
+        match (self.negate, self.text) {
+            (false, t) | (true, t @ "0") => s.push_str(t),
+            (true, t) => match t.strip_prefix('-') {
+                Some(rest) => s.push_str(rest),
+                None => {
+                    s.push('-');
+                    s.push_str(t);
+                }
+            },
+        }
+    }
+}
+
 /// A `Float64` data array, one tuple a line; `names` are the component names (none for a
 /// scalar or for unnamed components).
-fn f64_array<const N: usize>(
+fn f64_array<const N: usize, V: Value>(
     b: &mut Body,
     name: &str,
     names: &[&str],
-    tuples: impl Iterator<Item = [f64; N]>,
+    tuples: impl Iterator<Item = [V; N]>,
 ) {
     let mut head =
         format!("        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{N}\"");
@@ -1028,7 +1139,7 @@ fn f64_array<const N: usize>(
         let _ = write!(head, " ComponentName{k}=\"{c}\"");
     }
     if !b.is_ascii() {
-        b.binary_array(&head, name, "Float64", tuples.flatten());
+        b.binary_array(&head, name, "Float64", tuples.flatten().map(V::value));
         return;
     }
     let s = &mut b.xml;
@@ -1039,7 +1150,8 @@ fn f64_array<const N: usize>(
         s.push_str("         ");
         for v in t {
             s.push(' ');
-            num(s, v);
+            v.push_text(s);
+            let v = v.value();
             if !v.is_finite() && bad.is_none() {
                 bad = Some(v);
             }
@@ -1066,15 +1178,23 @@ fn int_array(b: &mut Body, ty: &str, name: &str, values: impl IntoIterator<Item 
     s.push_str("\n        </DataArray>\n");
 }
 
-/// A number as plain decimals where that is short, else in exponent form; both read back to
-/// the same `f64`.
+/// A number as the shortest text that reads back as the same `f64`: `zmij`'s (plain decimals
+/// from 10⁻⁷ to 10¹⁶, else an exponent: `0.00025`, `-1.5e-9`, `1e+16`), with `0` for both
+/// zeros and no `.0` after a whole number. Unlike the tables' text ([`crate::decimal`]) this is
+/// not the standard library's layout: in the last digit of an exact halfway case the two may
+/// pick different texts, both reading back as the number. Formatting is most of an ascii
+/// `--vtk` run's writing, and `zmij`'s text as it comes is a fraction of the cost of laying
+/// its digits out again. A non-finite value (refused before the file is written) is written
+/// as the standard library writes it.
 fn num(s: &mut String, x: f64) {
     if x == 0.0 {
         s.push('0');
-    } else if (1e-4..1e15).contains(&x.abs()) {
-        crate::decimal::push_plain(s, x);
+    } else if x.is_finite() {
+        let mut b = zmij::Buffer::new();
+        let t = b.format_finite(x);
+        s.push_str(t.strip_suffix(".0").unwrap_or(t));
     } else {
-        crate::decimal::push_exp(s, x);
+        let _ = write!(s, "{x}");
     }
 }
 
@@ -1271,15 +1391,23 @@ impl Body {
             }
             .into());
         }
-        let mut head = Vec::with_capacity(self.xml.len() + 2 * self.marks.len() + 64);
-        let mut at = 0;
-        for &(place, offset) in &self.marks {
-            head.extend_from_slice(&self.xml.as_bytes()[at..place]);
-            head.extend_from_slice(itoa::Buffer::new().format(offset).as_bytes());
-            at = place;
-        }
-        head.extend_from_slice(&self.xml.as_bytes()[at..]);
-        let tail: &'static [u8] = if self.is_ascii() {
+        let ascii = self.is_ascii();
+        let mut head = if self.marks.is_empty() {
+            // Nothing to fill in (an ascii file is all XML): its bytes as they are, not a
+            // copy of a megabyte a frame.
+            self.xml.into_bytes()
+        } else {
+            let mut head = Vec::with_capacity(self.xml.len() + 2 * self.marks.len() + 64);
+            let mut at = 0;
+            for &(place, offset) in &self.marks {
+                head.extend_from_slice(&self.xml.as_bytes()[at..place]);
+                head.extend_from_slice(itoa::Buffer::new().format(offset).as_bytes());
+                at = place;
+            }
+            head.extend_from_slice(&self.xml.as_bytes()[at..]);
+            head
+        };
+        let tail: &'static [u8] = if ascii {
             b"</VTKFile>\n"
         } else {
             head.extend_from_slice(b"  <AppendedData encoding=\"raw\">\n   _");
@@ -1378,7 +1506,76 @@ fn zlib(bytes: &[u8]) -> io::Result<Vec<u8>> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_numbers, Body, VtkFormat};
+    use super::{check_numbers, num, Body, Formatted, Value, VtkFormat};
+
+    /// The ascii text of a number reads back as the number (`0` for both zeros, no `.0` after
+    /// a whole number), and a text negated as text is the text of the negated number: on
+    /// numbers of every size and kind (a fixed sequence of bits, replayable).
+    #[test]
+    fn ascii_numbers_read_back_and_negate_as_text() {
+        let mut state = 7u64;
+        let mut next = move || {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        };
+        let mut xs = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            100.0,
+            1e15,
+            1e16,
+            1e-7,
+            1.5e-7,
+            2.5e-5,
+            5e-324,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            0.1 + 0.2,
+        ];
+        for _ in 0..200_000 {
+            let bits = next();
+            xs.push(f64::from_bits(bits));
+            // Results' sizes: a mantissa in [1, 2) times 2^-60 … 2^60, either sign.
+            let m = 1.0 + (bits >> 12) as f64 / (1u64 << 52) as f64;
+            xs.push(
+                m * 2f64.powi((bits % 121) as i32 - 60) * if bits & 1 == 0 { 1.0 } else { -1.0 },
+            );
+            xs.push((bits % 100_000) as f64 - 50_000.0);
+        }
+        for x in xs.into_iter().filter(|x| x.is_finite()) {
+            let mut t = String::new();
+            num(&mut t, x);
+            let back: f64 = t.parse().unwrap_or_else(|_| panic!("{t} does not parse"));
+            assert_eq!(back, x, "{t} for {:#018x}", x.to_bits());
+            assert!(x != 0.0 || t == "0", "{t} for a zero");
+            assert!(!t.ends_with(".0"), "{t}");
+            let mut minus = String::new();
+            Formatted {
+                v: x,
+                text: &t,
+                negate: true,
+            }
+            .push_text(&mut minus);
+            let mut direct = String::new();
+            num(&mut direct, -x);
+            assert_eq!(minus, direct, "the negated text of {t}");
+            assert_eq!(
+                Formatted {
+                    v: x,
+                    text: &t,
+                    negate: true
+                }
+                .value()
+                .to_bits(),
+                (-x).to_bits()
+            );
+        }
+    }
 
     /// A non-finite value of a binary array is named, as the text scan names one of an ascii
     /// array; a finite file has its offsets filled in (the second array after the first's
