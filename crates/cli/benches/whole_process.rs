@@ -20,7 +20,8 @@
 //!   bearings, each a vertical and a horizontal spring under a sole plate with a frictional
 //!   contact pair to the beam; dead weight, a variable load from down to up along the beam and a
 //!   sideways load (bearings lift and slide in turn: the long path), `solve --trace end`;
-//! * `beam+out`: the same with `--csv` and `--report`, and `beam+vtk` with `--vtk` (binary), for
+//! * `beam+out`: the same with `--csv` and `--report`, `beam+vtk` with `--vtk` (its default
+//!   format, ascii), `beam+vtkb` and `beam+vtkz` with `--vtk-format binary` and `compressed`, for
 //!   sizes up to `UNILATERAL_BENCH_REPORT_MAX` (the path without tightening: its tables and
 //!   charts read the path's breakpoints; every ParaView frame is a recovered structure), and
 //!   `beam+bp` with `--json-breakpoints` (every pair at every breakpoint in the JSON, formed and
@@ -438,19 +439,27 @@ fn main() {
             a.extend(["--csv", "bcsv", "--report", "brep"]);
             row("beam+out", &run(&a, d));
         }
-        if m <= report_max() && selected("beam+vtk") {
+        // `--vtk` in each of its formats: the default (ascii), binary and compressed.
+        for (case, dir, format) in [
+            ("beam+vtk", "avtk", None),
+            ("beam+vtkb", "bvtk", Some("binary")),
+            ("beam+vtkz", "zvtk", Some("compressed")),
+        ] {
+            if m > report_max() || !selected(case) {
+                continue;
+            }
             let mut a = beam_args.to_vec();
-            a.extend(["--vtk", "bvtk", "--vtk-format", "binary"]);
-            row("beam+vtk", &run(&a, d));
-            let (files, bytes) = std::fs::read_dir(d.join("bvtk")).map_or((0, 0), |r| {
+            a.extend(["--vtk", dir]);
+            if let Some(f) = format {
+                a.extend(["--vtk-format", f]);
+            }
+            row(case, &run(&a, d));
+            let (files, bytes) = std::fs::read_dir(d.join(dir)).map_or((0, 0), |r| {
                 r.flatten().fold((0, 0u64), |(n, b), e| {
                     (n + 1, b + e.metadata().map_or(0, |m| m.len()))
                 })
             });
-            println!(
-                "{m:>5} beam+vtk: {files} files, {:.0} MB",
-                bytes as f64 / 1e6
-            );
+            println!("{m:>5} {case}: {files} files, {:.0} MB", bytes as f64 / 1e6);
         }
         if m <= report_max() && selected("beam+bp") {
             let mut a = beam_args.to_vec();
