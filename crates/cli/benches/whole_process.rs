@@ -34,7 +34,9 @@
 //! Every case writes `--json`; the column `solve s` is its `timings.solve`, the solve alone. A
 //! case whose run takes less than a second is run seven times into the same directory (each
 //! run after the first writing over the files of the one before) and the run of median wall
-//! time is shown (its CPU, solve and peak memory with it).
+//! time is shown (its CPU, solve and peak memory with it). Each run starts after a `sync` (the
+//! dirty pages of the runs before written out), so that it is not charged for another run's
+//! writeback.
 //!
 //! The contact zone is `unilateral_oracle::fixtures::beam::beam_on_supports(m, 7)` (a continuous
 //! beam on `m` frictional supports).
@@ -268,6 +270,9 @@ const SHORT_RUNS: usize = 7;
 
 fn run_once(args: &[&str], dir: &Path) -> Run {
     let times = dir.join("time.txt");
+    // The files of the runs before (gigabytes of ParaView frames) are put on the disk first,
+    // so that a run is not charged for the page cache's writeback of another's.
+    let _ = Command::new("sync").status();
     let t = Instant::now();
     let out = Command::new("/usr/bin/time")
         .arg("-f")
