@@ -1112,15 +1112,14 @@ impl Value for Formatted<'_> {
         }
     }
     fn push_text(self, s: &mut String) {
-        match (self.negate, self.text) {
-            (false, t) | (true, t @ "0") => s.push_str(t),
-            (true, t) => match t.strip_prefix('-') {
-                Some(rest) => s.push_str(rest),
-                None => {
-                    s.push('-');
-                    s.push_str(t);
-                }
-            },
+        let t = self.text;
+        if !self.negate || t.as_bytes() == b"0" {
+            s.push_str(t);
+        } else if let Some(rest) = t.strip_prefix('-') {
+            s.push_str(rest);
+        } else {
+            s.push('-');
+            s.push_str(t);
         }
     }
 }
