@@ -179,10 +179,15 @@ fn read_dir(dir: &Path, files: &[PathBuf]) -> Vec<(String, Vec<u8>)> {
 }
 
 /// The path of the cantilever on its plane-element foundation (frames, plane elements,
-/// pairs: every kind of array) and the sheet pile wall, in the three formats.
+/// pairs: every kind of array), the sheet pile wall and the cylinder on its foundation (pairs
+/// whose A point lies on a segment, between two nodes), in the three formats.
 #[test]
 fn binary_and_compressed_files_decode_to_the_ascii_values() {
-    for name in ["example2-cantilever.toml", "sheet-pile-wall.toml"] {
+    for name in [
+        "example2-cantilever.toml",
+        "sheet-pile-wall.toml",
+        "cylinder-on-foundation.toml",
+    ] {
         let p = problem(name);
         let a = analyze(&p.model, &p.settings).unwrap();
         let tmp = tempfile::tempdir().unwrap();
