@@ -1177,9 +1177,10 @@ fn int_array(b: &mut Body, ty: &str, name: &str, values: impl IntoIterator<Item 
     s.push_str("\n        </DataArray>\n");
 }
 
-/// A number as the shortest text that reads back as the same `f64`: `zmij`'s (plain decimals
-/// from 10⁻⁷ to 10¹⁶, else an exponent: `0.00025`, `-1.5e-9`, `1e+16`), with `0` for both
-/// zeros and no `.0` after a whole number. Unlike the tables' text ([`crate::decimal`]) this is
+/// A number as the shortest text that reads back as the same `f64`: `zmij`'s (in zmij 1.0,
+/// plain decimals from 10⁻⁵ up to 10¹⁶, else an exponent: `0.000025`, `-1.5e-9`, `1e+16`; the
+/// layout is zmij's and may change with it, the values cannot), with `0` for both zeros and no
+/// `.0` after a whole number. Unlike the tables' text ([`crate::decimal`]) this is
 /// not the standard library's layout: in the last digit of an exact halfway case the two may
 /// pick different texts, both reading back as the number. Formatting is most of an ascii
 /// `--vtk` run's writing, and `zmij`'s text as it comes is a fraction of the cost of laying
@@ -1204,15 +1205,15 @@ fn num(s: &mut String, x: f64) {
 /// * [`VtkFormat::Binary`] — the arrays as raw little-endian bytes in one
 ///   `<AppendedData encoding="raw">` block at the end of the file, each array preceded by its
 ///   byte count as a `UInt64` (`header_type="UInt64"`): exact, and no number is
-///   formatted or parsed as text (smaller for full-precision numbers: the 156 files of the
-///   sheet pile wall's path take 3.4 MB against 5.6 MB of text; a file of many exact zeros and
+///   formatted or parsed as text (smaller for full-precision numbers: the 63 files of the
+///   sheet pile wall's path take 2.5 MB against 4.4 MB of text; a file of many exact zeros and
 ///   small integers can be larger than its text).
 /// * [`VtkFormat::Compressed`] — the same, each array zlib-compressed in blocks of
 ///   [`ZLIB_BLOCK`] bytes (`compressor="vtkZLibDataCompressor"`: a `UInt64` header of the
 ///   block count, the block size, the size of a partial last block (0 when it is full) and
 ///   the compressed size of every block, then the compressed blocks). zlib's fastest level:
-///   on the 1000-bearing beam's frames 5 % larger than its default level (605 against 580
-///   MB, a third of the binary files) for a seventh of its time (deflating at about 330
+///   on the 1000-bearing beam's frames 4.5 % larger than at its default level (620 against
+///   594 MB, 29 % of the binary files) for a seventh of its time (deflating at about 330
 ///   MB/s against 48 MB/s a core), which made `--vtk-format compressed` twice as slow as
 ///   binary.
 ///
