@@ -9,8 +9,8 @@
 //! this module's own, so the bytes do not depend on how `zmij` lays its text out. The tests
 //! compare the text with the standard library's on millions of numbers (a review compared
 //! them on 245 million, the hardest near-halfway case of every exponent among them). The ascii
-//! arrays of a path's ParaView frames, whose text no earlier file fixes, take `zmij`'s own
-//! text (`vtk.rs`).
+//! arrays of the ParaView files, whose text no earlier file fixes, take `zmij`'s own text
+//! (`vtk::num`).
 
 /// The shortest digits of a finite nonzero `x`: `±0.d₁d₂…dₙ × 10^exp`, `d₁` and `dₙ` nonzero.
 struct Digits {

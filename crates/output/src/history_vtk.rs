@@ -216,20 +216,15 @@ fn header(s: &State, points: usize, cells: usize, format: VtkFormat) -> Body {
 /// The end of an unstructured grid (the [`Body`] adds the appended data and `</VTKFile>`).
 const FOOTER: &str = "    </Piece>\n  </UnstructuredGrid>\n";
 
-/// A number as plain decimals where that is short, else in exponent form; both read back to
-/// the same `f64` (Rust's shortest round trip).
+/// A number in the text of the path's frames ([`crate::vtk::num`]: the shortest that reads
+/// back as the same `f64`).
 struct Num(f64);
 
 impl std::fmt::Display for Num {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let x = self.0;
-        if x == 0.0 {
-            f.write_str("0")
-        } else if (1e-4..1e15).contains(&x.abs()) {
-            write!(f, "{x}")
-        } else {
-            write!(f, "{x:e}")
-        }
+        let mut s = String::new();
+        crate::vtk::num(&mut s, self.0);
+        f.write_str(&s)
     }
 }
 
@@ -263,7 +258,7 @@ fn array(
             bad = Some(v);
         }
         if ty == "Float64" {
-            let _ = write!(out, "{}", Num(v));
+            crate::vtk::num(out, v);
         } else {
             let _ = write!(out, "{}", v as i64);
         }

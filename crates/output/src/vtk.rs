@@ -1186,7 +1186,7 @@ fn int_array(b: &mut Body, ty: &str, name: &str, values: impl IntoIterator<Item 
 /// `--vtk` run's writing, and `zmij`'s text as it comes is a fraction of the cost of laying
 /// its digits out again. A non-finite value (refused before the file is written) is written
 /// as the standard library writes it.
-fn num(s: &mut String, x: f64) {
+pub(crate) fn num(s: &mut String, x: f64) {
     if x == 0.0 {
         s.push('0');
     } else if x.is_finite() {
