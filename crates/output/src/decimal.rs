@@ -94,24 +94,15 @@ fn parse_exponent(t: &[u8]) -> i32 {
         .fold(0i32, |a, &c| a * 10 + i32::from(c.wrapping_sub(b'0')))
 }
 
-/// The digits of `x` where this module writes its text: a finite nonzero number that is no
-/// halfway case (else the standard library writes it, with `std_text`).
-fn own_digits(s: &mut String, x: f64, std_text: fn(&mut String, f64)) -> Option<Digits> {
-    let d = (x.is_finite() && x != 0.0)
+/// Appends the text of `format!("{x:e}")`: `1.5e-3`, `-2e7`, `0e0`. A zero, a non-finite
+/// number or a halfway case is written by the standard library; every other number here.
+pub(crate) fn push_exp(s: &mut String, x: f64) {
+    let own = (x.is_finite() && x != 0.0)
         .then(|| Digits::of(x))
         .filter(|d| !d.may_be_a_tie(x));
-    if d.is_none() {
-        std_text(s, x);
-    }
-    d
-}
-
-/// Appends the text of `format!("{x:e}")`: `1.5e-3`, `-2e7`, `0e0`.
-pub(crate) fn push_exp(s: &mut String, x: f64) {
-    let Some(d) = own_digits(s, x, |s, x| {
+    let Some(d) = own else {
         use std::fmt::Write as _;
         let _ = write!(s, "{x:e}");
-    }) else {
         return;
     };
     let digits = d.digits();
