@@ -890,6 +890,101 @@ fn distributed_load_linearly_varying_along_a_member() {
     close(ra, 400.0, 1.0, "R_A by hand: L (2 q1 + q2)/6");
 }
 
+/// The linearly varying load of `roller-pair.toml` on other listings of the same 4 m chain:
+/// the variation follows the distance along the chain from its end at the first listed element,
+/// whatever the order and direction in which the elements and members are drawn.
+#[test]
+fn distributed_load_linearly_varying_along_a_chain_however_drawn() {
+    let load = |d: &mut toml::Table, elements: &[&str]| {
+        let v = &mut table(d, "loads.variable")["distributed"];
+        let toml::Value::Array(v) = v else {
+            panic!("distributed")
+        };
+        let toml::Value::Table(t) = &mut v[0] else {
+            panic!("distributed")
+        };
+        let list = elements.iter().map(|&e| toml::Value::from(e)).collect();
+        set(t, "elements", toml::Value::Array(list));
+    };
+    // Listed from the end at x = 4: q = (30, −100) there and (60, −400) at x = 0. The vertical
+    // resultant −1000 acts at 2.4 from x = 4, that is at x = 1.6; R_A = L (q1 + 2 q2)/6 with
+    // q1 = 100 at x = 4 and q2 = 400 at A: 4·900/6 = 600.
+    let (p, a) = run_edited(&data("roller-pair.toml"), |d| {
+        load(d, &["beam.4", "beam.3", "beam.2", "beam.1"])
+    });
+    let [ra, n, t] = roller_and_pair(4.0, 0.0, 180.0, -1000.0, 1.6, 0.0, 0.0);
+    close(ra, 600.0, 1.0, "R_A by hand");
+    close(
+        pair(&a, "B").x_n,
+        1000.0 + n,
+        1000.0,
+        "x_n (listed backwards)",
+    );
+    close(
+        pair(&a, "B").x_t.abs(),
+        t.abs(),
+        1000.0,
+        "|x_t| (listed backwards)",
+    );
+    close(
+        reaction(&p, &a, "beam.start", SupportDof::Uy),
+        ra,
+        1000.0,
+        "R_A (listed backwards)",
+    );
+    // The same chain as two members drawn towards each other, (0,0)→(2,0) and (4,0)→(2,0),
+    // listed from x = 0: the load of the original file (R_A = 400), which a projection on the
+    // line from the first element's start to the last element's end (both at x = 2) lost.
+    let two_members = |d: &mut toml::Table| {
+        let member = |name: &str, start: f64, end: toml::Value| {
+            let mut m = toml::Table::new();
+            set(&mut m, "name", name);
+            set(
+                &mut m,
+                "start",
+                toml::Value::Array(vec![start.into(), 0.0.into()]),
+            );
+            set(&mut m, "end", end);
+            set(&mut m, "divisions", 2);
+            set(&mut m, "section", "beam");
+            toml::Value::Table(m)
+        };
+        let left = member(
+            "left",
+            0.0,
+            toml::Value::Array(vec![2.0.into(), 0.0.into()]),
+        );
+        let right = member("right", 4.0, "left.end".into());
+        set(d, "members", toml::Value::Array(vec![left, right]));
+        set(entry(d, "supports", 0), "nodes", "left.start");
+        set(entry(d, "contact", 0), "to", "right.start");
+        let nodal = &mut table(d, "loads.constant")["nodal"];
+        let toml::Value::Array(nodal) = nodal else {
+            panic!("nodal")
+        };
+        let toml::Value::Table(nodal) = &mut nodal[0] else {
+            panic!("nodal")
+        };
+        set(nodal, "nodes", "right.start");
+        load(d, &["left", "right"]);
+    };
+    let (p, a) = run_edited(&data("roller-pair.toml"), two_members);
+    let [ra, n, t] = roller_and_pair(4.0, 0.0, 180.0, -1000.0, 2.4, 0.0, 0.0);
+    close(pair(&a, "B").x_n, 1000.0 + n, 1000.0, "x_n (two members)");
+    close(
+        pair(&a, "B").x_t.abs(),
+        t.abs(),
+        1000.0,
+        "|x_t| (two members)",
+    );
+    close(
+        reaction(&p, &a, "left.start", SupportDof::Uy),
+        ra,
+        1000.0,
+        "R_A (two members)",
+    );
+}
+
 #[test]
 fn distributed_load_uniform_in_local_axes() {
     // Member (0,0)–(3,4), L = 5, axis e = (0.6, 0.8), normal n = (−0.8, 0.6) (e turned 90°

@@ -151,8 +151,9 @@ impl Builder<'_> {
                 ))
             }
         };
-        // Linear variation along the chain of listed elements (e.g. a member's elements):
-        // position = projection on the line from the first node to the last.
+        // Linear variation with the distance along the chain of listed elements (e.g. a
+        // member's elements): from `start` at the chain's end where the first listed element
+        // is to `end` at its other end (one element: from its first node to its second).
         let nodes = self.model.nodes().to_vec();
         let ends = |e: ElementId| match &self.model.elements()[e.0] {
             Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => Some(*nodes),
@@ -161,7 +162,7 @@ impl Builder<'_> {
         let mut chain = Vec::with_capacity(elems.len());
         for &e in &elems {
             match ends(e) {
-                Some(n) => chain.push((e, nodes[n[0].0], nodes[n[1].0])),
+                Some(n) => chain.push((e, n[0], n[1])),
                 None => {
                     return Err(self.err(
                         t.get("elements").and_then(|n| n.pos),
@@ -175,30 +176,53 @@ impl Builder<'_> {
                 }
             }
         }
-        let p0 = chain[0].1;
-        let p1 = chain[chain.len() - 1].2;
-        let d = [p1[0] - p0[0], p1[1] - p0[1]];
-        let len2 = d[0] * d[0] + d[1] * d[1];
-        let s = |p: [f64; 2]| {
-            if len2 > 0.0 {
-                (((p[0] - p0[0]) * d[0] + (p[1] - p0[1]) * d[1]) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
+        let lerp = |s: f64| [qa[0] + s * (qb[0] - qa[0]), qa[1] + s * (qb[1] - qa[1])];
+        let at: Vec<(f64, f64)> = if chain.len() == 1 {
+            vec![(0.0, 1.0)]
+        } else if qa == qb {
+            vec![(0.0, 0.0); chain.len()]
+        } else {
+            let ends: Vec<(NodeId, NodeId)> = chain.iter().map(|&(_, a, b)| (a, b)).collect();
+            match chain_positions(&nodes, &ends) {
+                Ok(at) => at,
+                Err(problem) => {
+                    let name = |i: usize| self.pending[chain[i].0 .0].name.clone();
+                    let node = |n: NodeId| self.node_name(n);
+                    let why = match problem {
+                        ChainProblem::Repeated(i) => format!("element `{}` is listed twice", name(i)),
+                        ChainProblem::Branch(n) => format!(
+                            "the listed elements branch at node `{}` (list each branch as a load of its own)",
+                            node(n)
+                        ),
+                        ChainProblem::Loop => "the listed elements close a loop".to_string(),
+                        ChainProblem::FirstInside => format!(
+                            "element `{}`, listed first, is not at an end of the chain (list the elements from one end)",
+                            name(0)
+                        ),
+                        ChainProblem::Apart(i) => format!(
+                            "element `{}` is not connected to the chain that starts at element `{}`",
+                            name(i),
+                            name(0)
+                        ),
+                    };
+                    return Err(self.err(
+                        t.get("elements").and_then(|n| n.pos),
+                        &t.child("elements"),
+                        InputErrorKind::Invalid,
+                        format!(
+                            "a load varying from `start` to `end` needs one unbranched chain of elements, joined at shared nodes: {why}"
+                        ),
+                    ));
+                }
             }
         };
-        let lerp = |s: f64| [qa[0] + s * (qb[0] - qa[0]), qa[1] + s * (qb[1] - qa[1])];
-        for (element, a, b) in chain {
-            let (start, end) = if elems.len() == 1 {
-                (qa, qb)
-            } else {
-                (lerp(s(a)), lerp(s(b)))
-            };
+        for (&(element, _, _), &(sa, sb)) in chain.iter().zip(&at) {
             self.push_load(
                 group,
                 Load::Distributed {
                     element,
-                    start,
-                    end,
+                    start: lerp(sa),
+                    end: lerp(sb),
                     frame,
                 },
             );
@@ -241,4 +265,123 @@ impl Builder<'_> {
 fn dof_word(d: SupportDof) -> &'static str {
     d.label()
         .map_or("inclined", unilateral_fem::DofLabel::as_str)
+}
+
+/// Why listed line elements are not one chain ([`chain_positions`]); indices into the list.
+#[derive(Debug, PartialEq)]
+enum ChainProblem {
+    Repeated(usize),
+    Branch(NodeId),
+    Loop,
+    FirstInside,
+    Apart(usize),
+}
+
+/// The place of each listed line element's first and second node along the chain the
+/// elements make (joined where they share a node), as the fraction of the chain's length from
+/// the chain's end at the first listed element: what a load varying linearly along the chain
+/// takes at each element's ends. `ends` are the elements' nodes in their own order.
+fn chain_positions(
+    nodes: &[[f64; 2]],
+    ends: &[(NodeId, NodeId)],
+) -> Result<Vec<(f64, f64)>, ChainProblem> {
+    let mut seen = HashMap::new();
+    for (i, &(a, b)) in ends.iter().enumerate() {
+        let key = (a.0.min(b.0), a.0.max(b.0));
+        if seen.insert(key, i).is_some() {
+            return Err(ChainProblem::Repeated(i));
+        }
+    }
+    // The elements at each node.
+    let mut at: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (i, &(a, b)) in ends.iter().enumerate() {
+        at.entry(a.0).or_default().push(i);
+        at.entry(b.0).or_default().push(i);
+    }
+    let mut branched: Vec<usize> = at
+        .iter()
+        .filter(|(_, es)| es.len() > 2)
+        .map(|(&n, _)| n)
+        .collect();
+    branched.sort_unstable();
+    if let Some(&n) = branched.first() {
+        return Err(ChainProblem::Branch(NodeId(n)));
+    }
+    if at.values().all(|es| es.len() == 2) {
+        return Err(ChainProblem::Loop);
+    }
+    let (a0, b0) = ends[0];
+    let start = if at[&a0.0].len() == 1 {
+        a0
+    } else if at[&b0.0].len() == 1 {
+        b0
+    } else {
+        return Err(ChainProblem::FirstInside);
+    };
+    // Walk the chain from its start: the distance of every node reached.
+    let length = |a: NodeId, b: NodeId| {
+        let (p, q) = (nodes[a.0], nodes[b.0]);
+        (q[0] - p[0]).hypot(q[1] - p[1])
+    };
+    let mut dist: HashMap<usize, f64> = HashMap::from([(start.0, 0.0)]);
+    let (mut node, mut from, mut s) = (start, usize::MAX, 0.0);
+    while let Some(&e) = at[&node.0].iter().find(|&&e| e != from) {
+        let (a, b) = ends[e];
+        let next = if a == node { b } else { a };
+        s += length(node, next);
+        dist.insert(next.0, s);
+        (node, from) = (next, e);
+    }
+    if let Some(i) = ends.iter().position(|(a, _)| !dist.contains_key(&a.0)) {
+        return Err(ChainProblem::Apart(i));
+    }
+    let frac = |n: NodeId| if s > 0.0 { dist[&n.0] / s } else { 0.0 };
+    Ok(ends.iter().map(|&(a, b)| (frac(a), frac(b))).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{chain_positions, ChainProblem};
+    use unilateral_fem::NodeId;
+
+    fn ids(pairs: &[(usize, usize)]) -> Vec<(NodeId, NodeId)> {
+        pairs.iter().map(|&(a, b)| (NodeId(a), NodeId(b))).collect()
+    }
+
+    /// Positions by the distance along the chain, whatever the elements' own directions and
+    /// the order they are listed in after the first; a bent chain by its length, not its chord.
+    #[test]
+    fn positions_along_a_chain() {
+        // nodes 0 (0,0), 1 (2,0), 2 (4,0), 3 (4,4): a beam of two elements and a post
+        let nodes = [[0.0, 0.0], [2.0, 0.0], [4.0, 0.0], [4.0, 4.0]];
+        let at = chain_positions(&nodes, &ids(&[(0, 1), (1, 2)])).unwrap();
+        assert_eq!(at, vec![(0.0, 0.5), (0.5, 1.0)]);
+        // listed from the other end: the chain starts at node 2
+        let at = chain_positions(&nodes, &ids(&[(1, 2), (0, 1)])).unwrap();
+        assert_eq!(at, vec![(0.5, 0.0), (1.0, 0.5)]);
+        // the first element drawn backwards, the second listed before the third
+        let at = chain_positions(&nodes, &ids(&[(1, 0), (3, 2), (1, 2)])).unwrap();
+        assert_eq!(at, vec![(0.25, 0.0), (1.0, 0.5), (0.25, 0.5)]);
+    }
+
+    #[test]
+    fn what_is_not_a_chain() {
+        let nodes = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [1.0, 1.0],
+            [5.0, 0.0],
+            [6.0, 0.0],
+        ];
+        let c = |p: &[(usize, usize)]| chain_positions(&nodes, &ids(p)).unwrap_err();
+        assert_eq!(c(&[(0, 1), (1, 2), (1, 0)]), ChainProblem::Repeated(2));
+        assert_eq!(
+            c(&[(0, 1), (1, 2), (1, 3)]),
+            ChainProblem::Branch(NodeId(1))
+        );
+        assert_eq!(c(&[(0, 1), (1, 3), (3, 0)]), ChainProblem::Loop);
+        assert_eq!(c(&[(1, 2), (0, 1), (2, 3)]), ChainProblem::FirstInside);
+        assert_eq!(c(&[(0, 1), (1, 2), (4, 5)]), ChainProblem::Apart(2));
+    }
 }
