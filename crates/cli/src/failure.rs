@@ -99,7 +99,8 @@ pub(crate) fn contact_failure(
         | E::VectorSize { .. }
         | E::NotFinite { .. }
         | E::NotSymmetric { .. }
-        | E::NegativeDiagonal { .. } => origin == ZoneOrigin::Condensed,
+        | E::NegativeDiagonal { .. }
+        | E::NotSemidefinite { .. } => origin == ZoneOrigin::Condensed,
     };
     if internal {
         Failure::Internal(format!(

@@ -62,6 +62,21 @@ pub enum ContactError {
         /// The diagonal entry.
         value: f64,
     },
+    /// `Rnn` or `Rtt` is not positive semidefinite although its diagonal is: two pairs whose
+    /// 2 × 2 block has a negative determinant, or (where every such block is sound) the first
+    /// leading block that is not semidefinite.
+    #[error("{name} must be positive semidefinite, but {why}")]
+    NotSemidefinite {
+        /// The matrix (`Rnn` or `Rtt`).
+        name: &'static str,
+        /// 1-based row and column of the entry that shows it: the off-diagonal entry of the
+        /// two pairs, or the diagonal entry that ends the leading block.
+        row: usize,
+        /// See `row`.
+        col: usize,
+        /// What is wrong, in words.
+        why: String,
+    },
     /// Friction or gap is negative.
     #[error("{name} must be ≥ 0, but pair {pair} has {value}")]
     Negative {

@@ -211,6 +211,61 @@ impl ContactZone {
 }
 
 impl ContactZone {
+    /// Checks that `Rnn` and `Rtt` are positive semidefinite, as a stiffness is (after
+    /// [`ContactZone::validate`], which checks their symmetry and diagonals): for matrices a
+    /// user gives, where a wrong sign or a swapped entry makes a zone no structure has. Each
+    /// block `R + δI` must admit a Cholesky factorisation, `δ` the round-off of a zero stiffness
+    /// ([`roundoff_of_zero`], relative to the zone's largest entry, so the same in every unit
+    /// system); the first pair of pairs whose 2 × 2 block is not semidefinite is named first
+    /// (`R_ii R_jj < R_ij²`), the commonest mistake. `O(m³)`: the zone computed by the program
+    /// from a structure is not checked this way.
+    pub fn check_semidefinite(&self) -> Result<(), ContactError> {
+        let m = self.rnn.nrows();
+        let delta = roundoff_of_zero(self.stiffness_scale(), m);
+        for (name, mat) in [("Rnn", &self.rnn), ("Rtt", &self.rtt)] {
+            // Symmetric to round-off (checked by `validate`): the upper triangle for the
+            // pairs, the lower one for the factorisation, each read down its columns.
+            let d = |i: usize| mat[(i, i)] + delta;
+            for j in 0..m {
+                for i in 0..j {
+                    let r = mat[(i, j)];
+                    if d(i) * d(j) < r * r {
+                        return Err(ContactError::NotSemidefinite {
+                            name,
+                            row: i + 1,
+                            col: j + 1,
+                            why: format!(
+                                "pairs {} and {} have {name}({0},{0})·{name}({1},{1}) = {} < {name}({0},{1})² = {}",
+                                i + 1,
+                                j + 1,
+                                mat[(i, i)] * mat[(j, j)],
+                                r * r
+                            ),
+                        });
+                    }
+                }
+            }
+            let mut shifted = mat.clone();
+            for i in 0..m {
+                shifted[(i, i)] += delta;
+            }
+            if let Err(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }) =
+                shifted.llt(faer::Side::Lower)
+            {
+                let k = index + 1;
+                return Err(ContactError::NotSemidefinite {
+                    name,
+                    row: k,
+                    col: k,
+                    why: format!(
+                        "its rows and columns of pairs 1 to {k} make a matrix with a negative eigenvalue (a Cholesky factorisation breaks down at pair {k})"
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// The largest entry of the four stiffness blocks: the scale against which round-off of the
     /// stiffness is measured.
     pub(crate) fn stiffness_scale(&self) -> f64 {

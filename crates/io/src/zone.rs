@@ -258,7 +258,9 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
         cases,
         pair_names,
     };
-    if let Err(e) = zone.validate() {
+    // A user's matrices are checked to be semidefinite as well (`O(m³)`, not done for a
+    // zone the program condenses itself).
+    if let Err(e) = zone.validate().and_then(|()| zone.check_semidefinite()) {
         let mats = [
             ("Rnn", Some(&rnn)),
             ("Rtt", Some(&rtt)),
@@ -269,6 +271,9 @@ pub fn read_contact_zone(path: &Path) -> Result<ContactZoneProblem, InputError> 
         let msg = e.to_string();
         let err = match &e {
             ContactError::NotSymmetric { name, row, col, .. } => find(name).map(|mat| {
+                mat.entry_err(&doc, row - 1, col - 1, InputErrorKind::Invalid, msg.clone())
+            }),
+            ContactError::NotSemidefinite { name, row, col, .. } => find(name).map(|mat| {
                 mat.entry_err(&doc, row - 1, col - 1, InputErrorKind::Invalid, msg.clone())
             }),
             ContactError::NegativeDiagonal { name, pair, .. } => find(name).map(|mat| {

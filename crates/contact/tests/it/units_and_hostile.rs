@@ -354,3 +354,57 @@ fn a_constant_load_pulling_every_pair_apart_is_diagnosed() {
         "{note}"
     );
 }
+
+/// `check_semidefinite` in any units: the paper's Example 1 (`Rnn` singular, rank one, with a
+/// zero eigenvalue that round-off may put a little below zero) is accepted at every scale; an
+/// `Rnn` with eigenvalues 3 and −1 (hand: `(1 − λ)² = 4`) is refused at every scale, by its two
+/// pairs; an `Rtt` whose 2 × 2 blocks are all sound but `xᵀ Rtt x = 3 − 2·2.7 = −2.4` for
+/// `x = (1, −1, 1)` is refused by the factorisation, at pair 3.
+#[test]
+fn semidefinite_is_checked_relative_to_the_data() {
+    for scale in [1e-9, 1.0, 1e9] {
+        let s = |m: Mat<f64>| Mat::from_fn(m.nrows(), m.ncols(), |i, j| scale * m[(i, j)]);
+        let ex1 = ContactZone::new(
+            s(mat![
+                [0.1875, -0.375, 0.1875],
+                [-0.375, 0.75, -0.375],
+                [0.1875, -0.375, 0.1875]
+            ]),
+            s(mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]),
+        );
+        ex1.check_semidefinite()
+            .unwrap_or_else(|e| panic!("scale {scale}: {e}"));
+        let two = ContactZone::new(
+            s(mat![[1.0, -2.0], [-2.0, 1.0]]),
+            s(mat![[1.0, 0.0], [0.0, 1.0]]),
+        );
+        assert!(
+            matches!(
+                two.check_semidefinite(),
+                Err(ContactError::NotSemidefinite {
+                    name: "Rnn",
+                    row: 1,
+                    col: 2,
+                    ..
+                })
+            ),
+            "scale {scale}"
+        );
+        let three = ContactZone::new(
+            s(mat![[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]),
+            s(mat![[1.0, 0.9, -0.9], [0.9, 1.0, 0.9], [-0.9, 0.9, 1.0]]),
+        );
+        assert!(
+            matches!(
+                three.check_semidefinite(),
+                Err(ContactError::NotSemidefinite {
+                    name: "Rtt",
+                    row: 3,
+                    col: 3,
+                    ..
+                })
+            ),
+            "scale {scale}"
+        );
+    }
+}
