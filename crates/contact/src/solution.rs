@@ -251,12 +251,15 @@ pub(crate) struct Engine {
     pub units: Units,
     /// The pair names.
     pub names: Vec<String>,
+    /// The largest force of the data without the tightening, normalised: what round-off of a
+    /// reported (tightening-free) force is judged against, so that `c` never changes a state.
+    pub data_force: f64,
 }
 
 impl Engine {
     /// Reads the normalised point `sol` as pair results in the user's units.
     pub fn read_point(&self, sol: &PathPoint) -> Result<Vec<PairResult>, ContactError> {
-        let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, 1.0, 1.0);
+        let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, self.data_force, 1.0);
         for r in &mut pairs {
             r.x_n = self.units.user_force(r.x_n);
             r.x_t = self.units.user_force(r.x_t);
@@ -510,7 +513,7 @@ impl ContactSolution {
         });
         let (normal, tangential) = zone_products(zone, &zn, &w);
         let (fs, ds) = (
-            self.engine.units.user_force(1.0),
+            self.engine.units.user_force(self.engine.data_force),
             self.engine.units.user_displacement(1.0),
         );
         let mut out = Vec::with_capacity(at.len());
@@ -637,7 +640,12 @@ fn pair_results_scaled(
     displacement_scale: f64,
 ) -> Vec<PairResult> {
     let m = x.len() / 3;
-    let xmax = x.iter().fold(force_scale, |a, b| a.max(b.abs()));
+    // The forces of the pairs, not the friction rows `f·x_n ± x_t` (a friction coefficient of
+    // 1e10 would make every normal force round-off of those).
+    let xmax = (0..m).fold(force_scale, |a, i| {
+        a.max(x[i].abs())
+            .max(((x[m + i] - x[2 * m + i]) / 2.0).abs())
+    });
     let zmax = z.iter().fold(displacement_scale, |a, b| a.max(b.abs()));
     let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
     (0..m)

@@ -70,6 +70,8 @@ pub fn solve_shared(
     // The LCP that is solved: normalised by powers of two (module `units`), so that neither the
     // states nor the events depend on the units of the data.
     let units = Units::of(&zone, settings.tightening);
+    // The data's own force scale, without `c`, normalised (a power of two: exact).
+    let data_force = units.normalised_force(Units::of(&zone, 0.0).user_force(1.0));
     let normalised = ContactLcp::build(&units.normalise(&zone));
     let nm = &normalised.problem;
     for j in 0..nm.m.ncols() {
@@ -283,6 +285,7 @@ pub fn solve_shared(
             solver,
             units,
             names,
+            data_force,
         }),
     };
     if let Some(sol) = solution {

@@ -408,3 +408,31 @@ fn semidefinite_is_checked_relative_to_the_data() {
         );
     }
 }
+
+/// A pair pressed by its constant load and nothing else sticks, whatever the friction
+/// coefficient and the tightening: one pair, `Rnn = Rtt = 1`, `R_c = 1` in the normal, a
+/// variable load along the normal only. Hand: `x_n = 1 + p·0.5`, `x_t = 0`, no dislocation, so
+/// stick at every `p` (the state is the physical one; `c` is only the path's starting device).
+/// The friction rows `f·x_n ± x_t` of `f = 1e10` and a tightening of `1e10` once made the
+/// round-off threshold `1e-9` of their size, above `x_n`: the pair read "open".
+#[test]
+fn huge_friction_or_tightening_does_not_turn_a_stick_into_open() {
+    for (f, c) in [(0.3, 0.0), (1e10, 0.0), (0.3, 1e10), (1e10, 1e10)] {
+        let mut zone = ContactZone::new(mat![[1.0]], mat![[1.0]]);
+        zone.friction = vec![f];
+        zone.constant.normal = vec![1.0];
+        zone.variable.normal = vec![0.5];
+        let settings = SolveSettings {
+            tightening: c,
+            ..SolveSettings::default()
+        };
+        let sol = solve(&zone, &settings).unwrap();
+        let r = &sol.pairs[0];
+        assert_eq!(r.state, PairState::Stick, "f = {f}, c = {c}: {r:?}");
+        assert!(close(r.x_n, 1.5, 1e-12), "f = {f}, c = {c}: {r:?}");
+        assert!(
+            r.x_t.abs() <= 1e-12 && r.z_n == 0.0 && r.z_t == 0.0,
+            "{r:?}"
+        );
+    }
+}
