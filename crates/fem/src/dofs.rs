@@ -138,20 +138,25 @@ pub(crate) fn build_dof_map(model: &Model) -> Result<DofMap, FemError> {
             pivot.push(Pivot::A(j));
             continue;
         }
+        // The nodes by the names the model gives them.
+        let node = |id: NodeId| format!("node `{}`", model.names().node(id));
         let reason = match (p.a, p.segment) {
             (Endpoint::Ground, _) => format!(
                 "{} is supported in translation or already carries the links of another pair \
                  (a node-to-ground pair on a supported DOF is redundant)",
-                p.b
+                node(p.b)
             ),
             (Endpoint::Node(a), None) => format!(
                 "both {} and {} are supported or already carry the links of another pair",
-                a, p.b
+                node(a),
+                node(p.b)
             ),
             (Endpoint::Node(a), Some((a2, _))) => format!(
                 "{} and the segment's nodes {} and {} are supported or already carry the links \
                  of other pairs",
-                p.b, a, a2
+                node(p.b),
+                node(a).trim_start_matches("node "),
+                node(a2).trim_start_matches("node ")
             ),
         };
         return Err(FemError::LinkPlacement {

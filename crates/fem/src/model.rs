@@ -647,7 +647,8 @@ impl Model {
     }
 
     /// Checks the model: node references, geometry, positive properties, Poisson's ratio,
-    /// springs, contact pairs and load targets. Stability is checked by [`Model::condense`].
+    /// springs, contact pairs, load targets, supports and where each pair's links can be
+    /// placed. Stability is checked by [`Model::condense`].
     pub fn validate(&self) -> Result<(), FemError> {
         for (i, p) in self.nodes.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
@@ -859,6 +860,9 @@ impl Model {
                 }
             }
         }
+        // The supports and the placement of every pair's links (the numbering of the DOFs;
+        // `O(n)`), so that a reader can place those errors at their item too.
+        crate::dofs::build_dof_map(self)?;
         Ok(())
     }
 

@@ -212,9 +212,10 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
             "the model has no contact pairs: give at least one [[contact]] entry",
         ));
     }
-    b.validate()?;
+    // Named first, so that what the model's checks say of a node names it as the file does.
     let names = b.names();
     b.model.set_names(names);
+    b.validate()?;
     Ok(StructuralProblem {
         model: b.model,
         settings,
