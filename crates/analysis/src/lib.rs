@@ -67,10 +67,12 @@ pub enum AnalysisError {
     /// The contact zone or the settings were refused by the contact solver.
     #[error("contact problem: {0}")]
     Contact(#[from] ContactError),
-    /// Recovering the results at `p` failed (an internal failure).
+    /// Recovering the results at `p` failed: an internal failure, but for sums of forces too
+    /// large for the model's units ([`FemError::Overflow`]), the model's.
     #[error(
-        "internal failure (the program's fault, not the model's): recovering the results at \
-         p = {p}: {source}"
+        "{}recovering the results at p = {}: {source}",
+        if matches!(source, FemError::Overflow { .. }) { "" } else { "internal failure (the program's fault, not the model's): " },
+        Shortest(*p)
     )]
     Recovery {
         /// The load parameter.
@@ -149,6 +151,21 @@ fn plural_pairs(pairs: &[String]) -> String {
     }
 }
 
+/// A number as its shortest round-trip text in the form that is shorter (`1e308`, not three
+/// hundred digits).
+struct Shortest(f64);
+
+impl std::fmt::Display for Shortest {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (plain, exp) = (format!("{}", self.0), format!("{:e}", self.0));
+        f.write_str(if exp.len() < plain.len() {
+            &exp
+        } else {
+            &plain
+        })
+    }
+}
+
 impl AnalysisError {
     /// `true` for failures that are the program's fault, not the model's: the recovery of the
     /// results, the equilibrium check of the recovered results, a numerical failure of the
@@ -160,6 +177,11 @@ impl AnalysisError {
     /// A command-line front end exits with 1 for internal failures and 2 for bad input.
     pub fn is_internal(&self) -> bool {
         match self {
+            // Forces too large for the model's units to sum is the model's.
+            AnalysisError::Recovery {
+                source: FemError::Overflow { .. },
+                ..
+            } => false,
             AnalysisError::Recovery { .. }
             | AnalysisError::Equilibrium { .. }
             | AnalysisError::Internal { .. } => true,

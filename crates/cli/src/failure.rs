@@ -128,6 +128,9 @@ pub(crate) fn analysis_failure(file: &Path, e: &unilateral_analysis::AnalysisErr
         E::Internal { what, message } => {
             Failure::Internal(format!("{}: {what}: {message}", file.display()))
         }
+        E::Recovery { .. } if !e.is_internal() => {
+            Failure::Input(format!("{}: {e}", file.display()))
+        }
         E::Recovery { .. } | E::Equilibrium { .. } | E::NotOnPath { .. } => {
             Failure::Internal(format!("{}: {e}", file.display()))
         }

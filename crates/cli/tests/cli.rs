@@ -467,6 +467,40 @@ fn exit_statuses_of_the_contract() {
     assert!(!out.stderr.contains("internal"), "{}", out.stderr);
 }
 
+/// Finite numbers whose sums leave double precision are the model's (exit 2, "choose other
+/// units"), not the program's: a load of 1e308 at x = 2 (its moment about the origin 2e308),
+/// and the same reached by a target load p = 1e308. No output file is written.
+#[test]
+fn forces_too_large_for_their_units_are_the_models() {
+    let model = |fy: &str, target: &str| {
+        format!(
+            "[[sections]]\nname = \"b\"\nE = 1.0\nA = 100.0\nI = 1.0\n\
+             [[members]]\nname = \"beam\"\nstart = [0.0, 0.0]\nend = [4.0, 0.0]\n\
+             divisions = 2\nsection = \"b\"\n\
+             [[supports]]\nnodes = \"beam.start\"\npinned = true\n\
+             [[supports]]\nnodes = \"beam.end\"\nuy = true\n\
+             [[contact]]\nname = \"mid\"\nfrom = \"ground\"\nto = \"beam.1\"\n\
+             normal = [0.0, 1.0]\nfriction = 0.3\ngap = 0.01\n\
+             [[loads.variable.nodal]]\nnodes = \"beam.1\"\nfy = {fy}\n\
+             [solve]\ntarget = {target}\n"
+        )
+    };
+    for (fy, target) in [("-1e308", "1.0"), ("-1.0", "1e308")] {
+        let cmd = TestCommand::new(&["solve", "big.toml", "--json", "out.json"]);
+        std::fs::write(cmd.path("big.toml"), model(fy, target)).unwrap();
+        let out = cmd.run();
+        assert_eq!(out.code, 2, "fy = {fy}, target = {target}: {}", out.stderr);
+        assert!(
+            out.stderr.contains("overflows double precision")
+                && out.stderr.contains("choose other units")
+                && !out.stderr.contains("fault"),
+            "{}",
+            out.stderr
+        );
+        assert!(!cmd.path("out.json").exists());
+    }
+}
+
 /// Every file of the bad-input corpus: exit code 2, a message that names the file and the
 /// expected problem, and never a panic.
 #[test]

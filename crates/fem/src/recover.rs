@@ -511,6 +511,23 @@ impl Condensed {
         for c in 0..3 {
             resultant[c] = applied[c] + reac[c] + contact[c] + ground[c];
         }
+        // Forces near the top of the range (1e308) times their lever arms leave it: the
+        // model's numbers are too large for its units, which the user can change.
+        if !applied
+            .iter()
+            .chain(&reac)
+            .chain(&contact)
+            .chain(&ground)
+            .chain(&resultant)
+            .all(|v| v.is_finite())
+        {
+            return Err(FemError::Overflow {
+                element: None,
+                what: "the resultant of the forces on the structure (the sums of the forces and \
+                       of their moments about the origin)"
+                    .into(),
+            });
+        }
         let x_given: Vec<f64> = sol.x_n.iter().chain(&sol.x_t).copied().collect();
         let mismatch = x_of_z
             .iter()
