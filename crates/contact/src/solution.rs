@@ -650,9 +650,10 @@ fn pair_results_scaled(
     let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
     (0..m)
         .map(|i| {
-            let x_n = x[i];
+            // A normal force or opening below zero by round-off is zero (`x_n, z_n ≥ 0`).
+            let x_n = if x[i] < 0.0 && -x[i] <= tx { 0.0 } else { x[i] };
             let x_t = (x[m + i] - x[2 * m + i]) / 2.0;
-            let z_n = z[i];
+            let z_n = if z[i] < 0.0 && -z[i] <= tz { 0.0 } else { z[i] };
             let z_t = (z[m + i] - z[2 * m + i]) / 2.0;
             let state = if z_n > tz || x_n <= tx {
                 PairState::Open
@@ -756,6 +757,13 @@ mod tests {
         assert_eq!(
             pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
             PairState::Open
+        );
+        // A normal force below zero by round-off reads as zero, not as a tension.
+        let x = [-8.67e-19, 0.0, 0.0];
+        let r = &pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0];
+        assert_eq!(
+            (r.state, r.x_n.to_bits()),
+            (PairState::Open, 0.0f64.to_bits())
         );
         // A real compression of the zone's scale sticks.
         let x = [0.5, 0.2, 0.2];
