@@ -983,6 +983,56 @@ fn distributed_load_linearly_varying_along_a_chain_however_drawn() {
         1000.0,
         "R_A (two members)",
     );
+    // Two members drawn away from x = 2, (2,0)→(0,0) and (2,0)→(4,0), listed whole: the first
+    // listed element (of `left`, at x = 2) is inside the chain; the chain starts at the free
+    // end listed first, x = 0 (`left.end`): the original load again.
+    let away = |d: &mut toml::Table| {
+        let member = |name: &str, start: toml::Value, end: f64| {
+            let mut m = toml::Table::new();
+            set(&mut m, "name", name);
+            set(&mut m, "start", start);
+            set(
+                &mut m,
+                "end",
+                toml::Value::Array(vec![end.into(), 0.0.into()]),
+            );
+            set(&mut m, "divisions", 2);
+            set(&mut m, "section", "beam");
+            toml::Value::Table(m)
+        };
+        let left = member(
+            "left",
+            toml::Value::Array(vec![2.0.into(), 0.0.into()]),
+            0.0,
+        );
+        let right = member("right", "left.start".into(), 4.0);
+        set(d, "members", toml::Value::Array(vec![left, right]));
+        set(entry(d, "supports", 0), "nodes", "left.end");
+        set(entry(d, "contact", 0), "to", "right.end");
+        let nodal = &mut table(d, "loads.constant")["nodal"];
+        let toml::Value::Array(nodal) = nodal else {
+            panic!("nodal")
+        };
+        let toml::Value::Table(nodal) = &mut nodal[0] else {
+            panic!("nodal")
+        };
+        set(nodal, "nodes", "right.end");
+        load(d, &["left", "right"]);
+    };
+    let (p, a) = run_edited(&data("roller-pair.toml"), away);
+    close(pair(&a, "B").x_n, 1000.0 + n, 1000.0, "x_n (drawn away)");
+    close(
+        pair(&a, "B").x_t.abs(),
+        t.abs(),
+        1000.0,
+        "|x_t| (drawn away)",
+    );
+    close(
+        reaction(&p, &a, "left.end", SupportDof::Uy),
+        ra,
+        1000.0,
+        "R_A (drawn away)",
+    );
 }
 
 #[test]

@@ -183,7 +183,8 @@ impl Builder<'_> {
             vec![(0.0, 0.0); chain.len()]
         } else {
             let ends: Vec<(NodeId, NodeId)> = chain.iter().map(|&(_, a, b)| (a, b)).collect();
-            match chain_positions(&nodes, &ends) {
+            let ids: Vec<usize> = chain.iter().map(|&(e, _, _)| e.0).collect();
+            match chain_positions(&nodes, &ids, &ends) {
                 Ok(at) => at,
                 Err(problem) => {
                     let name = |i: usize| self.pending[chain[i].0 .0].name.clone();
@@ -195,14 +196,10 @@ impl Builder<'_> {
                             node(n)
                         ),
                         ChainProblem::Loop => "the listed elements close a loop".to_string(),
-                        ChainProblem::FirstInside => format!(
-                            "element `{}`, listed first, is not at an end of the chain (list the elements from one end)",
-                            name(0)
-                        ),
-                        ChainProblem::Apart(i) => format!(
+                        ChainProblem::Apart { element, start } => format!(
                             "element `{}` is not connected to the chain that starts at element `{}`",
-                            name(i),
-                            name(0)
+                            name(element),
+                            name(start)
                         ),
                     };
                     return Err(self.err(
@@ -270,27 +267,31 @@ fn dof_word(d: SupportDof) -> &'static str {
 /// Why listed line elements are not one chain ([`chain_positions`]); indices into the list.
 #[derive(Debug, PartialEq)]
 enum ChainProblem {
+    /// The same element twice.
     Repeated(usize),
+    /// Three or more listed elements meet at a node.
     Branch(NodeId),
+    /// Every node joins two listed elements.
     Loop,
-    FirstInside,
-    Apart(usize),
+    /// `element` is not reached from the chain's start, the free end of element `start`.
+    Apart { element: usize, start: usize },
 }
 
 /// The place of each listed line element's first and second node along the chain the
 /// elements make (joined where they share a node), as the fraction of the chain's length from
-/// the chain's end at the first listed element: what a load varying linearly along the chain
-/// takes at each element's ends. `ends` are the elements' nodes in their own order.
+/// the chain's start: of its two free ends, the one whose element comes first in the list (a
+/// member listed whole starts where its first element does; two members drawn away from a
+/// shared node start at the free end of the first one listed). What a load varying linearly
+/// along the chain takes at each element's ends. `ids` are the elements (each at most once),
+/// `ends` their nodes in their own order.
 fn chain_positions(
     nodes: &[[f64; 2]],
+    ids: &[usize],
     ends: &[(NodeId, NodeId)],
 ) -> Result<Vec<(f64, f64)>, ChainProblem> {
-    let mut seen = HashMap::new();
-    for (i, &(a, b)) in ends.iter().enumerate() {
-        let key = (a.0.min(b.0), a.0.max(b.0));
-        if seen.insert(key, i).is_some() {
-            return Err(ChainProblem::Repeated(i));
-        }
+    let mut seen = std::collections::HashSet::new();
+    if let Some(i) = ids.iter().position(|&e| !seen.insert(e)) {
+        return Err(ChainProblem::Repeated(i));
     }
     // The elements at each node.
     let mut at: HashMap<usize, Vec<usize>> = HashMap::new();
@@ -307,16 +308,15 @@ fn chain_positions(
     if let Some(&n) = branched.first() {
         return Err(ChainProblem::Branch(NodeId(n)));
     }
-    if at.values().all(|es| es.len() == 2) {
+    // The free end whose element is listed first (the lower node for an element whose both
+    // ends are free: its own first node).
+    let Some((start, first)) = ends
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &(a, b))| [(a, i), (b, i)])
+        .find(|(n, _)| at[&n.0].len() == 1)
+    else {
         return Err(ChainProblem::Loop);
-    }
-    let (a0, b0) = ends[0];
-    let start = if at[&a0.0].len() == 1 {
-        a0
-    } else if at[&b0.0].len() == 1 {
-        b0
-    } else {
-        return Err(ChainProblem::FirstInside);
     };
     // Walk the chain from its start: the distance of every node reached.
     let length = |a: NodeId, b: NodeId| {
@@ -333,7 +333,10 @@ fn chain_positions(
         (node, from) = (next, e);
     }
     if let Some(i) = ends.iter().position(|(a, _)| !dist.contains_key(&a.0)) {
-        return Err(ChainProblem::Apart(i));
+        return Err(ChainProblem::Apart {
+            element: i,
+            start: first,
+        });
     }
     let frac = |n: NodeId| if s > 0.0 { dist[&n.0] / s } else { 0.0 };
     Ok(ends.iter().map(|&(a, b)| (frac(a), frac(b))).collect())
@@ -348,20 +351,43 @@ mod tests {
         pairs.iter().map(|&(a, b)| (NodeId(a), NodeId(b))).collect()
     }
 
+    /// The elements numbered as listed.
+    fn at(nodes: &[[f64; 2]], pairs: &[(usize, usize)]) -> Result<Vec<(f64, f64)>, ChainProblem> {
+        let elements: Vec<usize> = (0..pairs.len()).collect();
+        chain_positions(nodes, &elements, &ids(pairs))
+    }
+
     /// Positions by the distance along the chain, whatever the elements' own directions and
-    /// the order they are listed in after the first; a bent chain by its length, not its chord.
+    /// the order they are listed in; a bent chain by its length, not its chord.
     #[test]
     fn positions_along_a_chain() {
         // nodes 0 (0,0), 1 (2,0), 2 (4,0), 3 (4,4): a beam of two elements and a post
         let nodes = [[0.0, 0.0], [2.0, 0.0], [4.0, 0.0], [4.0, 4.0]];
-        let at = chain_positions(&nodes, &ids(&[(0, 1), (1, 2)])).unwrap();
-        assert_eq!(at, vec![(0.0, 0.5), (0.5, 1.0)]);
+        assert_eq!(
+            at(&nodes, &[(0, 1), (1, 2)]).unwrap(),
+            vec![(0.0, 0.5), (0.5, 1.0)]
+        );
         // listed from the other end: the chain starts at node 2
-        let at = chain_positions(&nodes, &ids(&[(1, 2), (0, 1)])).unwrap();
-        assert_eq!(at, vec![(0.5, 0.0), (1.0, 0.5)]);
-        // the first element drawn backwards, the second listed before the third
-        let at = chain_positions(&nodes, &ids(&[(1, 0), (3, 2), (1, 2)])).unwrap();
-        assert_eq!(at, vec![(0.25, 0.0), (1.0, 0.5), (0.25, 0.5)]);
+        assert_eq!(
+            at(&nodes, &[(1, 2), (0, 1)]).unwrap(),
+            vec![(0.5, 0.0), (1.0, 0.5)]
+        );
+        // the first element drawn backwards, the second listed before the third; length 8
+        assert_eq!(
+            at(&nodes, &[(1, 0), (3, 2), (1, 2)]).unwrap(),
+            vec![(0.25, 0.0), (1.0, 0.5), (0.25, 0.5)]
+        );
+        // two members drawn away from node 1, listed whole: (1,0) then (1,2),(2,3); the first
+        // listed element is inside the chain, the free end listed first is node 0
+        assert_eq!(
+            at(&nodes, &[(1, 0), (1, 2), (2, 3)]).unwrap(),
+            vec![(0.25, 0.0), (0.25, 0.5), (0.5, 1.0)]
+        );
+        // the same members listed the other way: the chain starts at node 3
+        assert_eq!(
+            at(&nodes, &[(1, 2), (2, 3), (1, 0)]).unwrap(),
+            vec![(0.75, 0.5), (0.5, 0.0), (0.75, 1.0)]
+        );
     }
 
     #[test]
@@ -374,14 +400,35 @@ mod tests {
             [5.0, 0.0],
             [6.0, 0.0],
         ];
-        let c = |p: &[(usize, usize)]| chain_positions(&nodes, &ids(p)).unwrap_err();
-        assert_eq!(c(&[(0, 1), (1, 2), (1, 0)]), ChainProblem::Repeated(2));
+        // the same element twice
         assert_eq!(
-            c(&[(0, 1), (1, 2), (1, 3)]),
-            ChainProblem::Branch(NodeId(1))
+            chain_positions(&nodes, &[7, 8, 7], &ids(&[(0, 1), (1, 2), (0, 1)])),
+            Err(ChainProblem::Repeated(2))
         );
-        assert_eq!(c(&[(0, 1), (1, 3), (3, 0)]), ChainProblem::Loop);
-        assert_eq!(c(&[(1, 2), (0, 1), (2, 3)]), ChainProblem::FirstInside);
-        assert_eq!(c(&[(0, 1), (1, 2), (4, 5)]), ChainProblem::Apart(2));
+        // two elements on the same two nodes: a loop, not a repeat
+        assert_eq!(at(&nodes, &[(0, 1), (1, 0)]), Err(ChainProblem::Loop));
+        assert_eq!(
+            at(&nodes, &[(0, 1), (1, 2), (1, 3)]),
+            Err(ChainProblem::Branch(NodeId(1)))
+        );
+        assert_eq!(
+            at(&nodes, &[(0, 1), (1, 3), (3, 0)]),
+            Err(ChainProblem::Loop)
+        );
+        assert_eq!(
+            at(&nodes, &[(0, 1), (1, 2), (4, 5)]),
+            Err(ChainProblem::Apart {
+                element: 2,
+                start: 0
+            })
+        );
+        // a loop beside a chain: the chain starts at its own free end and the loop is apart
+        assert_eq!(
+            at(&nodes, &[(0, 1), (1, 3), (3, 0), (4, 5)]),
+            Err(ChainProblem::Apart {
+                element: 0,
+                start: 3
+            })
+        );
     }
 }
