@@ -251,15 +251,26 @@ pub(crate) struct Engine {
     pub units: Units,
     /// The pair names.
     pub names: Vec<String>,
-    /// The largest force of the data without the tightening, normalised: what round-off of a
-    /// reported (tightening-free) force is judged against, so that `c` never changes a state.
+    /// The largest force of the data without the tightening, normalised (and the displacement
+    /// scale without it, relative to the normalised one: the same power of two): what
+    /// round-off of a reported (tightening-free) point is judged against, so that `c` never
+    /// changes a state.
     pub data_force: f64,
 }
 
 impl Engine {
     /// Reads the normalised point `sol` as pair results in the user's units.
     pub fn read_point(&self, sol: &PathPoint) -> Result<Vec<PairResult>, ContactError> {
-        let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, self.data_force, 1.0);
+        // A reported point is free of the tightening: its round-off is judged against the
+        // data's forces and displacements without `c` (the displacement scale is force over
+        // stiffness, and the stiffness does not depend on `c`: the same ratio).
+        let mut pairs = pair_results_scaled(
+            &sol.x,
+            &sol.z,
+            &self.names,
+            self.data_force,
+            self.data_force,
+        );
         for r in &mut pairs {
             r.x_n = self.units.user_force(r.x_n);
             r.x_t = self.units.user_force(r.x_t);
@@ -512,8 +523,10 @@ impl ContactSolution {
             (zs[j][m + i] * down - zs[j][2 * m + i] * down) / 2.0
         });
         let (normal, tangential) = zone_products(zone, &zn, &w);
+        // The traced values carry the tightening (`c·t` in `x`): their round-off is judged
+        // against the scales that include it.
         let (fs, ds) = (
-            self.engine.units.user_force(self.engine.data_force),
+            self.engine.units.user_force(1.0),
             self.engine.units.user_displacement(1.0),
         );
         let mut out = Vec::with_capacity(at.len());

@@ -512,8 +512,14 @@ impl Condensed {
             resultant[c] = applied[c] + reac[c] + contact[c] + ground[c];
         }
         // Forces near the top of the range (1e308) times their lever arms leave it: the
-        // model's numbers are too large for its units, which the user can change.
-        if !applied
+        // model's numbers are too large for its units, which the user can change. (Only where
+        // every force summed is finite: a non-finite force is not an overflow of the sums, and
+        // the checks of the results after this say whose fault it is.)
+        let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+        let summed_finite =
+            finite(f) && finite(&lambda) && finite(&sol.x_n) && finite(&sol.x_t);
+        if summed_finite
+            && !applied
             .iter()
             .chain(&reac)
             .chain(&contact)

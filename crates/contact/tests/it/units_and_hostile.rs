@@ -436,3 +436,27 @@ fn huge_friction_or_tightening_does_not_turn_a_stick_into_open() {
         );
     }
 }
+
+/// The tightening never changes the reported slip: one pair, `Rnn = Rtt = 1`, f = 0.5, `R_c = 1`
+/// in the normal, `R_v = 1` along the tangent. Hand: at p = 1 the bonded tangential force 1
+/// exceeds f·x_n = 0.5, the pair slips until `x_t = 1 + Rtt·z_t = 0.5`: `z_t = −0.5`, slip−,
+/// whatever c (with c = 1e10 the displacement round-off was judged against c's scale: "stick").
+#[test]
+fn huge_tightening_does_not_turn_a_slip_into_stick() {
+    for c in [0.0, 1.0, 1e8, 1e10] {
+        let mut zone = ContactZone::new(mat![[1.0]], mat![[1.0]]);
+        zone.friction = vec![0.5];
+        zone.constant.normal = vec![1.0];
+        zone.variable.tangential = vec![1.0];
+        let settings = SolveSettings {
+            tightening: c,
+            ..SolveSettings::default()
+        };
+        let r = solve(&zone, &settings).unwrap().pairs[0].clone();
+        assert_eq!(r.state, PairState::SlipMinus, "c = {c}: {r:?}");
+        assert!(
+            close(r.z_t, -0.5, 1e-9) && close(r.x_t, 0.5, 1e-9) && close(r.x_n, 1.0, 1e-9),
+            "c = {c}: {r:?}"
+        );
+    }
+}
