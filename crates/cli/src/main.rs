@@ -48,7 +48,7 @@ fn main() -> ExitCode {
     match outcome {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            eprintln!("{}", failure.message());
+            output::err_line(&failure.message());
             ExitCode::from(failure.exit_code())
         }
     }

@@ -35,7 +35,7 @@ fn suspended<R>(f: impl FnOnce() -> R) -> R {
 
 /// Writes a line on stderr (with the progress bar, if any, out of the way).
 pub(crate) fn note(line: &str) {
-    suspended(|| eprintln!("{line}"));
+    suspended(|| err_line(line));
 }
 
 /// Progress of a run on stderr: the engine's [`unilateral_lcp::Progress`] counters read by a
@@ -141,9 +141,12 @@ fn draw(h: &unilateral_lcp::Progress, stop: &AtomicBool, delay: Duration, termin
                 } else if done || last_line.is_none_or(|t| t.elapsed() >= line_every) {
                     let secs = elapsed.as_secs_f64();
                     if done {
-                        eprintln!("unilateral: done in {secs:.1} s: {text}");
+                        err_line(&format!("unilateral: done in {secs:.1} s: {text}"));
                     } else {
-                        eprintln!("unilateral: {secs:.1} s, {}: {text}", snap.phase.as_str());
+                        err_line(&format!(
+                            "unilateral: {secs:.1} s, {}: {text}",
+                            snap.phase.as_str()
+                        ));
                     }
                     last_line = Some(Instant::now());
                 }
@@ -351,6 +354,17 @@ pub(crate) fn out(text: &str) {
         let mut o = std::io::stdout().lock();
         let _ = o.write_all(text.as_bytes()).and_then(|()| o.flush());
     });
+}
+
+/// Writes one line to stderr: a closed stderr (`unilateral … 2>&1 | head -1`) is no failure
+/// either (`eprintln!` would panic there, exit 101).
+pub(crate) fn err_line(text: &str) {
+    use std::io::Write;
+    let mut e = std::io::stderr().lock();
+    let _ = e
+        .write_all(text.as_bytes())
+        .and_then(|()| e.write_all(b"\n"))
+        .and_then(|()| e.flush());
 }
 
 /// `println!` through [`out`]: no panic on a closed pipe.

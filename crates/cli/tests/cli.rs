@@ -467,6 +467,31 @@ fn exit_statuses_of_the_contract() {
     assert!(!out.stderr.contains("internal"), "{}", out.stderr);
 }
 
+/// A closed stderr (`unilateral … 2>&1 >/dev/null | head -1`) is no failure: the run's status
+/// is what it would be (0 for a run that writes files and says so on stderr, 2 for bad input),
+/// never a panic (101) on the first line written there.
+#[test]
+fn a_closed_stderr_changes_no_exit_status() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        Command::new(env!("CARGO_BIN_EXE_unilateral"))
+            .args(args)
+            .current_dir(dir.path())
+            .stdout(std::process::Stdio::null())
+            .stderr(writer)
+            .status()
+            .unwrap()
+            .code()
+    };
+    let example = example1();
+    let example = example.to_str().unwrap();
+    assert_eq!(run(&["solve", example, "--csv", "tables"]), Some(0));
+    assert!(dir.path().join("tables").is_dir());
+    assert_eq!(run(&["solve", "no-such-file.toml"]), Some(2));
+}
+
 /// Finite numbers whose sums leave double precision are the model's (exit 2, "choose other
 /// units"), not the program's: a load of 1e308 at x = 2 (its moment about the origin 2e308),
 /// and the same reached by a target load p = 1e308. No output file is written.

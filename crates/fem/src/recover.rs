@@ -516,16 +516,15 @@ impl Condensed {
         // every force summed is finite: a non-finite force is not an overflow of the sums, and
         // the checks of the results after this say whose fault it is.)
         let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
-        let summed_finite =
-            finite(f) && finite(&lambda) && finite(&sol.x_n) && finite(&sol.x_t);
+        let summed_finite = finite(f) && finite(&lambda) && finite(&sol.x_n) && finite(&sol.x_t);
         if summed_finite
             && !applied
-            .iter()
-            .chain(&reac)
-            .chain(&contact)
-            .chain(&ground)
-            .chain(&resultant)
-            .all(|v| v.is_finite())
+                .iter()
+                .chain(&reac)
+                .chain(&contact)
+                .chain(&ground)
+                .chain(&resultant)
+                .all(|v| v.is_finite())
         {
             return Err(FemError::Overflow {
                 element: None,

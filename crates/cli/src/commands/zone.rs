@@ -45,6 +45,6 @@ pub(crate) fn run(args: ZoneArgs) -> Result<(), Failure> {
     }
     std::fs::write(&args.out, text)
         .map_err(|e| Failure::Input(format!("cannot write {}: {e}", args.out.display())))?;
-    eprintln!("wrote {}", args.out.display());
+    crate::output::err_line(&format!("wrote {}", args.out.display()));
     Ok(())
 }
