@@ -467,6 +467,32 @@ fn exit_statuses_of_the_contract() {
     assert!(!out.stderr.contains("internal"), "{}", out.stderr);
 }
 
+/// The report of a structural history whose last stage ends early in a mechanism
+/// (`tests/data/history/mesh-mechanism.toml`: the block slides off in stage 5 at s ≈ 0.455):
+/// written like any other (its node curves once asked for the stage's last step a rounding
+/// beyond the stage's end, and the run failed as an internal error), with the node curves the
+/// report draws.
+#[test]
+fn a_history_report_of_a_stage_ending_in_a_mechanism() {
+    let model = root().join("tests/data/history/mesh-mechanism.toml");
+    let cmd = TestCommand::new(&["solve"])
+        .arg(&model)
+        .args(&["--report", "rep", "--json", "out.json"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let j = cmd.json("out.json");
+    assert_eq!(j["status"], "mechanism", "{}", j["status"]);
+    let last = &j["history"][4];
+    let s_end = last["s_end"].as_f64().unwrap();
+    assert!(
+        last["status"] == "mechanism" && s_end > 0.0 && s_end < 1.0,
+        "{last}"
+    );
+    for f in ["report.html", "history-nodes.svg"] {
+        assert!(cmd.path("rep").join(f).is_file(), "{f} not written");
+    }
+}
+
 /// A closed stderr (`unilateral … 2>&1 >/dev/null | head -1`) is no failure: the run's status
 /// is what it would be (0 for a run that writes files and says so on stderr, 2 for bad input),
 /// never a panic (101) on the first line written there.

@@ -39,7 +39,14 @@ pub fn node_curves(
         nodes.len()
     ];
     for st in &a.history.stages {
-        let mut marks: Vec<f64> = st.steps.iter().map(|p| p.s).filter(|&s| s > 0.0).collect();
+        // The steps inside the stage, then its end (a step at the end of a stage that stops
+        // early — a mechanism — may carry its `s` a rounding above `s_end`).
+        let mut marks: Vec<f64> = st
+            .steps
+            .iter()
+            .map(|p| p.s)
+            .filter(|&s| s > 0.0 && s < st.s_end)
+            .collect();
         marks.push(st.s_end);
         marks.dedup();
         for s in marks {
