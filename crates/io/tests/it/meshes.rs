@@ -723,3 +723,71 @@ fy = -1.0
         assert!(up || down, "{arc:?}");
     }
 }
+
+/// A closed line group as the surface `from` keeps its closing segment: a block of two
+/// quadrilaterals ((0,0)–(2,1), nodes 1…6 counter-clockwise from the origin) whose outline
+/// group lists its lines from `2–3` round to `1–2`, on a `[[blocks]]` foundation whose top has
+/// nodes at x = 0, 0.5, 1, 1.5, 2. Each top node gets a pair (five); the one at x = 0.5 lies on
+/// the closing segment `1–2` at its middle (hand: ξ = 0.5, normal along y). Walking the group's
+/// node list pairwise lost that segment (four pairs, the node at 0.5 without one).
+#[test]
+fn a_closed_line_group_keeps_its_closing_segment() {
+    let msh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n1 2 \"outline\"\n\
+               2 1 \"up\"\n$EndPhysicalNames\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 2 1 0\n\
+               5 1 1 0\n6 0 1 0\n$EndNodes\n$Elements\n8\n1 1 2 2 1 2 3\n2 1 2 2 1 3 4\n\
+               3 1 2 2 1 4 5\n4 1 2 2 1 5 6\n5 1 2 2 1 6 1\n6 1 2 2 1 1 2\n\
+               7 3 2 1 1 1 2 5 6\n8 3 2 1 1 2 3 4 5\n$EndElements\n";
+    let model = r#"
+[[materials]]
+name = "m"
+E = 1.0e6
+nu = 0.25
+[[meshes]]
+name = "up"
+file = "up.msh"
+analysis = "plane_strain"
+material = "m"
+[[blocks]]
+name = "low"
+origin = [0.0, -1.0]
+width = 2.0
+height = 1.0
+nx = 4
+ny = 2
+material = "m"
+analysis = "plane_strain"
+[[supports]]
+nodes = "low.bottom"
+fixed = true
+[[contact]]
+name = "c"
+match = "surface"
+search = 0.01
+from = "up.outline"
+to = "low.top"
+normal = "surface"
+friction = 0.5
+[[loads.variable.body]]
+elements = "up"
+force = [0.0, -100.0]
+"#;
+    let (_dir, r) = read(model, &[("up.msh", msh)]);
+    let p = r.unwrap_or_else(|e| panic!("{e}"));
+    let m = &p.model;
+    let pairs = m.pairs();
+    assert_eq!(pairs.len(), 5, "{pairs:?}");
+    let at = |n: NodeId| m.nodes()[n.0];
+    let mid = pairs
+        .iter()
+        .find(|q| (at(q.b)[0] - 0.5).abs() < 1e-12)
+        .expect("a pair at x = 0.5");
+    let unilateral_fem::Endpoint::Node(a1) = mid.a else {
+        panic!("a node-to-segment pair: {mid:?}")
+    };
+    let (a2, xi) = mid.segment.expect("on a segment");
+    let mut ends = [at(a1)[0], at(a2)[0]];
+    ends.sort_by(f64::total_cmp);
+    assert_eq!(ends, [0.0, 1.0], "{mid:?}");
+    assert!((xi - 0.5).abs() < 1e-12, "{mid:?}");
+    assert!(mid.normal[0].abs() < 1e-12 && (mid.normal[1].abs() - 1.0).abs() < 1e-12);
+}

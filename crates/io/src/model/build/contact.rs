@@ -226,7 +226,7 @@ impl Builder<'_> {
                         out
                     }
                     Match::Surface => {
-                        let segments = self.segments(&t, from_node, &a_nodes)?;
+                        let segments = self.segments(&t, from_node, &from, &a_nodes)?;
                         let search = search.expect("required");
                         self.on_surface(&segments, &b_nodes, &exclude, search, tol)
                     }
@@ -474,16 +474,27 @@ impl Builder<'_> {
         Ok(pairs)
     }
 
-    /// The segments of the surface `from`: consecutive nodes of its (ordered) node list that an
-    /// element joins (an edge of a plane element, or a frame or bar), so that a block's edge,
-    /// a member, or a mesh's line group in order along its lines is a surface, and a break in
-    /// the list is not bridged.
+    /// The segments of the surface `from`: a mesh's line groups by their own line elements (a
+    /// closed loop keeps its closing segment, separate lines are not bridged); otherwise
+    /// consecutive nodes of its (ordered) node list, so that a block's edge or a member is a
+    /// surface. Either way only where an element joins the two nodes (an edge of a plane
+    /// element, or a frame or bar), so that a break in the list is not bridged.
     fn segments(
         &self,
         t: &Table,
         from_node: &Node,
+        from: &[Ref],
         chain: &[NodeId],
     ) -> Result<Vec<Segment>, InputError> {
+        let candidates: Vec<(NodeId, NodeId)> =
+            if from.iter().all(|r| self.surfaces.contains_key(&r.name)) {
+                from.iter()
+                    .flat_map(|r| &self.surfaces[&r.name].segments)
+                    .map(|g| (self.final_of[g.nodes[0]], self.final_of[g.nodes[1]]))
+                    .collect()
+            } else {
+                chain.windows(2).map(|w| (w[0], w[1])).collect()
+            };
         let on: HashSet<NodeId> = chain.iter().copied().collect();
         let coords = self.model.nodes();
         // edge (sorted) → the centroids of the plane elements that have it (none for an edge
@@ -518,8 +529,7 @@ impl Builder<'_> {
             }
         }
         let mut out = Vec::new();
-        for w in chain.windows(2) {
-            let (a1, a2) = (w[0], w[1]);
+        for (a1, a2) in candidates {
             let Some(inside) = edges.get(&key(a1, a2)) else {
                 continue;
             };

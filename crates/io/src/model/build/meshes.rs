@@ -22,24 +22,21 @@ use crate::msh::{read_gmsh, GmshMesh, MshElement, MshElementType};
 /// A contact surface: the segments of a 1D physical group of a mesh, in order along its line
 /// elements (each chain of connected segments walked from one end; chains in the order of their
 /// first element in the file).
-#[allow(dead_code)] // read by `[[contact]]` with `match = "surface"` (the contact builder)
 pub(super) struct Surface {
     /// The segments in order; consecutive segments of a chain share a node (`[a1, a2]`, then
     /// `[a2, a3]`, …).
     pub segments: Vec<Segment>,
-    /// Where the mesh is given in the model file.
-    pub pos: Option<Pos>,
 }
 
 /// One segment of a [`Surface`].
 #[derive(Debug, Clone, Copy)]
-#[allow(dead_code)] // read by `[[contact]]` with `match = "surface"` (the contact builder)
 pub(super) struct Segment {
     /// Its end nodes, as proto nodes (`Builder::final_of` numbers them).
     pub nodes: [usize; 2],
     /// The unit outward normal of the mesh's body along the segment, when a 2D element of the
     /// same mesh has the segment as an edge (pointing away from that element); `None` for a line
     /// that bounds no element of its mesh (a free curve or a frame).
+    #[allow(dead_code)] // the contact builder orients a segment by the model's elements at it
     pub outward: Option<[f64; 2]>,
 }
 
@@ -464,13 +461,7 @@ impl Builder<'_> {
                         outward,
                     });
                 }
-                self.surfaces.insert(
-                    set.clone(),
-                    Surface {
-                        segments: out,
-                        pos: name.pos,
-                    },
-                );
+                self.surfaces.insert(set.clone(), Surface { segments: out });
             } else {
                 let mut seen = HashSet::new();
                 for e in &members {
