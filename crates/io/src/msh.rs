@@ -39,7 +39,7 @@ pub struct MshNode {
 }
 
 /// The element types a 2D linear model uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum MshElementType {
     /// A point (type 15): sets only.
     Point,
@@ -655,12 +655,26 @@ impl<'a> Reader<'a> {
         }
     }
 
-    /// MSH 2.2 writes an element once per physical group it belongs to, with the same tag:
-    /// one element with all its groups. A repeated tag with other nodes is an error.
+    /// MSH 2.2 writes an element once per physical group it belongs to: one element with all
+    /// its groups. Gmsh's own writer gives each copy a tag of its own; a copy has the same type,
+    /// geometric entity and nodes (in order), which two different elements never share. Written
+    /// with the same tag, a repeat with other nodes is an error.
     fn merge_repeated(&mut self) -> Scan<()> {
         let mut first: HashMap<usize, usize> = HashMap::with_capacity(self.elements.len());
-        let mut keep = Vec::with_capacity(self.elements.len());
+        let mut same: HashMap<(MshElementType, usize, Vec<usize>), usize> =
+            HashMap::with_capacity(self.elements.len());
+        let mut keep: Vec<MshElement> = Vec::with_capacity(self.elements.len());
         for e in std::mem::take(&mut self.elements) {
+            let copy_of = same.get(&(e.kind, e.entity, e.nodes.clone())).copied();
+            if let (Some(k), false) = (copy_of, first.contains_key(&e.tag)) {
+                let f = &mut keep[k];
+                for p in e.physical {
+                    if !f.physical.contains(&p) {
+                        f.physical.push(p);
+                    }
+                }
+                continue;
+            }
             match first.get(&e.tag) {
                 Some(&k) => {
                     let f: &mut MshElement = &mut keep[k];
@@ -682,6 +696,7 @@ impl<'a> Reader<'a> {
                 }
                 None => {
                     first.insert(e.tag, keep.len());
+                    same.insert((e.kind, e.entity, e.nodes.clone()), keep.len());
                     keep.push(e);
                 }
             }
@@ -992,13 +1007,26 @@ $EndElements
         assert_eq!(m.group("9").unwrap().dimension, 1);
     }
 
-    /// Reference: Gmsh 2.2 repeats an element of two groups with the same tag.
+    /// An element of two groups written twice: one element with both groups. Gmsh's 2.2 writer
+    /// (4.x, a surface in two physical groups) gives each copy a tag of its own —
+    /// `33 2 2 1 1 81 83 101` and `34 2 2 5 1 81 83 101` in a file a review made with Gmsh, whose
+    /// body came out twice as stiff when read as two elements; a writer may also repeat the tag.
     #[test]
     fn msh22_element_in_two_groups_is_one_element() {
         let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n$Elements\n2\n4 1 2 3 1 1 2\n4 1 2 5 1 1 2\n$EndElements\n";
         let m = p(text).unwrap();
         assert_eq!(m.elements.len(), 1);
         assert_eq!(m.elements[0].physical, [3, 5]);
+        let gmsh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n81 0 0 0\n83 1 0 0\n101 0 1 0\n$EndNodes\n$Elements\n3\n33 2 2 1 1 81 83 101\n34 2 2 5 1 81 83 101\n35 2 2 5 2 81 83 101\n$EndElements\n";
+        let m = p(gmsh).unwrap();
+        // the copies in entity 1 are one element of groups 1 and 5; the same nodes in another
+        // entity (2) are an element of their own
+        assert_eq!(m.elements.len(), 2);
+        assert_eq!(
+            (m.elements[0].tag, &m.elements[0].physical[..]),
+            (33, &[1, 5][..])
+        );
+        assert_eq!((m.elements[1].tag, m.elements[1].entity), (35, 2));
         let bad = text.replace("4 1 2 5 1 1 2", "4 1 2 5 1 2 1");
         let e = p(&bad).unwrap_err();
         assert!(e.message.contains("with other nodes"), "{e}");
