@@ -117,6 +117,10 @@ pub fn solve_shared(
         }
     }
     let tightened = settings.tightening > 0.0;
+    // The pivots that settle the scheme at p = 0: the steps at p = 0 to round-off of the
+    // loads the path reaches (not of the target, which may lie far beyond them: with a target
+    // of 1e14 the first event, at p = 10.7, read as settling).
+    let p_reached = path.steps.iter().fold(0.0f64, |a, s| a.max(s.p.abs()));
     let steps: Vec<LoadStep> = path
         .steps
         .iter()
@@ -138,7 +142,7 @@ pub fn solve_shared(
             }
             LoadStep {
                 index: s.index,
-                settling: s.p.abs() <= 1e-12 * settings.target.abs().max(1.0),
+                settling: s.p.abs() <= 1e-12 * p_reached,
                 p: s.p,
                 entering: label(m, s.entering),
                 leaving: label(m, s.leaving),

@@ -460,3 +460,31 @@ fn huge_tightening_does_not_turn_a_slip_into_stick() {
         );
     }
 }
+
+/// The paper's Example 1 (c = 1) asked for p* = 1e14: its one event, pair 1 opening at
+/// p = 32/3 (the paper's Table 2), is an event, not a pivot that settles the start — which
+/// a threshold relative to the target (1e-12·1e14 = 100) made it.
+#[test]
+fn a_far_target_hides_no_event_as_settling() {
+    let mut zone = ContactZone::new(
+        mat![
+            [0.1875, -0.375, 0.1875],
+            [-0.375, 0.75, -0.375],
+            [0.1875, -0.375, 0.1875]
+        ],
+        mat![[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]],
+    );
+    zone.friction = vec![0.6; 3];
+    zone.variable.normal = vec![-0.09375, 0.6875, 0.40625];
+    for target in [1.0, 1e14] {
+        let settings = SolveSettings {
+            tightening: 1.0,
+            ..end_settings(target)
+        };
+        let sol = solve(&zone, &settings).unwrap();
+        let events: Vec<_> = sol.steps.iter().filter(|s| !s.settling).collect();
+        assert_eq!(events.len(), 1, "target {target}: {:?}", sol.steps);
+        assert!(close(events[0].p, 32.0 / 3.0, 1e-12), "{:?}", events[0]);
+        assert_eq!(events[0].events[0].kind, EventKind::Opens);
+    }
+}
