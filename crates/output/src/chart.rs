@@ -648,7 +648,15 @@ pub fn scheme_columns(sol: &ContactSolution) -> Result<Vec<SchemeColumn>, Contac
     for (&(k, fin, p_from, p_to), v) in segs.iter().zip(sol.traced_on_segments_unnamed(&at)?) {
         let Some((_, pairs)) = v else { continue };
         let mut states: Vec<PairState> = pairs.iter().map(|r| r.state).collect();
-        if fin {
+        // Beyond the last breakpoint, without the tightening, the path itself is the solution:
+        // its states are read inside the column (at its last breakpoint every force may be
+        // zero — a homogeneous problem at p = 0 — and every pair would read open).
+        let inside = (fin && sol.tightening == 0.0 && p_to > p_from)
+            .then(|| sol.at(0.5 * (p_from + p_to)).ok().flatten())
+            .flatten();
+        if let Some((pairs, _)) = inside {
+            states = pairs.iter().map(|r| r.state).collect();
+        } else if fin {
             if let Some(var) = sol.path.last_entering {
                 growing(&mut states, &pairs, var, m);
             }
@@ -1111,6 +1119,32 @@ mod tests {
         unilateral_analysis::analyze(&pb.model, &pb.settings)
             .unwrap()
             .solution
+    }
+
+    /// The map of a homogeneous problem traced without tightening (the paper's Example 1 zone,
+    /// c = 0): its scheme is settled at p = 0 and holds for every p > 0 — pair 1 lifts, pairs 2
+    /// and 3 press and stick (formulation §5, the paper's answer). Its one column shows that
+    /// scheme, not the all-zero forces at p = 0 (where every pair read open and the map was
+    /// blank).
+    #[test]
+    fn a_homogeneous_path_maps_its_scheme_for_p_above_zero() {
+        let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/example1-contact-zone.toml");
+        let unilateral_io::Problem::ContactZone(pb) = unilateral_io::read_problem(&file).unwrap()
+        else {
+            panic!("a contact zone");
+        };
+        let settings = unilateral_contact::SolveSettings {
+            tightening: 0.0,
+            ..pb.settings.clone()
+        };
+        let sol = unilateral_contact::solve(&pb.zone, &settings).unwrap();
+        let cols = scheme_columns(&sol).unwrap();
+        assert_eq!(cols.len(), 1, "{cols:?}");
+        assert_eq!(
+            cols[0].states,
+            [PairState::Open, PairState::Stick, PairState::Stick]
+        );
     }
 
     /// The working-scheme map of Example 3 (c = 1000): one column per segment of the traced path
