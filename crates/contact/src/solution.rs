@@ -183,11 +183,13 @@ impl Outcome {
                     .to_string()
             }
             Outcome::Ray { p_from } => format!(
-                "the working scheme no longer changes for p ≥ {p_from:.6} (Criterion 2a: ray)"
+                "the working scheme no longer changes for p ≥ {} (Criterion 2a: ray)",
+                load_text(*p_from)
             ),
-            Outcome::Mechanism { p_limit, .. } => {
-                format!("the structure becomes a mechanism at p_lim = {p_limit:.6} (Criterion 2b)")
-            }
+            Outcome::Mechanism { p_limit, .. } => format!(
+                "the structure becomes a mechanism at p_lim = {} (Criterion 2b)",
+                load_text(*p_limit)
+            ),
             Outcome::ReturnedToZero => "the load path turned back to p = 0".into(),
             Outcome::IterationLimit => "the pivot cap was reached before the path ended".into(),
             Outcome::NoSolutionAtStart => {
@@ -755,9 +757,46 @@ fn product(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> faer::Mat<f64>
     out
 }
 
+/// A load for a sentence: six decimals where that shows six significant digits or more
+/// (`10.666667`, `2.000000`), else six significant digits in exponent form (`1.066667e-299`,
+/// `1.066667e13`), never `0.000000` for a load that is not zero.
+pub(crate) fn load_text(p: f64) -> String {
+    if p == 0.0 || (1e-3..1e7).contains(&p.abs()) {
+        format!("{p:.6}")
+    } else {
+        format!("{p:.6e}")
+    }
+}
+
+/// A number given as data or found on the path, for a sentence: its shortest text, in
+/// exponent form outside `[1e-4, 1e7)` (`1e12`, not `1000000000000`; `6.857228015352759e-9`,
+/// not `0.000000006857228015352759`; `1000` as it is).
+pub(crate) fn number_text(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e7).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Hand-written texts: ordinary loads keep six decimals, tiny and huge ones their digits.
+    #[test]
+    fn loads_in_sentences_keep_their_digits() {
+        assert_eq!(load_text(32.0 / 3.0), "10.666667");
+        assert_eq!(load_text(2.0), "2.000000");
+        assert_eq!(load_text(0.0), "0.000000");
+        assert_eq!(load_text(32.0 / 3.0 * 1e-300), "1.066667e-299");
+        assert_eq!(load_text(1.0666666666666666e13), "1.066667e13");
+        assert_eq!(load_text(6.857228015352759e-9), "6.857228e-9");
+        assert_eq!(number_text(1e12), "1e12");
+        assert_eq!(number_text(1000.0), "1000");
+        assert_eq!(number_text(0.5), "0.5");
+        assert_eq!(number_text(6.857228015352759e-9), "6.857228015352759e-9");
+    }
 
     // Reference: the definition of the states (formulation: open ⇔ no compression). A normal
     // force of 4e-16 in a zone whose forces are of order one is round-off of zero: the pair

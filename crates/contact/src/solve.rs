@@ -215,13 +215,13 @@ pub fn solve_shared(
         notes.push(format!(
             "the tightening c = {} is artificial and there is no constant load: the loads of the \
              intermediate events depend on c, the final working scheme does not",
-            settings.tightening
+            crate::solution::number_text(settings.tightening)
         ));
     } else if settings.tightening > 0.0 {
         notes.push(format!(
             "the tightening c = {} is artificial: the loads of the events depend on it; the \
              reported solution does not contain it",
-            settings.tightening
+            crate::solution::number_text(settings.tightening)
         ));
     }
     if settings.tightening == 0.0 && no_constant {
@@ -241,10 +241,11 @@ pub fn solve_shared(
     }
     if let Some((p, pair)) = first_slip_decrease(&path, m) {
         notes.push(format!(
-            "at p = {p} the slip of pair {} decreases along the path: from there the paper's \
+            "at p = {} the slip of pair {} decreases along the path: from there the paper's \
              friction law (total slip tied to total force) is not a real one — a slip that \
              reverses or is given back dissipates no energy in it; a [[history]] gives the \
              path-dependent answer",
+            crate::solution::number_text(p),
             names[pair]
         ));
     }
