@@ -493,6 +493,31 @@ fn a_history_report_of_a_stage_ending_in_a_mechanism() {
     }
 }
 
+/// `lcp --json` says how the LCP was solved as data (it was Rust's debug text,
+/// `"Lemke { covering: \"ones\" }"`): `lcp_CPS_3`, a bimatrix game whose Lemke paths all end
+/// on rays (contact-zone.md), by enumeration; `lcp_mmc` by Lemke's method with the covering
+/// vector of ones, the first tried.
+#[test]
+fn lcp_json_says_how_it_solved_as_data() {
+    for (file, want) in [
+        (
+            "lcp_CPS_3.dat",
+            serde_json::json!({ "method": "enumeration" }),
+        ),
+        (
+            "lcp_mmc.dat",
+            serde_json::json!({ "method": "lemke", "covering": "ones" }),
+        ),
+    ] {
+        let cmd = TestCommand::new(&["lcp"])
+            .arg(root().join("tests/data/siconos/lcp").join(file))
+            .args(&["--json", "out.json"]);
+        let out = cmd.run();
+        assert_eq!(out.code, 0, "{}", out.stderr);
+        assert_eq!(cmd.json("out.json")["strategy"], want, "{file}");
+    }
+}
+
 /// A closed stderr (`unilateral … 2>&1 >/dev/null | head -1`) is no failure: the run's status
 /// is what it would be (0 for a run that writes files and says so on stderr, 2 for bad input),
 /// never a panic (101) on the first line written there.

@@ -584,9 +584,21 @@ pub fn lcp_json(sol: &LcpSolution) -> Result<Value, NonFiniteOutput> {
         "w": w,
         "pivots": sol.pivots,
         "residual": r,
-        "strategy": format!("{:?}", sol.strategy),
+        "strategy": strategy_json(&sol.strategy),
         "attempts": sol.attempts,
     })))
+}
+
+/// How an LCP was solved, as data: `{"method": "trivial"}`, `{"method": "lemke", "covering":
+/// "ones"}` (or `"user"`, `"graded"`, `"|q|"`), `{"method": "enumeration"}`.
+fn strategy_json(s: &unilateral_lcp::Strategy) -> Value {
+    match s {
+        unilateral_lcp::Strategy::Trivial => json!({ "method": "trivial" }),
+        unilateral_lcp::Strategy::Lemke { covering } => {
+            json!({ "method": "lemke", "covering": covering })
+        }
+        unilateral_lcp::Strategy::Enumeration => json!({ "method": "enumeration" }),
+    }
 }
 
 /// The tableaux as JSON (entries by row).
