@@ -71,17 +71,17 @@ pub(crate) enum ProgressArg {
 #[derive(clap::Args, Debug, Clone)]
 pub(crate) struct ReportArgs {
     /// Chart only these pairs (names, comma-separated; default: all).
-    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    #[arg(long, value_name = "NAMES", value_delimiter = ',', requires = "report")]
     pub(crate) report_pairs: Option<Vec<String>>,
     /// Structural load histories: chart the load–displacement curves of these nodes (names,
     /// comma-separated; default: the node that moves most at the end).
-    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    #[arg(long, value_name = "NAMES", value_delimiter = ',', requires = "report")]
     pub(crate) report_nodes: Option<Vec<String>>,
     /// Draw the bending moment diagrams of frame members in the structure picture.
-    #[arg(long)]
+    #[arg(long, requires = "report")]
     pub(crate) moments: bool,
     /// The stress that colours plane elements.
-    #[arg(long, value_enum, default_value = "vm")]
+    #[arg(long, value_enum, default_value = "vm", requires = "report")]
     pub(crate) stress: StressArg,
 }
 
@@ -164,9 +164,10 @@ pub(crate) struct SolveArgs {
     pub(crate) json: Option<PathBuf>,
     /// In the JSON document, every pair at every step of the load path (`steps[k].pairs`;
     /// traced with the tightening, the traced path's values, which depend on c).
-    #[arg(long)]
+    #[arg(long, requires = "json")]
     pub(crate) json_breakpoints: bool,
-    /// Write CSV tables (pairs.csv, steps.csv) into this directory.
+    /// Write CSV tables into this directory (pairs.csv, steps.csv, path.csv; for structural
+    /// models also displacements, reactions, element forces and stresses).
     #[arg(long, value_name = "DIR")]
     pub(crate) csv: Option<PathBuf>,
     /// Write the load-path charts, the structure picture and report.html into this directory.
@@ -177,7 +178,13 @@ pub(crate) struct SolveArgs {
     #[arg(long, value_name = "DIR")]
     pub(crate) vtk: Option<PathBuf>,
     /// How the .vtu files of --vtk hold their data arrays.
-    #[arg(long, value_enum, value_name = "FORMAT", default_value = "ascii")]
+    #[arg(
+        long,
+        value_enum,
+        value_name = "FORMAT",
+        default_value = "ascii",
+        requires = "vtk"
+    )]
     pub(crate) vtk_format: VtkFormatArg,
     /// List every step and every pair in the summary, however many (by default a problem of
     /// more than 24 pairs gets counts of states, the first and last events, and the pairs with
@@ -257,5 +264,16 @@ impl Overrides {
         settings
             .validate()
             .map_err(|e| Failure::Input(format!("command line: {e}")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// clap's own check of the definitions (names that `requires` refers to exist, no two
+    /// arguments share a flag).
+    #[test]
+    fn the_command_line_is_consistent() {
+        use clap::CommandFactory;
+        super::Cli::command().debug_assert();
     }
 }

@@ -493,6 +493,43 @@ fn a_history_report_of_a_stage_ending_in_a_mechanism() {
     }
 }
 
+/// An option that only shapes an output not asked for is refused (exit 2, naming the option
+/// it needs), not silently ignored: `--vtk-format` without `--vtk`, `--json-breakpoints`
+/// without `--json`, `--report-pairs`, `--moments`, `--stress` and `--report-nodes` without
+/// `--report`. With their output asked for they are accepted.
+#[test]
+fn options_of_an_output_not_asked_for_are_refused() {
+    for (extra, needs) in [
+        (&["--vtk-format", "binary"][..], "--vtk"),
+        (&["--json-breakpoints"], "--json"),
+        (&["--report-pairs", "support.1"], "--report"),
+        (&["--moments"], "--report"),
+        (&["--stress", "sxx"], "--report"),
+        (&["--report-nodes", "A"], "--report"),
+    ] {
+        let out = TestCommand::new(&["solve"])
+            .arg(root().join("examples/example1-beam.toml"))
+            .args(extra)
+            .run();
+        assert_eq!(out.code, 2, "{extra:?}: {}", out.stderr);
+        assert!(out.stderr.contains(needs), "{extra:?}: {}", out.stderr);
+    }
+    let out = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example1-beam.toml"))
+        .args(&[
+            "--vtk",
+            "v",
+            "--vtk-format",
+            "binary",
+            "--report",
+            "r",
+            "--moments",
+        ])
+        .args(&["--json", "o.json", "--json-breakpoints"])
+        .run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+}
+
 /// `lcp --json` says how the LCP was solved as data (it was Rust's debug text,
 /// `"Lemke { covering: \"ones\" }"`): `lcp_CPS_3`, a bimatrix game whose Lemke paths all end
 /// on rays (contact-zone.md), by enumeration; `lcp_mmc` by Lemke's method with the covering
