@@ -1311,6 +1311,12 @@ fn zone_command_writes_a_solvable_contact_zone() {
     assert_eq!(out.code, 0, "{}", out.stderr);
     let text = std::fs::read_to_string(cmd.path("z1.toml")).unwrap();
     let doc: toml::Table = text.parse().expect("TOML");
+    // The model's title and units as the zone file's own keys (they were comments).
+    assert_eq!(
+        doc["title"].as_str(),
+        Some("Example 1: beam on three unilateral supports")
+    );
+    assert_eq!(doc["units"].as_str(), Some("N, m"));
     let rows = |key: &str| -> Vec<Vec<f64>> {
         doc["contact_zone"][key]
             .as_array()

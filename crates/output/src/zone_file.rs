@@ -63,6 +63,7 @@ pub fn zone_toml(
     settings: &SolveSettings,
     history: Option<&[Stage]>,
     header: &[String],
+    about: &crate::About,
 ) -> Result<String, NonFiniteOutput> {
     let m = zone.pairs();
     let blocks = [
@@ -81,6 +82,13 @@ pub fn zone_toml(
     let mut s = String::new();
     for h in header {
         let _ = writeln!(s, "# {h}");
+    }
+    // The model's title and units, read back by the zone's reader (and printed by its runs).
+    if let Some(t) = &about.title {
+        let _ = writeln!(s, "title = {}", string(t));
+    }
+    if let Some(u) = &about.units {
+        let _ = writeln!(s, "units = {}", string(u));
     }
     let _ = writeln!(s, "[contact_zone]");
     let _ = writeln!(s, "friction = {}", vector(&zone.friction));

@@ -25,19 +25,21 @@ pub(crate) fn run(args: ZoneArgs) -> Result<(), Failure> {
         zone.pairs(),
         env!("CARGO_PKG_VERSION")
     )];
-    if let Some(t) = &problem.title {
-        header.push(format!("Model: {t}"));
-    }
     header.push(
         "Rnn[i][j]: force in normal link i from a unit opening of normal link j, all other links \
          held (formulation §2); loads: link forces of the bonded structure per case."
             .into(),
     );
+    let about = unilateral_output::About {
+        title: problem.title.clone(),
+        units: problem.units.clone(),
+    };
     let text = unilateral_output::zone_toml(
         &zone,
         &problem.settings,
         problem.history.as_deref(),
         &header,
+        &about,
     )?;
     if args.out == std::path::Path::new("-") {
         crate::output::out(&text);
