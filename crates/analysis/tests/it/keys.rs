@@ -932,32 +932,29 @@ fn distributed_load_linearly_varying_along_a_chain_however_drawn() {
         1000.0,
         "R_A (listed backwards)",
     );
-    // The same chain as two members drawn towards each other, (0,0)→(2,0) and (4,0)→(2,0),
-    // listed from x = 0: the load of the original file (R_A = 400), which a projection on the
-    // line from the first element's start to the last element's end (both at x = 2) lost.
-    let two_members = |d: &mut toml::Table| {
-        let member = |name: &str, start: f64, end: toml::Value| {
-            let mut m = toml::Table::new();
-            set(&mut m, "name", name);
-            set(
-                &mut m,
-                "start",
-                toml::Value::Array(vec![start.into(), 0.0.into()]),
-            );
-            set(&mut m, "end", end);
-            set(&mut m, "divisions", 2);
-            set(&mut m, "section", "beam");
-            toml::Value::Table(m)
-        };
-        let left = member(
-            "left",
-            0.0,
-            toml::Value::Array(vec![2.0.into(), 0.0.into()]),
-        );
-        let right = member("right", 4.0, "left.end".into());
-        set(d, "members", toml::Value::Array(vec![left, right]));
-        set(entry(d, "supports", 0), "nodes", "left.start");
-        set(entry(d, "contact", 0), "to", "right.start");
+    // The same chain as two members (two elements each), their nodes named by the members:
+    // `ends` gives each member's `start` and `end` (a point or a node's name), the support at
+    // x = 0 and the pair (and its constant load) at x = 4 moved to those nodes.
+    let point = |x: f64| toml::Value::Array(vec![x.into(), 0.0.into()]);
+    let two_members = |d: &mut toml::Table,
+                       ends: [(&str, toml::Value, toml::Value); 2],
+                       support: &str,
+                       tip: &str| {
+        let members = ends
+            .into_iter()
+            .map(|(name, start, end)| {
+                let mut m = toml::Table::new();
+                set(&mut m, "name", name);
+                set(&mut m, "start", start);
+                set(&mut m, "end", end);
+                set(&mut m, "divisions", 2);
+                set(&mut m, "section", "beam");
+                toml::Value::Table(m)
+            })
+            .collect();
+        set(d, "members", toml::Value::Array(members));
+        set(entry(d, "supports", 0), "nodes", support);
+        set(entry(d, "contact", 0), "to", tip);
         let nodal = &mut table(d, "loads.constant")["nodal"];
         let toml::Value::Array(nodal) = nodal else {
             panic!("nodal")
@@ -965,74 +962,35 @@ fn distributed_load_linearly_varying_along_a_chain_however_drawn() {
         let toml::Value::Table(nodal) = &mut nodal[0] else {
             panic!("nodal")
         };
-        set(nodal, "nodes", "right.start");
+        set(nodal, "nodes", tip);
         load(d, &["left", "right"]);
     };
-    let (p, a) = run_edited(&data("roller-pair.toml"), two_members);
+    // Hand: the original load, R_A = 400 (above).
     let [ra, n, t] = roller_and_pair(4.0, 0.0, 180.0, -1000.0, 2.4, 0.0, 0.0);
-    close(pair(&a, "B").x_n, 1000.0 + n, 1000.0, "x_n (two members)");
-    close(
-        pair(&a, "B").x_t.abs(),
-        t.abs(),
-        1000.0,
-        "|x_t| (two members)",
-    );
-    close(
-        reaction(&p, &a, "left.start", SupportDof::Uy),
-        ra,
-        1000.0,
-        "R_A (two members)",
-    );
-    // Two members drawn away from x = 2, (2,0)→(0,0) and (2,0)→(4,0), listed whole: the first
-    // listed element (of `left`, at x = 2) is inside the chain; the chain starts at the free
-    // end listed first, x = 0 (`left.end`): the original load again.
-    let away = |d: &mut toml::Table| {
-        let member = |name: &str, start: toml::Value, end: f64| {
-            let mut m = toml::Table::new();
-            set(&mut m, "name", name);
-            set(&mut m, "start", start);
-            set(
-                &mut m,
-                "end",
-                toml::Value::Array(vec![end.into(), 0.0.into()]),
-            );
-            set(&mut m, "divisions", 2);
-            set(&mut m, "section", "beam");
-            toml::Value::Table(m)
-        };
-        let left = member(
-            "left",
-            toml::Value::Array(vec![2.0.into(), 0.0.into()]),
-            0.0,
-        );
-        let right = member("right", "left.start".into(), 4.0);
-        set(d, "members", toml::Value::Array(vec![left, right]));
-        set(entry(d, "supports", 0), "nodes", "left.end");
-        set(entry(d, "contact", 0), "to", "right.end");
-        let nodal = &mut table(d, "loads.constant")["nodal"];
-        let toml::Value::Array(nodal) = nodal else {
-            panic!("nodal")
-        };
-        let toml::Value::Table(nodal) = &mut nodal[0] else {
-            panic!("nodal")
-        };
-        set(nodal, "nodes", "right.end");
-        load(d, &["left", "right"]);
-    };
-    let (p, a) = run_edited(&data("roller-pair.toml"), away);
-    close(pair(&a, "B").x_n, 1000.0 + n, 1000.0, "x_n (drawn away)");
-    close(
-        pair(&a, "B").x_t.abs(),
-        t.abs(),
-        1000.0,
-        "|x_t| (drawn away)",
-    );
-    close(
-        reaction(&p, &a, "left.end", SupportDof::Uy),
-        ra,
-        1000.0,
-        "R_A (drawn away)",
-    );
+    // Drawn towards each other, (0,0)→(2,0) and (4,0)→(2,0), listed from x = 0: a projection
+    // on the line from the first element's start to the last element's end (both at x = 2)
+    // lost this load. Drawn away from x = 2, (2,0)→(0,0) and (2,0)→(4,0), listed whole: the
+    // first listed element (of `left`, at x = 2) is inside the chain, which starts at the free
+    // end listed first, x = 0 (`left.end`).
+    let towards = [
+        ("left", point(0.0), point(2.0)),
+        ("right", point(4.0), "left.end".into()),
+    ];
+    let away = [
+        ("left", point(2.0), point(0.0)),
+        ("right", "left.start".into(), point(4.0)),
+    ];
+    for (what, ends, support, tip) in [
+        ("towards", towards, "left.start", "right.start"),
+        ("away", away, "left.end", "right.end"),
+    ] {
+        let (p, a) = run_edited(&data("roller-pair.toml"), |d| {
+            two_members(d, ends, support, tip)
+        });
+        close(pair(&a, "B").x_n, 1000.0 + n, 1000.0, what);
+        close(pair(&a, "B").x_t.abs(), t.abs(), 1000.0, what);
+        close(reaction(&p, &a, support, SupportDof::Uy), ra, 1000.0, what);
+    }
 }
 
 #[test]
