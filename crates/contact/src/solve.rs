@@ -118,9 +118,11 @@ pub fn solve_shared(
     }
     let tightened = settings.tightening > 0.0;
     // The pivots that settle the scheme at p = 0: the steps at p = 0 to round-off of the
-    // loads the path reaches (not of the target, which may lie far beyond them: with a target
-    // of 1e14 the first event, at p = 10.7, read as settling).
-    let p_reached = path.steps.iter().fold(0.0f64, |a, s| a.max(s.p.abs()));
+    // loads — of the user's load (p = 1) or of those the path reaches where it goes further;
+    // not of the target, which may lie far beyond them (with a target of 1e14 the first event,
+    // at p = 10.7, read as settling), and never less than p = 1's (a small target would make
+    // the round-off pivots of the start events).
+    let p_reached = path.steps.iter().fold(1.0f64, |a, s| a.max(s.p.abs()));
     let steps: Vec<LoadStep> = path
         .steps
         .iter()

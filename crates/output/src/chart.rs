@@ -648,14 +648,16 @@ pub fn scheme_columns(sol: &ContactSolution) -> Result<Vec<SchemeColumn>, Contac
     for (&(k, fin, p_from, p_to), v) in segs.iter().zip(sol.traced_on_segments_unnamed(&at)?) {
         let Some((_, pairs)) = v else { continue };
         let mut states: Vec<PairState> = pairs.iter().map(|r| r.state).collect();
-        // Beyond the last breakpoint, without the tightening, the path itself is the solution:
-        // its states are read inside the column (at its last breakpoint every force may be
-        // zero — a homogeneous problem at p = 0 — and every pair would read open).
-        let inside = (fin && sol.tightening == 0.0 && p_to > p_from)
-            .then(|| sol.at(0.5 * (p_from + p_to)).ok().flatten())
-            .flatten();
-        if let Some((pairs, _)) = inside {
-            states = pairs.iter().map(|r| r.state).collect();
+        // Beyond the last breakpoint the scheme no longer changes: without the tightening,
+        // where the reported load lies there, the reported solution's states are the column's
+        // (at the breakpoint itself every force may be zero — a homogeneous problem at p = 0 —
+        // and every pair would read open).
+        let reported_inside = fin
+            && sol.tightening == 0.0
+            && sol.p.is_some_and(|p| p > p_from)
+            && sol.pairs.len() == m;
+        if reported_inside {
+            states = sol.pairs.iter().map(|r| r.state).collect();
         } else if fin {
             if let Some(var) = sol.path.last_entering {
                 growing(&mut states, &pairs, var, m);

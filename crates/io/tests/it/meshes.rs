@@ -791,3 +791,86 @@ force = [0.0, -100.0]
     assert!((xi - 0.5).abs() < 1e-12, "{mid:?}");
     assert!(mid.normal[0].abs() < 1e-12 && (mid.normal[1].abs() - 1.0).abs() < 1e-12);
 }
+
+/// Two line groups of frames walked towards the node they share (`a`: lines 1–2, 2–3; `b`:
+/// 5–4, 4–3, on y = 0), named together as the surface `from` under a block whose bottom nodes
+/// are at x = 0…4, y = 0.1: the pairs are those of the same lines as one group `ab` (normals,
+/// segments, gaps) — a frame's side is not told by the direction its line is walked in (the
+/// two groups' left-hand normals cancelled at node 3 and the model was refused).
+#[test]
+fn line_groups_walked_towards_each_other_make_one_surface() {
+    let msh = |groups: &str, b: usize| {
+        format!(
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n{groups}$EndPhysicalNames\n\
+             $Nodes\n5\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 3 0 0\n5 4 0 0\n$EndNodes\n$Elements\n4\n\
+             1 1 2 1 1 1 2\n2 1 2 1 1 2 3\n3 1 2 {b} 2 5 4\n4 1 2 {b} 2 4 3\n$EndElements\n"
+        )
+    };
+    let model = |sections: &str, from: &str| {
+        format!(
+            r#"
+[[materials]]
+name = "m"
+E = 1.0e6
+nu = 0.25
+[[sections]]
+name = "s"
+E = 1.0e6
+A = 1.0
+I = 1.0
+[[meshes]]
+name = "beam"
+file = "beam.msh"
+analysis = "plane_strain"
+sections = {sections}
+[[blocks]]
+name = "up"
+origin = [0.0, 0.1]
+width = 4.0
+height = 1.0
+nx = 4
+ny = 1
+material = "m"
+analysis = "plane_strain"
+[[supports]]
+nodes = ["beam.1", "beam.5"]
+fixed = true
+[[contact]]
+name = "c"
+match = "surface"
+search = 0.5
+from = {from}
+to = "up.bottom"
+normal = "surface"
+gap = "geometry"
+friction = 0.0
+[[loads.variable.nodal]]
+nodes = "beam.3"
+fy = 1.0
+"#
+        )
+    };
+    let two = msh("2\n1 1 \"a\"\n1 2 \"b\"\n", 2);
+    let one = msh("1\n1 1 \"ab\"\n", 1);
+    let (_d1, r1) = read(
+        &model("{ a = \"s\", b = \"s\" }", "[\"beam.a\", \"beam.b\"]"),
+        &[("beam.msh", &two)],
+    );
+    let (_d2, r2) = read(
+        &model("{ ab = \"s\" }", "\"beam.ab\""),
+        &[("beam.msh", &one)],
+    );
+    let (p1, p2) = (
+        r1.unwrap_or_else(|e| panic!("{e}")),
+        r2.unwrap_or_else(|e| panic!("{e}")),
+    );
+    let (a, b) = (p1.model.pairs(), p2.model.pairs());
+    assert_eq!(a.len(), 5);
+    assert_eq!(a.len(), b.len());
+    for (x, y) in a.iter().zip(b) {
+        assert_eq!(x.normal, y.normal, "{x:?} / {y:?}");
+        assert_eq!(x.gap, y.gap, "{x:?} / {y:?}");
+        // the normal points from the beam up into the block
+        assert!(x.normal[1] > 0.99, "{x:?}");
+    }
+}

@@ -597,7 +597,15 @@ impl Builder<'_> {
         for s in segments {
             for n in [s.a1, s.a2] {
                 let e = at_node.entry(n).or_insert(([0.0, 0.0], true));
-                e.0 = [e.0[0] + s.normal[0], e.0[1] + s.normal[1]];
+                // An unoriented segment's normal is its left-hand one, which depends on the
+                // direction its line is walked in: two lines walked towards a shared node
+                // would cancel there. It is taken on the side of the normals met so far.
+                let sign = if !s.oriented && dot(e.0, s.normal) < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                e.0 = [e.0[0] + sign * s.normal[0], e.0[1] + sign * s.normal[1]];
                 e.1 &= s.oriented;
             }
         }
