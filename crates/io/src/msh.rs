@@ -657,15 +657,18 @@ impl<'a> Reader<'a> {
 
     /// MSH 2.2 writes an element once per physical group it belongs to: one element with all
     /// its groups. Gmsh's own writer gives each copy a tag of its own; a copy has the same type,
-    /// geometric entity and nodes (in order), which two different elements never share. Written
-    /// with the same tag, a repeat with other nodes is an error.
+    /// geometric entity (given, > 0) and nodes (in order), which two different elements of a
+    /// mesher never share. Written with the same tag, a repeat with other nodes is an error.
     fn merge_repeated(&mut self) -> Scan<()> {
         let mut first: HashMap<usize, usize> = HashMap::with_capacity(self.elements.len());
         let mut same: HashMap<(MshElementType, usize, Vec<usize>), usize> =
             HashMap::with_capacity(self.elements.len());
         let mut keep: Vec<MshElement> = Vec::with_capacity(self.elements.len());
         for e in std::mem::take(&mut self.elements) {
-            let copy_of = same.get(&(e.kind, e.entity, e.nodes.clone())).copied();
+            // Only where the file gives the element's entity (Gmsh always does; a hand-written
+            // element without tags, entity 0, may share its nodes with another on purpose).
+            let key = (e.entity > 0).then(|| (e.kind, e.entity, e.nodes.clone()));
+            let copy_of = key.as_ref().and_then(|k| same.get(k)).copied();
             if let (Some(k), false) = (copy_of, first.contains_key(&e.tag)) {
                 let f = &mut keep[k];
                 for p in e.physical {
@@ -696,7 +699,9 @@ impl<'a> Reader<'a> {
                 }
                 None => {
                     first.insert(e.tag, keep.len());
-                    same.insert((e.kind, e.entity, e.nodes.clone()), keep.len());
+                    if let Some(k) = key {
+                        same.insert(k, keep.len());
+                    }
                     keep.push(e);
                 }
             }
@@ -1027,6 +1032,9 @@ $EndElements
             (33, &[1, 5][..])
         );
         assert_eq!((m.elements[1].tag, m.elements[1].entity), (35, 2));
+        // without tags (entity 0) two elements on the same nodes are two elements
+        let bare = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n$Elements\n2\n1 1 0 1 2\n2 1 0 1 2\n$EndElements\n";
+        assert_eq!(p(bare).unwrap().elements.len(), 2);
         let bad = text.replace("4 1 2 5 1 1 2", "4 1 2 5 1 2 1");
         let e = p(&bad).unwrap_err();
         assert!(e.message.contains("with other nodes"), "{e}");
