@@ -757,9 +757,9 @@ fn product(a: faer::MatRef<'_, f64>, b: faer::MatRef<'_, f64>) -> faer::Mat<f64>
     out
 }
 
-/// A load for a sentence: six decimals where that shows six significant digits or more
-/// (`10.666667`, `2.000000`), else six significant digits in exponent form (`1.066667e-299`,
-/// `1.066667e13`), never `0.000000` for a load that is not zero.
+/// A load for a sentence: six decimals in `[1e-3, 1e7)` (`10.666667`, `2.000000`, `0.001235`:
+/// four significant digits at the least), else seven in exponent form (`1.066667e-299`,
+/// `1.066667e13`): never `0.000000` for a load that is not zero.
 pub(crate) fn load_text(p: f64) -> String {
     if p == 0.0 || (1e-3..1e7).contains(&p.abs()) {
         format!("{p:.6}")
