@@ -46,10 +46,16 @@ pub(crate) fn enumerate_first(m: &Mat<f64>, q: &[f64]) -> Option<(Vec<f64>, Vec<
         if z.iter().any(|v| !v.is_finite()) {
             continue;
         }
-        // Negative entries are set to zero; if one mattered, its row no longer balances and the
-        // verification below rejects the point.
+        // Negative entries are set to zero, and so are those below the round-off of the solve
+        // (a degenerate basic `z_i = 0` comes out as ±1e-19 beside entries of order one, and a
+        // row whose only term it is would verify against that round-off alone, relative
+        // residual 1); if one mattered, its row no longer balances and the verification below
+        // rejects the point.
+        let zmax = z.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         for v in z.iter_mut() {
-            *v = v.max(0.0);
+            if *v < 0.0 || v.abs() <= 1e-13 * zmax {
+                *v = 0.0;
+            }
         }
         let mut w = lcp_w(m, q, &z);
         for &i in &idx {

@@ -518,3 +518,48 @@ fn parametric_degenerate_removal_of_the_tightening() {
     // The family exercises the removal (not only starts that were feasible without it).
     assert!(removed >= 20, "only {removed} removals");
 }
+
+/// A degenerate solution of a badly scaled 5 × 5 LCP (rows and columns by powers of ten, from a
+/// review's random search): every Lemke path ends on a secondary ray, and the only solution,
+/// `z = (0, 0, 2e5, 0, 1e-4)`, `w = (1e4, 0, 0, 3e-4, 0)` (exact, found by a review with sympy
+/// on the file's binary numbers; `z₂ = w₂ = 0`), lies on the basis `{z₂, z₃, z₅}`. Its
+/// solve gives `z₂ ≈ 4e-19`, the only term of row 3 (`−z₂`): that row then verified against
+/// that round-off alone (relative residual 1) and the enumeration answered "no solution".
+#[test]
+fn enumeration_finds_a_degenerate_solution_of_a_badly_scaled_lcp() {
+    // Siconos `.dat` order: columns of M.
+    let cols: [[f64; 5]; 5] = [
+        [40.0, 3e-05, -1e-10, 0.0, 1.0],
+        [0.0, -200000.0, -1.0, 40000.0, 20000000000.0],
+        [
+            0.03,
+            -1.9999999999999997e-08,
+            0.0,
+            4e-09,
+            0.0029999999999999996,
+        ],
+        [0.0, 2e-09, -1e-14, -1e-10, 0.00019999999999999998],
+        [20000000.0, 40.0, 0.0, -2.0, -3000000.0],
+    ];
+    let m: Vec<Vec<f64>> = (0..5)
+        .map(|i| (0..5).map(|j| cols[j][i]).collect())
+        .collect();
+    let q = [2000.0, 0.0, 0.0, -0.00030000000000000003, -300.0];
+    let sol = solve_with(&m, &q, &Settings::default());
+    assert_eq!(sol.status, LcpStatus::Solved, "{:?}", sol.attempts);
+    assert_eq!(sol.strategy, Strategy::Enumeration);
+    let pt = sol.point.expect("a point");
+    let (z_want, w_want) = ([0.0, 0.0, 2e5, 0.0, 1e-4], [1e4, 0.0, 0.0, 3e-4, 0.0]);
+    for i in 0..5 {
+        assert!(
+            (pt.z[i] - z_want[i]).abs() <= 1e-9 * z_want[i].abs().max(1e-30),
+            "{:?}",
+            pt.z
+        );
+        assert!(
+            (pt.w[i] - w_want[i]).abs() <= 1e-9 * w_want[i].abs().max(1e-30),
+            "{:?}",
+            pt.w
+        );
+    }
+}
