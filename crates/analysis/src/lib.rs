@@ -72,7 +72,7 @@ pub enum AnalysisError {
     #[error(
         "{}recovering the results at p = {}: {source}",
         if matches!(source, FemError::Overflow { .. }) { "" } else { "internal failure (the program's fault, not the model's): " },
-        Shortest(*p)
+        unilateral_contact::number_text(*p)
     )]
     Recovery {
         /// The load parameter.
@@ -148,21 +148,6 @@ fn plural_pairs(pairs: &[String]) -> String {
         format!("pair {}", names[0])
     } else {
         format!("pairs {}{more}", names.join(", "))
-    }
-}
-
-/// A number as its shortest round-trip text in the form that is shorter (`1e308`, not three
-/// hundred digits).
-struct Shortest(f64);
-
-impl std::fmt::Display for Shortest {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let (plain, exp) = (format!("{}", self.0), format!("{:e}", self.0));
-        f.write_str(if exp.len() < plain.len() {
-            &exp
-        } else {
-            &plain
-        })
     }
 }
 

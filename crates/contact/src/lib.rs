@@ -36,7 +36,8 @@ pub use history::{
 pub use lcp::ContactLcp;
 pub use settings::SolveSettings;
 pub use solution::{
-    pair_results, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult, PairState,
+    number_text, pair_results, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult,
+    PairState,
 };
 pub use solve::{solve, solve_shared};
 pub use unilateral_lcp::Follow;

@@ -771,7 +771,7 @@ pub(crate) fn load_text(p: f64) -> String {
 /// A number given as data or found on the path, for a sentence: its shortest text, in
 /// exponent form outside `[1e-4, 1e7)` (`1e12`, not `1000000000000`; `6.857228015352759e-9`,
 /// not `0.000000006857228015352759`; `1000` as it is).
-pub(crate) fn number_text(v: f64) -> String {
+pub fn number_text(v: f64) -> String {
     if v != 0.0 && !(1e-4..1e7).contains(&v.abs()) {
         format!("{v:e}")
     } else {

@@ -71,7 +71,7 @@ pub fn solve_shared(
     // states nor the events depend on the units of the data.
     let units = Units::of(&zone, settings.tightening);
     // The data's own force scale, without `c`, normalised (a power of two: exact).
-    let data_force = units.normalised_force(Units::of(&zone, 0.0).user_force(1.0));
+    let data_force = crate::units::ldexp(1.0, units.data_force - units.force);
     let normalised = ContactLcp::build(&units.normalise(&zone));
     let nm = &normalised.problem;
     for j in 0..nm.m.ncols() {

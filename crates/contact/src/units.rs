@@ -37,6 +37,8 @@ fn max_exp<'a>(v: impl IntoIterator<Item = &'a f64>) -> Option<i32> {
 pub(crate) struct Units {
     pub force: i32,
     pub stiffness: i32,
+    /// The force exponent of the data alone, without the tightening (`force` with `c = 0`).
+    pub data_force: i32,
 }
 
 impl Units {
@@ -56,7 +58,6 @@ impl Units {
             &zone.variable.tangential,
         ];
         let mut force = loads.iter().filter_map(|v| max_exp(v.iter())).max();
-        force = force.max(exponent(c));
         // The gap forces R·η: exponent of the column's largest stiffness plus the gap's, plus
         // one for the rounding up of both mantissas.
         for j in 0..m {
@@ -70,8 +71,9 @@ impl Units {
             }
         }
         Self {
-            force: force.unwrap_or(stiffness),
+            force: force.max(exponent(c)).unwrap_or(stiffness),
             stiffness,
+            data_force: force.unwrap_or(stiffness),
         }
     }
 

@@ -139,24 +139,25 @@ pub(crate) fn build_dof_map(model: &Model) -> Result<DofMap, FemError> {
             continue;
         }
         // The nodes by the names the model gives them.
-        let node = |id: NodeId| format!("node `{}`", model.names().node(id));
+        let name = |id: NodeId| format!("`{}`", model.names().node(id));
         let reason = match (p.a, p.segment) {
             (Endpoint::Ground, _) => format!(
-                "{} is supported in translation or already carries the links of another pair \
-                 (a node-to-ground pair on a supported DOF is redundant)",
-                node(p.b)
+                "node {} is supported in translation or already carries the links of another \
+                 pair (a node-to-ground pair on a supported DOF is redundant)",
+                name(p.b)
             ),
             (Endpoint::Node(a), None) => format!(
-                "both {} and {} are supported or already carry the links of another pair",
-                node(a),
-                node(p.b)
+                "both node {} and node {} are supported or already carry the links of another \
+                 pair",
+                name(a),
+                name(p.b)
             ),
             (Endpoint::Node(a), Some((a2, _))) => format!(
-                "{} and the segment's nodes {} and {} are supported or already carry the links \
-                 of other pairs",
-                node(p.b),
-                node(a).trim_start_matches("node "),
-                node(a2).trim_start_matches("node ")
+                "node {} and the segment's nodes {} and {} are supported or already carry the \
+                 links of other pairs",
+                name(p.b),
+                name(a),
+                name(a2)
             ),
         };
         return Err(FemError::LinkPlacement {

@@ -151,10 +151,10 @@ impl Builder<'_> {
                 ))
             }
         };
-        // Linear variation with the distance along the chain of listed elements (e.g. a
-        // member's elements): from `start` at the chain's end where the first listed element
-        // is to `end` at its other end (one element: from its first node to its second).
-        let nodes = self.model.nodes().to_vec();
+        // Linear variation with the distance along the chain the listed elements make (e.g. a
+        // member's elements): from `start` at its free end whose element is listed first to
+        // `end` at the other ([`chain_positions`]; one element: from its first node to its
+        // second).
         let ends = |e: ElementId| match &self.model.elements()[e.0] {
             Element::Frame { nodes, .. } | Element::Bar { nodes, .. } => Some(*nodes),
             Element::Plane { .. } | Element::Triangle { .. } => None,
@@ -184,7 +184,7 @@ impl Builder<'_> {
         } else {
             let ends: Vec<(NodeId, NodeId)> = chain.iter().map(|&(_, a, b)| (a, b)).collect();
             let ids: Vec<usize> = chain.iter().map(|&(e, _, _)| e.0).collect();
-            match chain_positions(&nodes, &ids, &ends) {
+            match chain_positions(self.model.nodes(), &ids, &ends) {
                 Ok(at) => at,
                 Err(problem) => {
                     let name = |i: usize| self.pending[chain[i].0 .0].name.clone();
