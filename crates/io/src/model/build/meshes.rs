@@ -31,13 +31,9 @@ pub(super) struct Surface {
 /// One segment of a [`Surface`].
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Segment {
-    /// Its end nodes, as proto nodes (`Builder::final_of` numbers them).
+    /// Its end nodes, as proto nodes (`Builder::final_of` numbers them). The contact builder
+    /// orients a segment by the model's elements at it.
     pub nodes: [usize; 2],
-    /// The unit outward normal of the mesh's body along the segment, when a 2D element of the
-    /// same mesh has the segment as an edge (pointing away from that element); `None` for a line
-    /// that bounds no element of its mesh (a free curve or a frame).
-    #[allow(dead_code)] // the contact builder orients a segment by the model's elements at it
-    pub outward: Option<[f64; 2]>,
 }
 
 /// Relative size under which an element's area (a corner's cross product) counts as zero: of the
@@ -105,20 +101,6 @@ fn counter_clockwise(xy: &[[f64; 2]], order: &mut [usize]) -> Result<(), &'stati
         Ok(())
     } else {
         Err("concave or self-intersecting: it does not turn the same way at every corner")
-    }
-}
-
-/// The unit normal of the segment `a → b` pointing away from the point `body` (the centre of
-/// the element that has the segment as an edge).
-fn outward(a: [f64; 2], b: [f64; 2], body: [f64; 2]) -> [f64; 2] {
-    let (tx, ty) = (b[0] - a[0], b[1] - a[1]);
-    let len = tx.hypot(ty);
-    // (t_y, −t_x) is on the segment's right: away from a body on its left
-    let right = [ty / len, -tx / len];
-    if cross(a, b, body) > 0.0 {
-        right
-    } else {
-        [-right[0], -right[1]]
     }
 }
 
@@ -380,32 +362,6 @@ impl Builder<'_> {
         // Sets and surfaces of the groups.
         let mut labels: HashMap<String, Option<usize>> = HashMap::new();
         labels.insert("nodes".into(), None);
-        let surface_edges: HashSet<(usize, usize)> = mesh
-            .elements
-            .iter()
-            .filter(|e| e.kind == MshElementType::Line)
-            .map(|e| (e.nodes[0].min(e.nodes[1]), e.nodes[0].max(e.nodes[1])))
-            .collect();
-        // For each edge of a 1D group, the centroid of a 2D element of the mesh that has it.
-        let mut body_at: HashMap<(usize, usize), [f64; 2]> = HashMap::new();
-        if !surface_edges.is_empty() {
-            for e in mesh.elements.iter().filter(|e| e.kind.dimension() == 2) {
-                let k = e.nodes.len();
-                for j in 0..k {
-                    let (a, b) = (e.nodes[j], e.nodes[(j + 1) % k]);
-                    let edge = (a.min(b), a.max(b));
-                    if surface_edges.contains(&edge) {
-                        body_at.entry(edge).or_insert_with(|| {
-                            let s = e.nodes.iter().fold([0.0, 0.0], |s, &t| {
-                                let c = coord(t);
-                                [s[0] + c[0], s[1] + c[1]]
-                            });
-                            [s[0] / k as f64, s[1] / k as f64]
-                        });
-                    }
-                }
-            }
-        }
         for g in &mesh.groups {
             let label = g.label();
             if let Some(first) = labels.insert(label.clone(), g.line) {
@@ -447,19 +403,13 @@ impl Builder<'_> {
                             tags.push(tag);
                         }
                     }
-                    let outward = body_at
-                        .get(&(a.min(b), a.max(b)))
-                        .map(|c| outward(coord(a), coord(b), *c));
-                    segments.push((a, b, outward));
+                    segments.push((a, b));
                 }
                 let mut out = Vec::with_capacity(segments.len());
-                for (a, b, outward) in segments {
+                for (a, b) in segments {
                     let pa = self.mesh_proto(&proto_of, a, &n, &label, &members, &mf)?;
                     let pb = self.mesh_proto(&proto_of, b, &n, &label, &members, &mf)?;
-                    out.push(Segment {
-                        nodes: [pa, pb],
-                        outward,
-                    });
+                    out.push(Segment { nodes: [pa, pb] });
                 }
                 self.surfaces.insert(set.clone(), Surface { segments: out });
             } else {
@@ -815,13 +765,6 @@ mod tests {
         // a branch point ends the chains that meet there
         let got = chains(&[[1, 2], [2, 3], [2, 4]]);
         assert_eq!(got.len(), 3);
-    }
-
-    #[test]
-    fn outward_normals_point_away_from_the_body() {
-        assert_eq!(outward([0.0, 0.0], [2.0, 0.0], [1.0, 0.5]), [0.0, -1.0]);
-        assert_eq!(outward([0.0, 0.0], [2.0, 0.0], [1.0, -0.5]), [-0.0, 1.0]);
-        assert_eq!(outward([2.0, 0.0], [0.0, 0.0], [1.0, 0.5]), [-0.0, -1.0]);
     }
 
     #[test]
