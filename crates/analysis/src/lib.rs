@@ -449,6 +449,21 @@ fn link_values(p: f64, pairs: &[PairResult]) -> LinkValues {
     }
 }
 
+/// The error of a recovery at `p`, an element it names by the model's name for it.
+fn recovery_error(p: f64, source: FemError, names: &Names) -> AnalysisError {
+    let source = match source {
+        FemError::Overflow {
+            element: Some(e),
+            what,
+        } => FemError::Overflow {
+            element: None,
+            what: format!("{what} of element `{}`", names.element(e)),
+        },
+        other => other,
+    };
+    AnalysisError::Recovery { p, source }
+}
+
 /// Recovered results that are finite and in equilibrium, or the error that says which not.
 fn checked(r: Results, p: f64) -> Result<Results, AnalysisError> {
     if !r.all_finite() {
@@ -478,7 +493,7 @@ pub fn recover_at(
 ) -> Result<Results, AnalysisError> {
     let r = c
         .recover_at(factors, &link_values(label, pairs))
-        .map_err(|source| AnalysisError::Recovery { p: label, source })?;
+        .map_err(|source| recovery_error(label, source, c.model().names()))?;
     checked(r, label)
 }
 
@@ -586,7 +601,7 @@ impl Analysis {
         let r = self
             .condensed
             .recover(&link_values(p, pairs))
-            .map_err(|source| AnalysisError::Recovery { p, source })?;
+            .map_err(|source| recovery_error(p, source, self.condensed.model().names()))?;
         checked(r, p)
     }
 

@@ -614,6 +614,59 @@ fn forces_too_large_for_their_units_are_the_models() {
     }
 }
 
+/// Stresses near the top of double precision (a block under a body force in units where
+/// stresses are 1e307): their von Mises value is the same as in ordinary units, times the
+/// scale (it squared them, and printed `inf` as an internal error). Stresses beyond the range
+/// with finite displacements are the model's units (exit 2, naming the element), not the
+/// program's fault. Reference: the problem has no constant load, so every stress is linear in
+/// the body force; the same block under (2e3, −2e4) N/m³.
+#[test]
+fn stresses_near_the_top_of_the_range_are_the_models_units() {
+    let block = std::fs::read_to_string(root().join("tests/data/models/body-block.toml")).unwrap();
+    assert!(block.contains("force = [2000.0, -20000.0]"));
+    let largest_von_mises = |text: &str| -> f64 {
+        let line = text
+            .lines()
+            .find(|l| l.contains("largest von Mises"))
+            .unwrap_or_else(|| panic!("no von Mises line in\n{text}"));
+        line.split_whitespace().nth(3).unwrap().parse().unwrap()
+    };
+    let run = |model: &str| {
+        let cmd = TestCommand::new(&["solve", "block.toml"]);
+        std::fs::write(cmd.path("block.toml"), model).unwrap();
+        cmd.run()
+    };
+    let plain = run(&block);
+    assert_eq!(plain.code, 0, "{}", plain.stderr);
+    let scaled = run(&block.replace("force = [2000.0, -20000.0]", "force = [8.0e306, -8.0e307]"));
+    assert_eq!(scaled.code, 0, "{}", scaled.stderr);
+    let (a, b) = (
+        largest_von_mises(&plain.stdout),
+        largest_von_mises(&scaled.stdout),
+    );
+    assert!(b.is_finite() && b > 1e307, "{b}");
+    // six significant digits printed
+    assert!((b / (4e303 * a) - 1.0).abs() < 1e-5, "{a} {b}");
+
+    // a block 1000 times larger, 1e-10 m thick, under 2e306 N/m³: stresses of the order of
+    // 2e309, its loads (about 1e301 N an element) and displacements finite
+    let beyond = run(&block
+        .replace("width = 2.0", "width = 2000.0")
+        .replace("height = 1.0", "height = 1000.0")
+        .replace("thickness = 0.4", "thickness = 1.0e-10")
+        .replace("force = [2000.0, -20000.0]", "force = [2.0e304, -2.0e306]"));
+    assert_eq!(beyond.code, 2, "{}", beyond.stderr);
+    assert!(
+        beyond
+            .stderr
+            .contains("a recovered stress or internal force of element `blk.")
+            && beyond.stderr.contains("choose other units")
+            && !beyond.stderr.contains("fault"),
+        "{}",
+        beyond.stderr
+    );
+}
+
 /// Every file of the bad-input corpus: exit code 2, a message that names the file and the
 /// expected problem, and never a panic.
 #[test]

@@ -80,7 +80,7 @@ pub(crate) fn assemble(model: &Model) -> Result<Assembled, FemError> {
                     if fe.iter().any(|v| !v.is_finite()) {
                         return Err(FemError::Overflow {
                             element: Some(element),
-                            what: "its equivalent nodal loads".into(),
+                            what: "its equivalent nodal load vector".into(),
                         });
                     }
                     for (a, d) in el.dofs().into_iter().enumerate() {

@@ -366,7 +366,7 @@ impl Condensed {
         let mut r_mag: Vec<f64> = f.iter().map(|v| v.abs()).collect();
         let mut lines = Vec::with_capacity(kept.map_or(0, |k| k.lines.iter().flatten().count()));
         let mut planes = Vec::new();
-        let mut stress_sum: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
+        let mut stress_mean: Vec<[f64; 4]> = vec![[0.0; 4]; nn];
         let mut stress_cnt = vec![0usize; nn];
         // One buffer for every element's displacements (a path's frames recover thousands of
         // times).
@@ -401,14 +401,26 @@ impl Condensed {
                     unit.recover(model, ElementId(ei), &ue, &loads)
                 }
             };
+            // Finite displacements whose stresses or internal forces leave the range (a
+            // stiff material in units where stresses are near 1e308): the model's units.
+            if !recovered.is_finite() && ue.iter().all(|v| v.is_finite()) {
+                return Err(FemError::Overflow {
+                    element: Some(ElementId(ei)),
+                    what: "a recovered stress or internal force".into(),
+                });
+            }
             match recovered {
                 Recovered::Line(line) => lines.push(line),
                 Recovered::Plane { result, at_nodes } => {
+                    // the running mean of the elements' values at the node (a sum of values
+                    // near the top of the range would leave it)
                     for (nd, s) in unit.nodes().iter().zip(&at_nodes) {
-                        for c in 0..4 {
-                            stress_sum[nd.0][c] += s[c];
-                        }
                         stress_cnt[nd.0] += 1;
+                        let k = stress_cnt[nd.0] as f64;
+                        for c in 0..4 {
+                            let mean = &mut stress_mean[nd.0][c];
+                            *mean += (s[c] - *mean) / k;
+                        }
                     }
                     planes.push(result);
                 }
@@ -538,7 +550,7 @@ impl Condensed {
             .fold(0.0f64, |a, (p, q)| a.max((p - q).abs()));
         let free_res = res_i.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         let nodal_stress = (0..nn)
-            .map(|i| (stress_cnt[i] > 0).then(|| stress_sum[i].map(|v| v / stress_cnt[i] as f64)))
+            .map(|i| (stress_cnt[i] > 0).then_some(stress_mean[i]))
             .collect();
         // moment scale: forces times the model's size (its extent)
         let size = kept.map_or_else(|| model_size(model), |k| k.size);

@@ -41,6 +41,24 @@ pub(crate) enum Recovered {
     },
 }
 
+impl Recovered {
+    /// `true` when every recovered number is finite.
+    pub fn is_finite(&self) -> bool {
+        let fin = |v: &f64| v.is_finite();
+        match self {
+            Recovered::Line(l) => {
+                l.end_forces.iter().all(fin)
+                    && l.diagram
+                        .iter()
+                        .all(|d| [d.s, d.n, d.q, d.m].iter().all(fin))
+            }
+            Recovered::Plane { result, at_nodes } => {
+                result.stress.iter().flatten().all(fin) && at_nodes.iter().flatten().all(fin)
+            }
+        }
+    }
+}
+
 /// The behaviour of one kind of element.
 pub(crate) trait ElementUnit {
     /// The element's nodes.
