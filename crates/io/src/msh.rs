@@ -213,6 +213,8 @@ struct Reader<'a> {
     nodes: Vec<MshNode>,
     elements: Vec<MshElement>,
     named: Vec<PhysicalGroup>,
+    /// The node farthest from the plane z = 0: its `z`, where it is written, its tag.
+    largest_z: Option<(f64, Pos, usize)>,
 }
 
 fn syntax(path: &Path, pos: Option<Pos>, msg: String) -> Box<InputError> {
@@ -411,17 +413,31 @@ impl<'a> Reader<'a> {
         self.end(sec)
     }
 
-    /// One node's coordinates; `z` must be 0 up to the round-off of the coordinates.
-    fn coordinates(&mut self, sec: &Section, tag: usize) -> Scan<MshNode> {
-        let (x, pos) = self.number(sec, "a node's x")?;
-        let (y, _) = self.number(sec, "a node's y")?;
-        let (z, zpos) = self.number(sec, "a node's z")?;
-        if z != 0.0 && z.abs() > 1e-9 * x.abs().max(y.abs()) {
+    /// The mesh lies in the plane z = 0 up to the round-off of its coordinates: every `|z|`
+    /// within 1e-9 of the mesh's extent in x and y (not of the node's own coordinates: a node
+    /// near the origin has the same round-off as the others).
+    fn check_plane(&self) -> Scan<()> {
+        let Some((z, zpos, tag)) = self.largest_z else {
+            return Ok(());
+        };
+        let xy: Vec<[f64; 2]> = self.nodes.iter().map(|n| n.xy).collect();
+        if z.abs() > unilateral_fem::mesh::coincidence_tolerance(&xy) {
             return Err(self.err(
                 Some(zpos),
                 InputErrorKind::Unsupported,
                 format!("node {tag} has z = {z}: a 2D model needs a mesh in the plane z = 0"),
             ));
+        }
+        Ok(())
+    }
+
+    /// One node's coordinates; the node with the largest `|z|` is kept for [`Reader::check_plane`].
+    fn coordinates(&mut self, sec: &Section, tag: usize) -> Scan<MshNode> {
+        let (x, pos) = self.number(sec, "a node's x")?;
+        let (y, _) = self.number(sec, "a node's y")?;
+        let (z, zpos) = self.number(sec, "a node's z")?;
+        if z != 0.0 && self.largest_z.is_none_or(|(zz, ..)| z.abs() > zz.abs()) {
+            self.largest_z = Some((z, zpos, tag));
         }
         Ok(MshNode {
             tag,
@@ -821,6 +837,7 @@ pub(crate) fn parse_msh(path: &Path, source: Source<'_>) -> Result<GmshMesh, Inp
         nodes: Vec::new(),
         elements: Vec::new(),
         named: Vec::new(),
+        largest_z: None,
     };
     let sec = Section {
         name: "$MeshFormat".into(),
@@ -906,6 +923,7 @@ pub(crate) fn parse_msh(path: &Path, source: Source<'_>) -> Result<GmshMesh, Inp
             "the mesh has no $Nodes or no $Elements section (truncated file?)",
         ));
     }
+    r.check_plane()?;
     if r.version == MshVersion::V2_2 {
         r.merge_repeated()?;
     }
@@ -1064,6 +1082,21 @@ $EndElements
             "$Comments\nwritten by hand $Nodes-like words\n$EndComments\n$Nodes\n",
         );
         assert_eq!(p(&text).unwrap().nodes.len(), 4);
+    }
+
+    /// `z` is judged against the mesh's extent (1 here), not the node's own coordinates: the
+    /// node at the origin with z = 1e-17 is in the plane as much as the others (it was refused,
+    /// 1e-17 > 1e-9·0); z = 2e-9 is off it wherever the node is.
+    #[test]
+    fn z_round_off_is_judged_against_the_meshs_extent() {
+        let at_origin = SQUARE_41.replace("0 0 0\n1 0 0\n", "0 0 1e-17\n1 0 1e-17\n");
+        assert_ne!(at_origin, SQUARE_41);
+        let m = p(&at_origin).unwrap();
+        assert_eq!(m.nodes[0].xy, [0.0, 0.0]);
+        let off = SQUARE_41.replace("0 0 0\n1 0 0\n", "0 0 2e-9\n1 0 0\n");
+        let e = p(&off).unwrap_err();
+        assert!(e.message.contains("node 1 has z = 0.000000002"), "{e}");
+        assert_eq!(e.location.line, Some(19), "{e}");
     }
 
     /// Each malformed file: the message names the problem and the line (counted by hand).

@@ -283,6 +283,41 @@ fn gaps_from_the_geometry_by_hand() {
     }
 }
 
+/// The gaps of `gap = "geometry"` do not depend on where the model is drawn: the base block
+/// and a member 1 mm above its top, at the origin and at a site's grid coordinates
+/// (5e5, 4e6) m. By hand every gap is 0.001 (up to the round-off of coordinates of 4e6,
+/// about 1e-9). The coincidence tolerance was 1e-9 of the largest coordinate, 4 mm there:
+/// every gap read 0.
+#[test]
+fn gaps_from_the_geometry_wherever_the_model_is_drawn() {
+    for (x0, y0) in [(0.0, 0.0), (5e5, 4e6)] {
+        let text = beam_above_base(1.5)
+            .replace(
+                "origin = [0.0, 0.0]",
+                &format!("origin = [{x0:.1}, {y0:.1}]"),
+            )
+            .replace(
+                "start = [0.0, 1.5]",
+                &format!("start = [{x0:.1}, {:.3}]", y0 + 1.001),
+            )
+            .replace(
+                "end = [2.0, 1.1]",
+                &format!("end = [{:.1}, {:.3}]", x0 + 2.0, y0 + 1.001),
+            );
+        assert!(text.contains(&format!("{:.3}", y0 + 1.001)), "{text}");
+        let p = read("g.toml", &text).unwrap();
+        let pairs = p.model.pairs();
+        assert_eq!(pairs.len(), 5, "at ({x0}, {y0})");
+        for (k, s) in pairs.iter().enumerate() {
+            assert!(
+                (s.gap - 0.001).abs() < 1e-8,
+                "at ({x0}, {y0}), pair {k}: gap {}",
+                s.gap
+            );
+        }
+    }
+}
+
 /// A beam of span 2L = 4 m on three ground pairs (ends with gap 0, the middle with gap g),
 /// loaded at mid-span by P: with the middle pair open the mid-span deflection is
 /// δ = P(2L)³/(48EI) (simply supported); with g < δ the middle pair closes and carries

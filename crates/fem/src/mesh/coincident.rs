@@ -3,14 +3,41 @@
 
 use std::collections::HashMap;
 
-/// The tolerance within which two points coincide: 1e-9 of the extent of `points` (their
-/// largest coordinate in magnitude), so that it scales with the units of the model.
+/// The tolerance within which two points coincide: 1e-9 of the extent of `points` (the
+/// larger side of their bounding box), so that it scales with the units of the model and
+/// does not depend on where its origin is (a model drawn at a site's grid coordinates, 4e6 m
+/// from the origin, has the tolerance of the same model at the origin). It is never below
+/// the round-off of the coordinates themselves (4 ε of the largest in magnitude).
+///
+/// ```
+/// use unilateral_fem::mesh::coincidence_tolerance;
+/// let here = coincidence_tolerance(&[[0.0, 0.0], [10.0, 2.0]]);
+/// let far = coincidence_tolerance(&[[5e5, 4e6], [5e5 + 10.0, 4e6 + 2.0]]);
+/// assert_eq!(here, 1e-8);
+/// assert_eq!(far, 1e-8);
+/// ```
 pub fn coincidence_tolerance(points: &[[f64; 2]]) -> f64 {
-    let mut ext = 0.0f64;
+    let (extent, largest) = extent(points);
+    (1e-9 * extent)
+        .max(4.0 * f64::EPSILON * largest)
+        .max(1e-300)
+}
+
+/// The larger side of the bounding box of `points`, and their largest coordinate in
+/// magnitude (both 0 for no points).
+pub fn extent(points: &[[f64; 2]]) -> (f64, f64) {
+    let Some(first) = points.first() else {
+        return (0.0, 0.0);
+    };
+    let (mut lo, mut hi) = (*first, *first);
     for p in points {
-        ext = ext.max(p[0].abs()).max(p[1].abs());
+        for c in 0..2 {
+            lo[c] = lo[c].min(p[c]);
+            hi[c] = hi[c].max(p[c]);
+        }
     }
-    1e-9 * ext.max(1e-300)
+    let largest = lo.iter().chain(&hi).fold(0.0f64, |a, v| a.max(v.abs()));
+    ((hi[0] - lo[0]).max(hi[1] - lo[1]), largest)
 }
 
 /// Finds the points of a subset of a list that lie near a given point: within `tol` in each
@@ -135,8 +162,8 @@ impl NodeMerge {
 mod tests {
     use super::{coincidence_tolerance, NodeMerge, PointIndex};
 
-    /// Hand values: the tolerance is 1e-9 of the largest coordinate (here 1e-6, up to
-    /// round-off); points within it in both coordinates are found, one outside is not,
+    /// Hand values: the tolerance is 1e-9 of the bounding box's larger side (here 1003, from
+    /// x = −3 to 1000); points within it in both coordinates are found, one outside is not,
     /// whatever cell it falls in.
     #[test]
     fn near_points_within_the_tolerance() {
@@ -148,12 +175,28 @@ mod tests {
             [-3.0, 2.0],
         ];
         let tol = coincidence_tolerance(&pts);
-        assert!((tol - 1e-6).abs() <= 1e-20, "{tol}");
+        assert!((tol - 1.003e-6).abs() <= 1e-20, "{tol}");
         let index = PointIndex::new(&pts, &[0, 1, 2, 3, 4], tol);
         assert_eq!(index.near([1000.0, 0.0]), [1, 2]);
         assert_eq!(index.near([1000.0, 1.5e-6]), [2, 3]);
         assert_eq!(index.near([-3.0, 2.0 - 0.9e-6]), [4]);
         assert!(index.near([-3.0, 2.0 - 1.1e-6]).is_empty());
+    }
+
+    /// The same points far from the origin (a site's grid coordinates) have the same
+    /// tolerance; points whose extent is below the round-off of their coordinates get that
+    /// round-off.
+    #[test]
+    fn the_tolerance_does_not_depend_on_the_origin() {
+        let pts = [[0.0, 0.0], [10.0, 0.0], [10.0, 2.0]];
+        let shifted: Vec<[f64; 2]> = pts.iter().map(|p| [p[0] + 5e5, p[1] + 4e6]).collect();
+        assert_eq!(coincidence_tolerance(&pts), 1e-8);
+        assert_eq!(coincidence_tolerance(&shifted), 1e-8);
+        let tiny = [[4e6, 0.0], [4e6 + 1e-9, 0.0]];
+        assert_eq!(
+            coincidence_tolerance(&tiny),
+            4.0 * f64::EPSILON * (4e6 + 1e-9)
+        );
     }
 
     /// Merged pairs by hand: (4, 2), (2, 5), (1, 3) leave the classes {0}, {1, 3}, {2, 4, 5},

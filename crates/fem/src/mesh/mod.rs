@@ -10,5 +10,5 @@ mod coincident;
 mod member;
 
 pub use block::BlockGrid;
-pub use coincident::{coincidence_tolerance, NodeMerge, PointIndex};
+pub use coincident::{coincidence_tolerance, extent, NodeMerge, PointIndex};
 pub use member::divide_segment;

@@ -561,6 +561,25 @@ fn bad_meshes_name_the_msh_file_and_line() {
         shown.contains("small.msh: mesh `s` has no element the model can use"),
         "{shown}"
     );
+    // a named group no element is in: a name without curves, and the line group of a file
+    // Gmsh saved with Mesh.SaveAll = 1 in MSH 2.2 (every element's physical tag 0). Either
+    // was an empty set, its supports and loads dropped without a word.
+    let m = small_msh("", &[]).replace("2\n1 2 \"bottom\"\n", "3\n1 9 \"ghost\"\n1 2 \"bottom\"\n");
+    assert!(m.contains("ghost"));
+    bad_mesh(
+        &m,
+        steel,
+        "1 9 \"ghost\"",
+        "physical group `ghost` (dimension 1) has no elements",
+    );
+    let m = small_msh("", &[]).replace("1 1 2 2 1 1 2\n", "1 1 2 0 1 1 2\n");
+    assert!(m.contains("1 1 2 0 1 1 2"));
+    bad_mesh(
+        &m,
+        steel,
+        "1 2 \"bottom\"",
+        "physical group `bottom` (dimension 1) has no elements",
+    );
     // the reader's own errors carry where the model names the mesh
     let m = small_msh("", &["4 2 2 1 1 1 3 9"]);
     bad_mesh(&m, steel, "4 2 2 1 1 1 3 9", "node 9");

@@ -390,6 +390,22 @@ impl Builder<'_> {
                 })
                 .collect();
             let members: Vec<&MshElement> = indexed.iter().map(|&i| &mesh.elements[i]).collect();
+            // A named group without elements would be an empty set: supports and loads on it
+            // silently dropped.
+            if members.is_empty() {
+                return Err(mf.err(
+                    g.line,
+                    InputErrorKind::Invalid,
+                    format!(
+                        "physical group `{label}` (dimension {}) has no elements of its \
+                         dimension in the mesh, so the model cannot use it (Gmsh writes MSH 2.2 \
+                         with Mesh.SaveAll = 1 without the elements' groups: save without \
+                         SaveAll, or in MSH 4.1); give the group its curves or surfaces, or \
+                         remove it",
+                        g.dimension
+                    ),
+                ));
+            }
             let mut tags: Vec<usize> = Vec::new();
             if g.dimension == 1 {
                 let segs: Vec<[usize; 2]> =
