@@ -282,18 +282,43 @@ pub fn follow_history(
         }
     }
     let table = history.factor_table();
-    // Units from every case: a zone whose variable load holds the largest entry of each row.
+    // Units from the loads the history applies: a zone whose variable load holds, pair by
+    // pair, the largest load of any stage's end (the loads are linear in the factors along a
+    // stage). Not from the cases at factor 1: a case that no stage uses, or one given in
+    // other units with small factors, would set a force scale that the loads met never reach,
+    // and the states would be read against it (a pressed pair read "open").
     let mut probe = zone.clone();
     probe.constant = ContactLoad::zeros(m);
     probe.variable = ContactLoad::zeros(m);
-    for case in &history.cases {
-        for i in 0..m {
-            let (n, t) = (case.load.normal[i], case.load.tangential[i]);
-            if n.abs() > probe.variable.normal[i].abs() {
-                probe.variable.normal[i] = n;
-            }
-            if t.abs() > probe.variable.tangential[i].abs() {
-                probe.variable.tangential[i] = t;
+    for (k, (start, end)) in table.iter().enumerate() {
+        for phi in [start, end] {
+            for i in 0..m {
+                let (mut n, mut t) = (0.0, 0.0);
+                for (case, &f) in history.cases.iter().zip(phi) {
+                    if f != 0.0 {
+                        n += f * case.load.normal[i];
+                        t += f * case.load.tangential[i];
+                    }
+                }
+                if !(n.is_finite() && t.is_finite()) {
+                    let (number, name) = (format!("stage {}", k + 1), &history.stages[k].name);
+                    let stage = if *name == number {
+                        number
+                    } else {
+                        format!("{number} (`{name}`)")
+                    };
+                    return Err(ContactError::OutOfRange(format!(
+                        "{stage}: its factors times the loads of the cases exceed the \
+                         floating-point range at pair `{}`; choose other units or factors",
+                        zone.pair_names.get(i).map_or("?", |s| s.as_str())
+                    )));
+                }
+                if n.abs() > probe.variable.normal[i].abs() {
+                    probe.variable.normal[i] = n;
+                }
+                if t.abs() > probe.variable.tangential[i].abs() {
+                    probe.variable.tangential[i] = t;
+                }
             }
         }
     }

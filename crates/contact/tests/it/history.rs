@@ -127,6 +127,67 @@ fn single_pair_loaded_released_reversed_released_by_hand() {
     }
 }
 
+/// The same cycle (hand values above) with the loads written otherwise: an extra case no
+/// stage uses (8e10, a load of another study kept in the file), and the push written as
+/// 8e9 with factors of 1e-10 — the loads the stages apply are the same, so are the answers.
+/// The states were read against a force scale taken from every case at factor 1: the
+/// pressed pair read "open" (its x_t set to 0) and the run failed its residual check.
+/// A factor whose product with a case load overflows is refused, naming the stage.
+#[test]
+fn states_do_not_depend_on_cases_no_stage_uses_or_on_how_a_case_is_written() {
+    let mut zone = ContactZone::new(mat![[10.0]], mat![[2.0]]);
+    zone.friction = vec![0.5];
+    let cycle = |unit: f64, unused: Option<f64>| {
+        let mut cases = vec![
+            case("dead", vec![1.0], vec![0.0]),
+            case("push", vec![0.0], vec![0.8 * unit]),
+        ];
+        let mut stages = vec![
+            stage("dead", vec![Some(1.0), None]),
+            stage("push", vec![None, Some(1.0 / unit)]),
+            stage("release", vec![None, Some(0.0)]),
+            stage("pull", vec![None, Some(-1.0 / unit)]),
+            stage("release again", vec![None, Some(0.0)]),
+        ];
+        if let Some(u) = unused {
+            cases.push(case("impact", vec![0.0], vec![u]));
+            for s in &mut stages {
+                s.factors.push(None);
+            }
+        }
+        History { cases, stages }
+    };
+    let expect = [
+        (0.0, 0.0, PairState::Stick),
+        (-0.15, 0.5, PairState::SlipMinus),
+        (-0.15, -0.3, PairState::Stick),
+        (0.15, -0.5, PairState::SlipPlus),
+        (0.15, 0.3, PairState::Stick),
+    ];
+    for (unit, unused) in [(1e10, None), (1.0, Some(8e10)), (1e12, Some(1e15))] {
+        let h = follow_history(&zone, &cycle(unit, unused), &Default::default())
+            .unwrap_or_else(|e| panic!("unit {unit}, unused {unused:?}: {e}"));
+        for (st, (z_t, x_t, state)) in h.stages.iter().zip(expect) {
+            let p = &st.pairs[0];
+            let at = format!("unit {unit}, unused {unused:?}, {}: {p:?}", st.name);
+            assert_eq!(st.status, StageStatus::Completed, "{at}");
+            assert_eq!(p.state, state, "{at}");
+            assert!((p.z_t - z_t).abs() < 1e-12, "{at}");
+            assert!((p.x_t - x_t).abs() < 1e-12, "{at}");
+            assert!((p.x_n - 1.0).abs() < 1e-12, "{at}");
+            assert!(st.residual.max() < 1e-12, "{at}: {:?}", st.residual);
+        }
+    }
+    // 8 × 1e308 is beyond the range
+    let mut huge = cycle(10.0, None);
+    huge.stages[1].factors[1] = Some(1e308);
+    let e = follow_history(&zone, &huge, &Default::default()).unwrap_err();
+    assert!(
+        e.to_string().contains("stage 2 (`push`)") && e.to_string().contains("range"),
+        "{e}"
+    );
+}
+
 /// Below the friction limit nothing slips: T* = 0.4 < f·N, every stage sticks and the
 /// tangential force is the applied one, x_t = T (hand: z_t = 0).
 #[test]
