@@ -241,13 +241,14 @@ pub fn solve_shared(
                 .into(),
         );
     }
-    if let Some((p, pair)) = first_slip_decrease(&path, m) {
+    if let Some((from, to, pair)) = first_slip_decrease(&path, m, settings.tightening == 0.0) {
         notes.push(format!(
-            "at p = {} the slip of pair {} decreases along the path: from there the paper's \
-             friction law (total slip tied to total force) is not a real one — a slip that \
-             reverses or is given back dissipates no energy in it; a [[history]] gives the \
-             path-dependent answer",
-            crate::solution::number_text(p),
+            "between p = {} and p = {} the slip of pair {} decreases along the path: from there \
+             the paper's friction law (total slip tied to total force) is not a real one — a \
+             slip that reverses or is given back dissipates no energy in it; a [[history]] \
+             gives the path-dependent answer",
+            crate::solution::number_text(from),
+            crate::solution::number_text(to),
             names[pair]
         ));
     }
@@ -365,30 +366,60 @@ pub(crate) fn unreported_is_failure(why: &Unreported, tightening: f64) -> bool {
     tightening <= 0.0 || !matches!(why.fresh, Some(LcpStatus::Ray | LcpStatus::IterationLimit))
 }
 
-/// The first breakpoint (load, pair) at which a slip part `z_t±` of the traced path is smaller
-/// than at the breakpoint before (relative to the largest slip of the two), while the load grows.
-fn first_slip_decrease(path: &unilateral_lcp::LoadPath, m: usize) -> Option<(f64, usize)> {
-    let slips = |b: &unilateral_lcp::Breakpoint| -> Vec<f64> {
+/// The first segment (from, to, pair) between breakpoints over which a slip part `z_t±` of the traced path is smaller
+/// than at the breakpoint before (relative to the largest slip of the two), while the load grows;
+/// with `untightened` (the traced path is the real one, c = 0) also the reported solution
+/// against the last breakpoint before it (a slip given back on the last segment, where no
+/// breakpoint follows: a single pair slipping at p = 0 and pressed harder as p grows).
+fn first_slip_decrease(
+    path: &unilateral_lcp::LoadPath,
+    m: usize,
+    untightened: bool,
+) -> Option<(f64, f64, usize)> {
+    let slips = |z: &mut dyn Iterator<Item = (usize, f64)>| -> Vec<f64> {
         let mut v = vec![0.0; 2 * m];
-        for &(i, z) in &b.z {
+        for (i, z) in z {
             if i >= m && i < 3 * m {
                 v[i - m] = z;
             }
         }
         v
     };
-    let mut prev = slips(path.breakpoints.first()?);
-    let mut p_prev = path.breakpoints.first()?.p;
+    let decrease = |prev: &[f64], now: &[f64]| -> Option<usize> {
+        let top = prev.iter().chain(now).fold(0.0f64, |a, v| a.max(v.abs()));
+        (0..2 * m)
+            .find(|&k| prev[k] - now[k] > 1e-9 * top)
+            .map(|k| k % m)
+    };
+    let of = |b: &unilateral_lcp::Breakpoint| slips(&mut b.z.iter().copied());
+    let first = path.breakpoints.first()?;
+    let mut prev = of(first);
+    let mut p_prev = first.p;
     for b in path.breakpoints.iter().skip(1) {
-        let now = slips(b);
-        let top = prev.iter().chain(&now).fold(0.0f64, |a, v| a.max(v.abs()));
+        let now = of(b);
         if b.p > p_prev {
-            if let Some(k) = (0..2 * m).find(|&k| prev[k] - now[k] > 1e-9 * top) {
-                return Some((b.p, k % m));
+            if let Some(pair) = decrease(&prev, &now) {
+                return Some((p_prev, b.p, pair));
             }
         }
         prev = now;
         p_prev = b.p;
+    }
+    // The reported solution against the breakpoint it follows (the last before the first one
+    // beyond it).
+    let sol = path
+        .solution
+        .as_ref()
+        .filter(|s| untightened && !s.fallback)?;
+    let beyond = path
+        .breakpoints
+        .iter()
+        .position(|b| b.p > sol.p)
+        .unwrap_or(path.breakpoints.len());
+    let last = &path.breakpoints[beyond.checked_sub(1)?];
+    if sol.p > last.p {
+        let now = slips(&mut sol.z.iter().copied().enumerate());
+        return decrease(&of(last), &now).map(|pair| (last.p, sol.p, pair));
     }
     None
 }

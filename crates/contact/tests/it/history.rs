@@ -292,6 +292,60 @@ fn one_proportional_stage_is_the_papers_method() {
     );
 }
 
+/// A slip given back on the last segment, where no breakpoint follows, is flagged too. By
+/// hand: one pair, R_nn = 1000, R_tt = 100, f = 0.5, constant N = 10 and T = 8, variable
+/// normal 4·p. At p = 0 it slips, z_t = −(8 − 0.5·10)/100 = −0.03; pressed harder it keeps
+/// slipping with z_t = −(8 − 0.5·(10 + 4p))/100 = −0.01 at p = 1: the slip decreases over the
+/// whole path without a change of scheme (no breakpoint after p = 0). The same pair under a
+/// growing T instead (slips only grow) has no such note.
+#[test]
+fn papers_method_flags_a_slip_given_back_after_the_last_breakpoint() {
+    let settings = SolveSettings {
+        tightening: 0.0,
+        ..Default::default()
+    };
+    let mut zone = ContactZone::new(mat![[1000.0]], mat![[100.0]]);
+    zone.friction = vec![0.5];
+    zone.constant = ContactLoad {
+        normal: vec![10.0],
+        tangential: vec![8.0],
+    };
+    zone.variable = ContactLoad {
+        normal: vec![4.0],
+        tangential: vec![0.0],
+    };
+    let sol = solve(&zone, &settings).unwrap();
+    let p = &sol.pairs[0];
+    assert_eq!(p.state, PairState::SlipMinus, "{p:?}");
+    assert!((p.z_t + 0.01).abs() < 1e-12, "{p:?}");
+    let note = sol
+        .notes
+        .iter()
+        .find(|n| n.contains("[[history]]"))
+        .unwrap_or_else(|| panic!("no note: {:?}", sol.notes));
+    assert!(
+        note.contains("between p = 0 and p = 1 the slip of pair 1 decreases"),
+        "{note}"
+    );
+
+    zone.constant.tangential = vec![0.0];
+    zone.variable = ContactLoad {
+        normal: vec![0.0],
+        tangential: vec![8.0],
+    };
+    let sol = solve(&zone, &settings).unwrap();
+    assert!(
+        (sol.pairs[0].z_t + 0.03).abs() < 1e-12,
+        "{:?}",
+        sol.pairs[0]
+    );
+    assert!(
+        !sol.notes.iter().any(|n| n.contains("[[history]]")),
+        "{:?}",
+        sol.notes
+    );
+}
+
 /// The paper's method says so when a slip of its path decreases (its friction law is not a
 /// real one from there on). Reference: the traced breakpoints themselves — a slip part basic at
 /// one breakpoint and smaller at the next while p grows — checked here independently of the
