@@ -318,6 +318,52 @@ fn gaps_from_the_geometry_wherever_the_model_is_drawn() {
     }
 }
 
+/// A block held only by its pairs, over a base with the same 1 mm gap at every pair, no
+/// constant load (`tests/data/models/block-over-gap.toml`). The gaps close by a rigid
+/// motion of the block, which costs no force. Reference: the same blocks touching (gap 0): the
+/// same pair forces, and the block's displacements 1 mm lower. The gap forces R·η cancel to
+/// round-off (−3e-16), which read as tension made "no equilibrium at p = 0" of it.
+#[test]
+fn a_gap_closed_by_a_rigid_motion_costs_no_force() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/models/block-over-gap.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let touching = text.replace("origin = [0.0, 1.001]", "origin = [0.0, 1.0]");
+    assert_ne!(text, touching);
+    let run = |t: &str| {
+        let p = read("b.toml", t).unwrap();
+        let a = analyze(&p.model, &settings()).unwrap_or_else(|e| panic!("{e}"));
+        let (pairs, res) = at_target(&a);
+        (p.model, pairs, res)
+    };
+    let (mg, gap, rg) = run(&text);
+    let (m0, zero, r0) = run(&touching);
+    assert_eq!(gap.len(), 5);
+    let top = zero.iter().fold(0.0f64, |a, p| a.max(p.x_n.abs()));
+    for (a, b) in gap.iter().zip(&zero) {
+        assert_eq!(a.state, b.state, "{a:?} {b:?}");
+        assert!((a.x_n - b.x_n).abs() < 1e-9 * top, "{a:?} {b:?}");
+        assert!((a.x_t - b.x_t).abs() < 1e-9 * top, "{a:?} {b:?}");
+        assert!(a.z_n.abs() < 1e-12 && a.z_t.abs() < 1e-12, "{a:?}");
+    }
+    let sum: f64 = gap.iter().map(|p| p.x_n).sum();
+    assert!((sum - 50.0).abs() < 1e-9 * 50.0, "Σ x_n = {sum}");
+    let (ng, n0) = (mg.names(), m0.names());
+    let mut checked = 0;
+    for (i, name) in n0.nodes.iter().enumerate() {
+        let j = ng.node_id(name).unwrap().0;
+        let (ug, u0) = (rg.displacements[j], r0.displacements[i]);
+        let shift = if name.starts_with("up.") { -0.001 } else { 0.0 };
+        assert!((ug[0] - u0[0]).abs() < 1e-9, "{name}: {ug:?} {u0:?}");
+        assert!(
+            (ug[1] - (u0[1] + shift)).abs() < 1e-9,
+            "{name}: {ug:?} {u0:?}"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 25);
+}
+
 /// A beam of span 2L = 4 m on three ground pairs (ends with gap 0, the middle with gap g),
 /// loaded at mid-span by P: with the middle pair open the mid-span deflection is
 /// δ = P(2L)³/(48EI) (simply supported); with g < δ the middle pair closes and carries
