@@ -167,7 +167,8 @@ pub(crate) struct SolveArgs {
     #[arg(long, requires = "json")]
     pub(crate) json_breakpoints: bool,
     /// Write CSV tables into this directory (pairs.csv, steps.csv, path.csv; for structural
-    /// models also displacements, reactions, element forces and stresses).
+    /// models also displacements, reactions, element forces and stresses; for a [[history]]
+    /// the history_*.csv tables of its stages, breakpoints and events).
     #[arg(long, value_name = "DIR")]
     pub(crate) csv: Option<PathBuf>,
     /// Write the load-path charts, the structure picture and report.html into this directory.

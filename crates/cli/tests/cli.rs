@@ -1276,6 +1276,29 @@ fn history_report_with_node_curves() {
         "{}",
         out.stderr
     );
+    // Each kind of file is told what it lacks: a structural model without stages, a contact
+    // zone with a history (it has one: no nodes), a contact zone without.
+    for (file, lacks) in [
+        (
+            root().join("examples/example2-cantilever.toml"),
+            "this model has no [[history]] stages",
+        ),
+        (
+            root().join("tests/data/history/zone-cycle.toml"),
+            "this file is a contact zone, whose history has pairs but no nodes",
+        ),
+        (
+            root().join("examples/example1-contact-zone.toml"),
+            "this file is a contact zone, with no nodes and no [[history]]",
+        ),
+    ] {
+        let out = TestCommand::new(&["solve"])
+            .arg(file.clone())
+            .args(&["--report", "rep", "--report-nodes", "1"])
+            .run();
+        assert_eq!(out.code, 2, "{}", out.stderr);
+        assert!(out.stderr.contains(lacks), "{file:?}: {}", out.stderr);
+    }
 }
 
 /// A reader that closes the pipe early (`unilateral solve … | head -1`) is no failure: no

@@ -139,7 +139,7 @@ pub(crate) fn zone(
             "--vtk needs a structural model: a contact-zone problem has no mesh".into(),
         ));
     }
-    crate::commands::solve::nodes_need_a_structural_history(args)?;
+    crate::commands::solve::nodes_need_a_structural_history(args, false, true)?;
     if args.report.is_some() {
         args.report_args.check(&problem.zone.pair_names)?;
     }

@@ -40,7 +40,7 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
                 crate::commands::history::zone(&args, &drawer, problem, stages, read)
             }
             None => {
-                nodes_need_a_structural_history(&args)?;
+                nodes_need_a_structural_history(&args, false, false)?;
                 problem.settings.engine.progress = drawer.handle();
                 contact_zone(&args, &drawer, &overrides, problem, read)
             }
@@ -52,7 +52,7 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
                 crate::commands::history::structural(&args, &drawer, problem, stages, read)
             }
             None => {
-                nodes_need_a_structural_history(&args)?;
+                nodes_need_a_structural_history(&args, true, false)?;
                 problem.settings.engine.progress = drawer.handle();
                 structural(&args, &drawer, &overrides, problem, read)
             }
@@ -120,14 +120,23 @@ fn writer_options(
 }
 
 /// `--report-nodes` charts a structural model's load history; anywhere else it would be
-/// ignored, so it is refused.
-pub(crate) fn nodes_need_a_structural_history(args: &SolveArgs) -> Result<(), Failure> {
+/// ignored, so it is refused, saying what the file lacks: `structural` whether it is a
+/// structural model, `history` whether it has `[[history]]` stages.
+pub(crate) fn nodes_need_a_structural_history(
+    args: &SolveArgs,
+    structural: bool,
+    history: bool,
+) -> Result<(), Failure> {
     if args.report_args.report_nodes.is_some() {
-        return Err(Failure::Input(
+        let lacks = match (structural, history) {
+            (true, _) => "this model has no [[history]] stages",
+            (false, true) => "this file is a contact zone, whose history has pairs but no nodes",
+            (false, false) => "this file is a contact zone, with no nodes and no [[history]]",
+        };
+        return Err(Failure::Input(format!(
             "--report-nodes charts the load history of a structural model ([[history]] stages); \
-             this file has none (its pairs are charted with --report-pairs)"
-                .into(),
-        ));
+             {lacks} (its pairs are charted with --report-pairs)"
+        )));
     }
     Ok(())
 }
