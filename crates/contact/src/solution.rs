@@ -351,6 +351,11 @@ impl ContactSolution {
     /// Reads the normalised point `sol` as the reported solution.
     pub(crate) fn set_point(&mut self, sol: &PathPoint) -> Result<(), ContactError> {
         self.pairs = self.engine.read_point(sol)?;
+        if let Outcome::Mechanism { p_limit, mode } = &self.outcome {
+            if sol.p == *p_limit {
+                sliding_at_the_limit(&mut self.pairs, &self.zone.friction, mode);
+            }
+        }
         self.p = Some(sol.p);
         self.residual = Some(sol.residual);
         self.tightening_pivots = sol.tightening_pivots;
@@ -630,6 +635,34 @@ impl ContactSolution {
         };
         let solver = PathSolver::new(lcp.problem, options, self.engine.solver.settings().clone())?;
         Ok(solver.tableaux(&self.path, max_steps)?)
+    }
+}
+
+/// At the load where the structure becomes a mechanism, a pair that has not slipped yet but
+/// stands at its friction limit (`|x_t| = f·x_n` to round-off) and slides in the mechanism's
+/// mode (its `dz_t` not round-off of the mode's largest rate, in the direction its friction
+/// force opposes) slips: it read "stick" (its accumulated slip is zero at that load) while the
+/// mode slid it with the others.
+fn sliding_at_the_limit(pairs: &mut [PairResult], friction: &[f64], mode: &[(f64, f64)]) {
+    let top = mode
+        .iter()
+        .fold(0.0f64, |a, &(n, t)| a.max(n.abs()).max(t.abs()));
+    let force = pairs
+        .iter()
+        .fold(0.0f64, |a, r| a.max(r.x_n.abs()).max(r.x_t.abs()));
+    for ((r, &f), &(_, dz_t)) in pairs.iter_mut().zip(friction).zip(mode) {
+        if r.state != PairState::Stick || dz_t.abs() <= 1e-9 * top {
+            continue;
+        }
+        // the friction force opposes the slip: slip + with x_t = −f·x_n
+        let limit = -dz_t.signum() * f * r.x_n;
+        if (r.x_t - limit).abs() <= 1e-9 * force {
+            r.state = if dz_t > 0.0 {
+                PairState::SlipPlus
+            } else {
+                PairState::SlipMinus
+            };
+        }
     }
 }
 

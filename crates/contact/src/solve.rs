@@ -366,38 +366,57 @@ pub(crate) fn unreported_is_failure(why: &Unreported, tightening: f64) -> bool {
     tightening <= 0.0 || !matches!(why.fresh, Some(LcpStatus::Ray | LcpStatus::IterationLimit))
 }
 
-/// The first segment (from, to, pair) between breakpoints over which a slip part `z_t±` of the traced path is smaller
-/// than at the breakpoint before (relative to the largest slip of the two), while the load grows;
-/// with `untightened` (the traced path is the real one, c = 0) also the reported solution
-/// against the last breakpoint before it (a slip given back on the last segment, where no
-/// breakpoint follows: a single pair slipping at p = 0 and pressed harder as p grows).
+/// The first segment (from, to, pair) between breakpoints over which a slip part `z_t±` of a
+/// pair in contact at both ends (`z_n = 0`: an open pair's tangential motion is free, no
+/// friction law's) is smaller at the end than at the start (relative to the largest slip of
+/// the two), while the load grows by more than its round-off (`1e-12` of the path's largest
+/// load: the pivots at one load where a mechanism sets in are no growth). With `untightened`
+/// (the traced path is the real one, c = 0) also the reported solution against the last
+/// breakpoint before it (a slip given back on the last segment, where no breakpoint follows: a
+/// single pair slipping at p = 0 and pressed harder as p grows).
 fn first_slip_decrease(
     path: &unilateral_lcp::LoadPath,
     m: usize,
     untightened: bool,
 ) -> Option<(f64, f64, usize)> {
-    let slips = |z: &mut dyn Iterator<Item = (usize, f64)>| -> Vec<f64> {
-        let mut v = vec![0.0; 2 * m];
+    // The slip parts `[z_t+; z_t-]` of a point and whether each pair is open.
+    let slips = |z: &mut dyn Iterator<Item = (usize, f64)>| -> (Vec<f64>, Vec<bool>) {
+        let (mut v, mut open) = (vec![0.0; 2 * m], vec![false; m]);
         for (i, z) in z {
-            if i >= m && i < 3 * m {
+            if i < m {
+                open[i] = z > 0.0;
+            } else if i < 3 * m {
                 v[i - m] = z;
             }
         }
-        v
+        (v, open)
     };
-    let decrease = |prev: &[f64], now: &[f64]| -> Option<usize> {
+    let decrease = |(prev, o1): &(Vec<f64>, Vec<bool>), (now, o2): &(Vec<f64>, Vec<bool>)| {
         let top = prev.iter().chain(now).fold(0.0f64, |a, v| a.max(v.abs()));
         (0..2 * m)
-            .find(|&k| prev[k] - now[k] > 1e-9 * top)
+            .find(|&k| !o1[k % m] && !o2[k % m] && prev[k] - now[k] > 1e-9 * top)
             .map(|k| k % m)
     };
     let of = |b: &unilateral_lcp::Breakpoint| slips(&mut b.z.iter().copied());
+    let sol = path
+        .solution
+        .as_ref()
+        .filter(|s| untightened && !s.fallback);
+    let grows = {
+        let top = path
+            .breakpoints
+            .iter()
+            .map(|b| b.p.abs())
+            .chain(sol.map(|s| s.p.abs()))
+            .fold(0.0f64, f64::max);
+        move |from: f64, to: f64| to - from > 1e-12 * top
+    };
     let first = path.breakpoints.first()?;
     let mut prev = of(first);
     let mut p_prev = first.p;
     for b in path.breakpoints.iter().skip(1) {
         let now = of(b);
-        if b.p > p_prev {
+        if grows(p_prev, b.p) {
             if let Some(pair) = decrease(&prev, &now) {
                 return Some((p_prev, b.p, pair));
             }
@@ -407,17 +426,14 @@ fn first_slip_decrease(
     }
     // The reported solution against the breakpoint it follows (the last before the first one
     // beyond it).
-    let sol = path
-        .solution
-        .as_ref()
-        .filter(|s| untightened && !s.fallback)?;
+    let sol = sol?;
     let beyond = path
         .breakpoints
         .iter()
         .position(|b| b.p > sol.p)
         .unwrap_or(path.breakpoints.len());
     let last = &path.breakpoints[beyond.checked_sub(1)?];
-    if sol.p > last.p {
+    if grows(last.p, sol.p) {
         let now = slips(&mut sol.z.iter().copied().enumerate());
         return decrease(&of(last), &now).map(|pair| (last.p, sol.p, pair));
     }

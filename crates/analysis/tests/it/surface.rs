@@ -319,7 +319,9 @@ fn gaps_from_the_geometry_wherever_the_model_is_drawn() {
 }
 
 /// A block held only by its pairs, over a base with the same 1 mm gap at every pair, no
-/// constant load (`tests/data/models/block-over-gap.toml`). The gaps close by a rigid
+/// constant load (`tests/data/models/block-over-gap.toml`; the same with `gap = "geometry"`
+/// and the block drawn 1 mm higher in `gaps_from_the_geometry_wherever_the_model_is_drawn`'s
+/// file family is the reviewer's case). The gaps close by a rigid
 /// motion of the block, which costs no force. Reference: the same blocks touching (gap 0): the
 /// same pair forces, and the block's displacements 1 mm lower. The gap forces R·η cancel to
 /// round-off (−3e-16), which read as tension made "no equilibrium at p = 0" of it.
@@ -328,7 +330,7 @@ fn a_gap_closed_by_a_rigid_motion_costs_no_force() {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/data/models/block-over-gap.toml");
     let text = std::fs::read_to_string(&path).unwrap();
-    let touching = text.replace("origin = [0.0, 1.001]", "origin = [0.0, 1.0]");
+    let touching = text.replace("gap = 0.001", "gap = 0.0");
     assert_ne!(text, touching);
     let run = |t: &str| {
         let p = read("b.toml", t).unwrap();
@@ -362,6 +364,45 @@ fn a_gap_closed_by_a_rigid_motion_costs_no_force() {
         checked += 1;
     }
     assert_eq!(checked, 25);
+}
+
+/// A block on the ground (f = 0.4, weight W = 2000 N) pushed sideways by 100 N·p slides as a
+/// whole at p_lim = f·W/100 = 8 (`tests/data/models/block-sliding.toml`). At p_lim every pair
+/// in contact is at its friction limit and slides in the mechanism: `slip-` (the push is in
+/// −x), Σ x_n = W, Σ x_t = 100·p_lim. The pair whose slip starts at p_lim itself read "stick"
+/// (its accumulated slip is zero there) while the mode slid it with the others.
+#[test]
+fn every_pair_of_a_sliding_mechanism_slips_at_the_limit_load() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/models/block-sliding.toml");
+    let p = read("s.toml", &std::fs::read_to_string(path).unwrap()).unwrap();
+    let s = SolveSettings {
+        tightening: 0.0,
+        target: 20.0,
+        follow: Follow::ToEnd,
+        ..Default::default()
+    };
+    let a = analyze(&p.model, &s).unwrap();
+    let unilateral_analysis::Outcome::Mechanism { p_limit, .. } = a.solution.outcome else {
+        panic!("{:?}", a.solution.outcome)
+    };
+    assert!((p_limit - 8.0).abs() < 1e-12 * 8.0, "{p_limit}");
+    assert_eq!(a.solution.p, Some(p_limit));
+    let pairs = &a.solution.pairs;
+    let closed: Vec<_> = pairs
+        .iter()
+        .filter(|r| r.state != PairState::Open)
+        .collect();
+    assert!(closed.len() >= 3, "{pairs:?}");
+    for r in &closed {
+        assert_eq!(r.state, PairState::SlipMinus, "{r:?}");
+        assert!((r.x_t - 0.4 * r.x_n).abs() < 1e-9 * 2000.0, "{r:?}");
+    }
+    let (sn, st): (f64, f64) = pairs
+        .iter()
+        .fold((0.0, 0.0), |(a, b), r| (a + r.x_n, b + r.x_t));
+    assert!((sn - 2000.0).abs() < 1e-9 * 2000.0, "Σ x_n = {sn}");
+    assert!((st - 800.0).abs() < 1e-9 * 2000.0, "Σ x_t = {st}");
 }
 
 /// A beam of span 2L = 4 m on three ground pairs (ends with gap 0, the middle with gap g),
