@@ -83,8 +83,9 @@ pub enum AnalysisError {
     },
     /// The recovered results are not in equilibrium (an internal failure).
     #[error(
-        "internal failure (the program's fault, not the model's): the results at p = {p} are \
-         out of balance (relative residual {relative:.3e}, accepted {EQUILIBRIUM_TOLERANCE:e})"
+        "internal failure (the program's fault, not the model's): the results at p = {} are \
+         out of balance (relative residual {relative:.3e}, accepted {EQUILIBRIUM_TOLERANCE:e})",
+        unilateral_contact::number_text(*p)
     )]
     Equilibrium {
         /// The load parameter.
@@ -128,7 +129,7 @@ pub enum AnalysisError {
         resultant: [f64; 2],
     },
     /// The requested load is not on the traced load path.
-    #[error("p = {p} is not on the traced load path (it ends at {end})")]
+    #[error("p = {} is not on the traced load path (it ends at {end})", unilateral_contact::number_text(*p))]
     NotOnPath {
         /// The requested load.
         p: f64,
@@ -468,7 +469,10 @@ fn recovery_error(p: f64, source: FemError, names: &Names) -> AnalysisError {
 fn checked(r: Results, p: f64) -> Result<Results, AnalysisError> {
     if !r.all_finite() {
         return Err(AnalysisError::Internal {
-            what: format!("recovering the results at p = {p}"),
+            what: format!(
+                "recovering the results at p = {}",
+                unilateral_contact::number_text(p)
+            ),
             message: "a recovered displacement, force or stress is not a finite number".into(),
         });
     }

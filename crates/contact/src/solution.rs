@@ -176,7 +176,10 @@ impl Outcome {
     pub fn reading(&self, target: f64) -> String {
         match self {
             Outcome::TargetReached => {
-                format!("the load reached the target p* = {target} (Criterion 1)")
+                format!(
+                    "the load reached the target p* = {} (Criterion 1)",
+                    number_text(target)
+                )
             }
             Outcome::Ray { p_from } if *p_from == 0.0 => {
                 "the working scheme is the same for every p > 0 (Criterion 2a: ray from the start)"
@@ -253,11 +256,11 @@ pub(crate) struct Engine {
     pub units: Units,
     /// The pair names.
     pub names: Vec<String>,
-    /// The largest force of the data without the tightening, normalised (and the displacement
-    /// scale without it, relative to the normalised one: the same power of two): what
-    /// round-off of a reported (tightening-free) point is judged against, so that `c` never
-    /// changes a state.
-    pub data_force: f64,
+    /// The force scales of the data without the tightening, normalised (the displacement
+    /// scale is relative to the normalised one by the same factor): what round-off of a
+    /// reported (tightening-free) point at `p` is judged against — the loads it carries, so
+    /// that neither `c` nor a small target changes a state.
+    pub data_force: crate::units::DataForce,
 }
 
 impl Engine {
@@ -266,13 +269,8 @@ impl Engine {
         // A reported point is free of the tightening: its round-off is judged against the
         // data's forces and displacements without `c` (the displacement scale is force over
         // stiffness, and the stiffness does not depend on `c`: the same ratio).
-        let mut pairs = pair_results_scaled(
-            &sol.x,
-            &sol.z,
-            &self.names,
-            self.data_force,
-            self.data_force,
-        );
+        let scale = self.data_force.at(sol.p);
+        let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, scale, scale);
         for r in &mut pairs {
             r.x_n = self.units.user_force(r.x_n);
             r.x_t = self.units.user_force(r.x_t);
@@ -576,10 +574,11 @@ impl ContactSolution {
                 .position(|r| ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()))
             {
                 return Err(ContactError::OutOfRange(format!(
-                    "the forces and displacements of pair {} on the traced path at p = {p} \
+                    "the forces and displacements of pair {} on the traced path at p = {} \
                      exceed the floating-point range (about 1.8e308): express the model in \
                      other units",
-                    self.engine.names.get(i).map_or("?", String::as_str)
+                    self.engine.names.get(i).map_or("?", String::as_str),
+                    number_text(p)
                 )));
             }
             out.push(Some((p, pairs)));

@@ -70,9 +70,12 @@ pub fn solve_shared(
     // The LCP that is solved: normalised by powers of two (module `units`), so that neither the
     // states nor the events depend on the units of the data.
     let units = Units::of(&zone, settings.tightening);
-    // The data's own force scale, without `c`, normalised (a power of two: exact).
-    let data_force = crate::units::ldexp(1.0, units.data_force - units.force);
-    let normalised = ContactLcp::build(&units.normalise(&zone));
+    let normalised_zone = units.normalise(&zone);
+    // The data's own force scales, without `c`, normalised: the constant load with the gap
+    // forces, and the variable load at p = 1 (a reported point at p is judged against the
+    // loads it carries, the constant ones and p times the variable ones).
+    let data_force = crate::units::load_scales(&normalised_zone);
+    let normalised = ContactLcp::build(&normalised_zone);
     let nm = &normalised.problem;
     for j in 0..nm.m.ncols() {
         for i in 0..nm.m.nrows() {
@@ -354,7 +357,7 @@ pub(crate) fn unreported_note(why: &Unreported, m: usize, names: &[String]) -> S
     };
     format!(
         "no solution is reported at p = {}: {basis}; a fresh solve at that load {fresh}",
-        why.p
+        crate::solution::number_text(why.p)
     )
 }
 

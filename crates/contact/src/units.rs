@@ -171,3 +171,48 @@ mod tests {
         assert_eq!(exponent(-3.0), Some(1));
     }
 }
+
+/// The force scales of a (normalised) zone without the tightening: the largest constant load
+/// of a row with the gap forces `R·η` it carries (the sizes of the terms), and the largest
+/// variable load, both over the normal and tangential rows.
+pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
+    let m = zone.pairs();
+    let mut constant = 0.0f64;
+    for i in 0..m {
+        let (mut n, mut t) = (
+            zone.constant.normal[i].abs(),
+            zone.constant.tangential[i].abs(),
+        );
+        for j in 0..m {
+            let g = zone.gap[j];
+            if g != 0.0 {
+                n += (zone.rnn[(i, j)] * g).abs();
+                t += (zone.rtn[(i, j)] * g).abs();
+            }
+        }
+        constant = constant.max(n).max(t);
+    }
+    let variable = zone
+        .variable
+        .normal
+        .iter()
+        .chain(&zone.variable.tangential)
+        .fold(0.0f64, |a, v| a.max(v.abs()));
+    DataForce { constant, variable }
+}
+
+/// The force scales of the data without the tightening ([`load_scales`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct DataForce {
+    /// The constant load with the gap forces.
+    pub constant: f64,
+    /// The variable load at p = 1.
+    pub variable: f64,
+}
+
+impl DataForce {
+    /// The scale of the loads a point at `p` carries.
+    pub fn at(&self, p: f64) -> f64 {
+        self.constant.max(p.abs() * self.variable)
+    }
+}

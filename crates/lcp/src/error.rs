@@ -48,8 +48,8 @@ pub enum SettingsError {
         /// The value given.
         value: f64,
     },
-    /// The target load is not a finite number `> 0`.
-    #[error("target must be a finite number > 0, got {0}")]
+    /// The target load is not a finite number `> 0` (nor a subnormal one, below 2.2e-308).
+    #[error("target must be a finite number > 0 (and not below 2.2e-308), got {0:e}")]
     Target(f64),
     /// The tightening is not a finite number `≥ 0`.
     #[error("tightening must be a finite number ≥ 0, got {0}")]

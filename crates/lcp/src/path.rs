@@ -37,7 +37,8 @@ pub struct PathOptions {
 impl PathOptions {
     /// Checks a target load: a finite number `> 0`.
     pub fn check_target(target: f64) -> Result<(), SettingsError> {
-        if target.is_finite() && target > 0.0 {
+        // A subnormal target (below 2.2e-308) carries fewer digits than a load needs.
+        if target.is_finite() && target >= f64::MIN_POSITIVE {
             Ok(())
         } else {
             Err(SettingsError::Target(target))

@@ -76,7 +76,7 @@ fn solve_settings_are_checked_by_the_engine_in_their_words() {
                 ..SolveSettings::default()
             },
             "target",
-            "invalid solve setting: target must be a finite number > 0, got 0",
+            "invalid solve setting: target must be a finite number > 0 (and not below 2.2e-308), got 0e0",
         ),
         (
             SolveSettings {

@@ -437,6 +437,37 @@ fn huge_friction_or_tightening_does_not_turn_a_stick_into_open() {
     }
 }
 
+/// A small target never changes a state: Example 1 without a constant load is homogeneous,
+/// so the scheme at p* = 1e-10 is the one at p* = 1 (pairs 2 and 3 pressed, sticking; pair 1
+/// open) and every force is 1e-10 of its value there. The states were judged against the
+/// variable load at p = 1: the pressed pairs (x_n = 5e-11) read "open".
+#[test]
+fn a_small_target_does_not_open_a_pressed_pair() {
+    let zone = crate::common::example1_zone();
+    let at = |target: f64| {
+        let settings = SolveSettings {
+            tightening: 0.0,
+            target,
+            follow: Follow::ToTarget,
+            ..SolveSettings::default()
+        };
+        solve(&zone, &settings).unwrap().pairs
+    };
+    let one = at(1.0);
+    assert_eq!(
+        one.iter().map(|r| r.state).collect::<Vec<_>>(),
+        [PairState::Open, PairState::Stick, PairState::Stick]
+    );
+    for target in [1e-10, 1e-200] {
+        let small = at(target);
+        for (a, b) in small.iter().zip(&one) {
+            assert_eq!(a.state, b.state, "p* = {target}: {a:?}");
+            assert!(close(a.x_n, b.x_n * target, 1e-12), "{a:?} {b:?}");
+            assert!(close(a.z_n, b.z_n * target, 1e-12), "{a:?} {b:?}");
+        }
+    }
+}
+
 /// The tightening never changes the reported slip: one pair, `Rnn = Rtt = 1`, f = 0.5, `R_c = 1`
 /// in the normal, `R_v = 1` along the tangent. Hand: at p = 1 the bonded tangential force 1
 /// exceeds f·x_n = 0.5, the pair slips until `x_t = 1 + Rtt·z_t = 0.5`: `z_t = −0.5`, slip−,

@@ -133,7 +133,19 @@ fn settings_errors_are_typed_and_keep_their_words() {
                 Settings::default(),
             ),
             "target",
-            "invalid setting: target must be a finite number > 0, got -1",
+            "invalid setting: target must be a finite number > 0 (and not below 2.2e-308), got -1e0",
+        ),
+        // a subnormal target carries no load's digits (1e-320 ran to an internal failure)
+        (
+            refused(
+                PathOptions {
+                    target: 1e-320,
+                    ..PathOptions::default()
+                },
+                Settings::default(),
+            ),
+            "target",
+            "invalid setting: target must be a finite number > 0 (and not below 2.2e-308), got 1e-320",
         ),
         (
             refused(
