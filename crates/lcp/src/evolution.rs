@@ -187,7 +187,7 @@ impl EvolutionSolver {
     pub fn start(&self) -> Option<EvolutionState> {
         let n = self.n;
         let zero = vec![0.0; n];
-        let (basis, _) = start_basis(
+        let (basis, ..) = start_basis(
             &self.prep,
             &zero,
             &self.problem.q0,

@@ -68,10 +68,16 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     progress.phase(crate::Phase::Start);
     let (start_basis, start_pivots) = match start_basis(prep, solver.d(), &h, &phase1_dir, settings)
     {
-        (Some(b), pivots) => (b, pivots),
-        (None, start_pivots) => {
+        (Some(b), pivots, _) => (b, pivots),
+        (None, start_pivots, capped) => {
             return LoadPath {
-                status: PathStatus::NoSolutionAtStart,
+                // The pivot cap ended the search for the start: not a proof that there is
+                // none.
+                status: if capped {
+                    PathStatus::IterationLimit
+                } else {
+                    PathStatus::NoSolutionAtStart
+                },
                 steps: vec![],
                 breakpoints: vec![],
                 p_max: 0.0,
@@ -86,7 +92,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 start_slots: (0..n).collect(),
                 records: vec![],
                 target_segment: None,
-            }
+            };
         }
     };
     let start_slots = start_basis.slot_var.clone();
@@ -268,12 +274,12 @@ pub(crate) fn start_basis(
     h: &[f64],
     dir: &[f64],
     settings: &Settings,
-) -> (Option<Basis>, usize) {
+) -> (Option<Basis>, usize, bool) {
     let n = prep.n;
     let cols = prep.columns(h, d);
     let hmax = max_abs(&cols.h).max(f64::MIN_POSITIVE);
     if cols.h.iter().all(|&v| v >= -1e-13 * hmax) {
-        return (Some(Basis::slack(n)), 0);
+        return (Some(Basis::slack(n)), 0, false);
     }
     let feasible = |slots: Vec<usize>| -> Option<Basis> {
         let b = Basis::from_slots(&cols, slots).ok()?;
@@ -299,16 +305,17 @@ pub(crate) fn start_basis(
         pivots += spent;
         if let Some(slots) = reached {
             if let Some(b) = feasible(slots) {
-                return (Some(b), pivots);
+                return (Some(b), pivots, false);
             }
         }
     }
     // 3. Lemke's method, then enumeration.
     let run = lemke_run(prep, h, &vec![1.0; n], settings);
     pivots += run.pivots;
+    let capped = matches!(run.outcome, LemkeOutcome::IterationLimit);
     if let LemkeOutcome::Solved(slots, _) = run.outcome {
         if let Some(b) = feasible(slots) {
-            return (Some(b), pivots);
+            return (Some(b), pivots, false);
         }
     }
     if n <= 16 {
@@ -320,11 +327,11 @@ pub(crate) fn start_basis(
                 slots[i] = n + i;
             }
             if let Some(b) = feasible(slots) {
-                return (Some(b), pivots);
+                return (Some(b), pivots, false);
             }
         }
     }
-    (None, pivots)
+    (None, pivots, capped)
 }
 
 fn basic_z(prep: &Prepared, slots: &[usize], beta: &[f64]) -> Vec<(usize, f64)> {

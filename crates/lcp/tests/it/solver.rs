@@ -29,6 +29,55 @@ fn p_matrix_problem() -> (Vec<Vec<f64>>, Vec<f64>, Vec<f64>) {
     (m, vec![1.0, -0.5, 2.0, 0.25], vec![-1.0, 0.75, -0.5, -2.0])
 }
 
+/// A pivot cap that ends the search for the start is an iteration limit, not "no solution at
+/// p = 0". A strictly diagonally dominant matrix with a positive diagonal (a P-matrix: every LCP
+/// of it has exactly one solution) of order 20 (above the enumeration's 16) and `q0 = −1`:
+/// Lemke's method needs a pivot for every row at p = 0. With three pivots allowed the path
+/// said `no_solution_at_start` (and the contact layer blamed the constant loads).
+#[test]
+fn a_pivot_cap_at_the_start_is_an_iteration_limit() {
+    let n = 20;
+    let m: Vec<Vec<f64>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    if i == j {
+                        4.0
+                    } else {
+                        0.15 * (((i * 7 + j * 3) % 5) as f64 - 2.0) / 2.0
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    // strictly diagonally dominant: Σ|off-diagonal| ≤ 19·0.15 < 4
+    let q0 = vec![-1.0; n];
+    let d = vec![1.0; n];
+    let problem = || ParametricLcp {
+        m: to_mat(&m),
+        q0: q0.clone(),
+        d: d.clone(),
+    };
+    let options = PathOptions {
+        target: 1.0,
+        follow: Follow::ToTarget,
+        tightening: None,
+    };
+    let capped = Settings {
+        max_pivots: Some(3),
+        ..Settings::default()
+    };
+    let path = PathSolver::new(problem(), options.clone(), capped)
+        .unwrap()
+        .follow();
+    assert_eq!(path.status, PathStatus::IterationLimit);
+    let path = PathSolver::new(problem(), options, Settings::default())
+        .unwrap()
+        .follow();
+    assert_ne!(path.status, PathStatus::NoSolutionAtStart);
+    assert!(path.start_pivots > 0, "the start needs pivots");
+}
+
 /// Reference: exhaustive enumeration of complementary bases (`unilateral-oracle`), which for a
 /// P-matrix finds the unique solution at each load. One solver answers at every load of the
 /// traced path (without the tightening), on the ray beyond the last event too, and its
