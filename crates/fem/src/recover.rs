@@ -330,6 +330,14 @@ impl Condensed {
         let p = sol.p;
         let (n_i, z0, p0) = (map.n_i, map.z0(), map.p0());
         let s = &applied.s;
+        // no applied force, settlement or temperature, no link force (see the check below)
+        let unloaded = applied
+            .f
+            .iter()
+            .chain(&applied.b_i)
+            .chain(&applied.s)
+            .all(|&v| v == 0.0)
+            && sol.x_n.iter().chain(&sol.x_t).all(|&v| v == 0.0);
         let gen = |g: usize| -> f64 {
             if g < z0 {
                 v_i[g]
@@ -542,6 +550,24 @@ impl Condensed {
                        of their moments about the origin)"
                     .into(),
             });
+        }
+        // An unloaded state (no applied force, settlement or temperature, no link force: an
+        // open pair standing at its gap at p = 0) has nothing to scale its residuals but the
+        // round-off of the dislocations z_n − η, differences of terms |z_n| + |η|, times the
+        // links' stiffness: every force it makes is that round-off. With any load, the loads
+        // scale the check (a state whose loads the gaps' round-off swamps fails it).
+        if unloaded {
+            for k in 0..2 * m {
+                let terms = if k < m {
+                    sol.z_n[k].abs() + self.gap[k].abs()
+                } else {
+                    sol.z_t[k - m].abs()
+                };
+                let stiffness = self.asm.kiz[k]
+                    .iter()
+                    .fold(0.0f64, |a, &(_, v)| a.max(v.abs()));
+                scale = scale.max(terms * stiffness);
+            }
         }
         let x_given: Vec<f64> = sol.x_n.iter().chain(&sol.x_t).copied().collect();
         let mismatch = x_of_z

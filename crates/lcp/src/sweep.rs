@@ -111,8 +111,15 @@ fn segment_of(path: &LoadPath, p: f64) -> Option<usize> {
         _ => None,
     };
     seg.or_else(|| {
-        (path.status == PathStatus::Ray && p >= path.breakpoints.last().map_or(0.0, |b| b.p))
-            .then_some(path.records.len())
+        let last = path.breakpoints.last().map_or(0.0, |b| b.p);
+        // beyond the last event: the ray, or the segment a path stopped at its target ends on
+        // (up to the target; from p = 0 itself on a path without an event before it)
+        let on_last = match path.status {
+            PathStatus::Ray => p >= last,
+            PathStatus::TargetReached => p >= last && p <= path.p_max,
+            _ => false,
+        };
+        on_last.then_some(path.records.len())
     })
 }
 
