@@ -1160,6 +1160,17 @@ fn bad_histories_exit_2_with_their_place() {
     assert!(out
         .stderr
         .contains("--tightening does not apply to a file with a [[history]]"));
+    // Nor --json-breakpoints, which the history's JSON would ignore (its steps carry every
+    // pair already); no file is written.
+    let cmd = TestCommand::new(&["solve"])
+        .arg(data.join("zone-cycle.toml"))
+        .args(&["--json", "h.json", "--json-breakpoints"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(cmd.path(".").is_dir() && !cmd.path("h.json").exists());
+    assert!(out
+        .stderr
+        .contains("--json-breakpoints does not apply to a file with a [[history]]"));
 }
 
 /// The bundled deck on sliding bearings under a daily ±20 K cycle. References: Coulomb's law at

@@ -36,6 +36,7 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
         unilateral_io::Problem::ContactZone(mut problem) => match problem.history.take() {
             Some(stages) => {
                 no_path_options(&overrides)?;
+                no_breakpoints_option(&args)?;
                 problem.settings.engine.progress = drawer.handle();
                 crate::commands::history::zone(&args, &drawer, problem, stages, read)
             }
@@ -48,6 +49,7 @@ pub(crate) fn run(args: SolveArgs) -> Result<(), Failure> {
         unilateral_io::Problem::Structural(mut problem) => match problem.history.take() {
             Some(stages) => {
                 no_path_options(&overrides)?;
+                no_breakpoints_option(&args)?;
                 problem.settings.engine.progress = drawer.handle();
                 crate::commands::history::structural(&args, &drawer, problem, stages, read)
             }
@@ -161,6 +163,20 @@ fn no_path_options(o: &Overrides) -> Result<(), Failure> {
         given.join(", "),
         if given.len() == 1 { "does" } else { "do" }
     )))
+}
+
+/// `--json-breakpoints` adds every pair at every step to the JSON of a single load path; a
+/// history's JSON has them at every change of every stage already, so the option would be
+/// ignored there: it is refused.
+fn no_breakpoints_option(args: &SolveArgs) -> Result<(), Failure> {
+    if args.json_breakpoints {
+        return Err(Failure::Input(
+            "--json-breakpoints does not apply to a file with a [[history]]: its JSON has every \
+             pair at every change of every stage already (history[k].steps[j].pairs)"
+                .into(),
+        ));
+    }
+    Ok(())
 }
 
 /// The step every kind of problem shares: the summary on stdout (unless the JSON goes there)
