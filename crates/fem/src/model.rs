@@ -622,6 +622,20 @@ impl Model {
     pub fn elements(&self) -> &[Element] {
         &self.elements
     }
+    /// Which nodes an element turns: a frame's end without a hinge. Plane elements and bars
+    /// turn no node, so a moment, a rotational spring or a prescribed rotation at a node no
+    /// frame turns would act on nothing.
+    pub fn rotating_nodes(&self) -> Vec<bool> {
+        let mut turns = vec![false; self.nodes.len()];
+        for e in &self.elements {
+            for n in crate::elements::unit(e).rotation_nodes() {
+                if let Some(t) = turns.get_mut(n.0) {
+                    *t = true;
+                }
+            }
+        }
+        turns
+    }
     /// Contact pairs.
     pub fn pairs(&self) -> &[ContactPairSpec] {
         &self.pairs

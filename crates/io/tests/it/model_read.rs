@@ -147,8 +147,8 @@ direction = [1, 0]
 stiffness = 1e5
 
 [[springs]]
-nodes = "post.end"
-to = "post.1"
+nodes = "post.1"           # a rotational spring needs nodes a frame turns (post.end is hinged)
+to = "post.0"
 rotational = true
 stiffness = 10
 

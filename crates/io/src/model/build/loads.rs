@@ -40,6 +40,9 @@ impl Builder<'_> {
                 let fx = opt_number(&t, "fx")?.unwrap_or(0.0);
                 let fy = opt_number(&t, "fy")?.unwrap_or(0.0);
                 let m = opt_number(&t, "m")?.unwrap_or(0.0);
+                if m != 0.0 {
+                    self.turned(&t, "m", &nodes, "a moment")?;
+                }
                 for node in nodes {
                     self.push_load(group, Load::Nodal { node, fx, fy, m });
                 }
@@ -236,6 +239,9 @@ impl Builder<'_> {
             _ => SupportDof::Rz,
         };
         let value = number(t, "value", "the prescribed displacement (or rotation)")?;
+        if dof == SupportDof::Rz && value != 0.0 {
+            self.turned(t, "value", &nodes, "a prescribed rotation")?;
+        }
         for node in nodes {
             if !self.model_has_support(node, dof) {
                 return Err(self.err(
@@ -250,6 +256,36 @@ impl Builder<'_> {
                 ));
             }
             self.push_load(group, Load::Settlement { node, dof, value });
+        }
+        Ok(())
+    }
+
+    /// Refuses `what` (a moment, a rotational spring, a prescribed rotation) at key `key` of
+    /// `t` on a node that no frame turns ([`unilateral_fem::Model::rotating_nodes`]): it would
+    /// act on nothing (a moment there made a false "unstable at rz"; a prescribed rotation was
+    /// reported as the node's rotation).
+    pub(super) fn turned(
+        &self,
+        t: &Table,
+        key: &str,
+        nodes: &[NodeId],
+        what: &str,
+    ) -> Result<(), InputError> {
+        let turns = self.model.rotating_nodes();
+        if let Some(&node) = nodes
+            .iter()
+            .find(|n| !turns.get(n.0).copied().unwrap_or(false))
+        {
+            return Err(self.err(
+                t.get(key).and_then(|v| v.pos).or(t.pos),
+                &t.child(key),
+                InputErrorKind::Invalid,
+                format!(
+                    "{what} at node `{}`, which no frame turns (plane elements and bars have no \
+                     rotation, nor a frame's hinged end): it would act on nothing",
+                    self.node_name(node)
+                ),
+            ));
         }
         Ok(())
     }

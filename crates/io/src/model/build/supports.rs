@@ -94,6 +94,13 @@ impl Builder<'_> {
                     ))
                 }
             };
+            if let SpringKind::Rotational { .. } = kind {
+                let mut ends = nodes.clone();
+                if let Endpoint::Node(n) = a {
+                    ends.push(n);
+                }
+                self.turned(&t, "rotational", &ends, "a rotational spring")?;
+            }
             for b in nodes {
                 self.model.add_spring(Spring { a, b, kind });
                 self.spring_origin.push(Origin {
