@@ -2052,6 +2052,45 @@ fn the_summary_scales_with_the_pairs() {
     );
 }
 
+/// `--verbose` lists every step of the path, as its help says: the table has one row for each
+/// of the JSON's steps (the sheet-pile wall: 45, of which 16 change no pair's state), where the
+/// default lists the 29 that change a pair's state.
+#[test]
+fn verbose_lists_every_step() {
+    let file = root().join("examples/sheet-pile-wall.toml");
+    let cmd = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--verbose", "--json", "out.json"]);
+    let long = cmd.run();
+    assert_eq!(long.code, 0, "{}", long.stderr);
+    let doc: Value =
+        serde_json::from_str(&std::fs::read_to_string(cmd.path("out.json")).unwrap()).unwrap();
+    let steps = doc["steps"].as_array().unwrap();
+    let rows = |text: &str| -> Vec<usize> {
+        text.lines()
+            .skip_while(|l| !l.starts_with("load path ("))
+            .skip(2)
+            .map_while(|l| l.split_whitespace().next()?.parse::<usize>().ok())
+            .collect()
+    };
+    let all = rows(&long.stdout);
+    assert_eq!(
+        all,
+        (1..=steps.len()).collect::<Vec<_>>(),
+        "{}",
+        long.stdout
+    );
+    assert_eq!(steps.len(), 45);
+    let short = TestCommand::new(&["solve"]).arg(&file).run();
+    let listed = rows(&short.stdout);
+    let changing = steps
+        .iter()
+        .filter(|s| !s["events"].as_array().unwrap().is_empty())
+        .count();
+    assert_eq!(changing, 29);
+    assert_eq!(listed.len(), changing, "{}", short.stdout);
+}
+
 /// A history's summary and JSON carry the file's units and title too (the deck: `units =
 /// "N, m, K"`).
 #[test]

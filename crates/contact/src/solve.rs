@@ -244,7 +244,9 @@ pub fn solve_shared(
                 .into(),
         );
     }
-    if let Some((from, to, pair)) = first_slip_decrease(&path, m, settings.tightening == 0.0) {
+    if let Some((from, to, pair)) =
+        first_slip_decrease(&path, &zone.friction, settings.tightening == 0.0)
+    {
         notes.push(format!(
             "between p = {} and p = {} the slip of pair {} decreases along the path: from there \
              the paper's friction law (total slip tied to total force) is not a real one — a \
@@ -370,8 +372,8 @@ pub(crate) fn unreported_is_failure(why: &Unreported, tightening: f64) -> bool {
 }
 
 /// The first segment (from, to, pair) between breakpoints over which a slip part `z_t±` of a
-/// pair in contact at both ends (`z_n = 0`: an open pair's tangential motion is free, no
-/// friction law's) is smaller at the end than at the start (relative to the largest slip of
+/// frictional pair (`f > 0`: without friction a slip is free motion, no friction law's) in
+/// contact at both ends (`z_n = 0`: an open pair's tangential motion is free too) is smaller at the end than at the start (relative to the largest slip of
 /// the two), while the load grows by more than its round-off (`1e-12` of the path's largest
 /// load: the pivots at one load where a mechanism sets in are no growth). With `untightened`
 /// (the traced path is the real one, c = 0) also the reported solution against the last
@@ -379,9 +381,10 @@ pub(crate) fn unreported_is_failure(why: &Unreported, tightening: f64) -> bool {
 /// single pair slipping at p = 0 and pressed harder as p grows).
 fn first_slip_decrease(
     path: &unilateral_lcp::LoadPath,
-    m: usize,
+    friction: &[f64],
     untightened: bool,
 ) -> Option<(f64, f64, usize)> {
+    let m = friction.len();
     // The slip parts `[z_t+; z_t-]` of a point and whether each pair is open.
     let slips = |z: &mut dyn Iterator<Item = (usize, f64)>| -> (Vec<f64>, Vec<bool>) {
         let (mut v, mut open) = (vec![0.0; 2 * m], vec![false; m]);
@@ -397,7 +400,9 @@ fn first_slip_decrease(
     let decrease = |(prev, o1): &(Vec<f64>, Vec<bool>), (now, o2): &(Vec<f64>, Vec<bool>)| {
         let top = prev.iter().chain(now).fold(0.0f64, |a, v| a.max(v.abs()));
         (0..2 * m)
-            .find(|&k| !o1[k % m] && !o2[k % m] && prev[k] - now[k] > 1e-9 * top)
+            .find(|&k| {
+                friction[k % m] > 0.0 && !o1[k % m] && !o2[k % m] && prev[k] - now[k] > 1e-9 * top
+            })
             .map(|k| k % m)
     };
     let of = |b: &unilateral_lcp::Breakpoint| slips(&mut b.z.iter().copied());

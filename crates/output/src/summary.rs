@@ -101,32 +101,44 @@ pub fn contact_summary_detail(
         }
     }
     let _ = writeln!(s);
+    // With --verbose every step is listed; by default the pivots that settle the start and
+    // those with no event (the friction parts of an open pair trading places), which change
+    // nothing a structure shows, are counted, not listed.
+    let every = detail.verbose;
+    let listed_where = if !every {
+        "not listed (they are in --json)"
+    } else {
+        "listed below"
+    };
     let settling = sol.steps.iter().filter(|st| st.settling).count();
     if settling > 0 {
         let _ = writeln!(
             s,
             "the working scheme at the start (p = 0) is settled by {settling} pivot{} — not \
-             events (listed with --json as `settling` steps)",
-            if settling == 1 { "" } else { "s" }
+             events ({})",
+            if settling == 1 { "" } else { "s" },
+            if !every {
+                "listed with --json as `settling` steps"
+            } else {
+                "listed below"
+            }
         );
     }
-    let moving: Vec<&unilateral_contact::LoadStep> =
-        sol.steps.iter().filter(|st| !st.settling).collect();
-    // Pivots with no event (the friction parts of an open pair trading places) change nothing
-    // a structure shows: counted, not listed.
-    let quiet = moving
+    let quiet = sol
+        .steps
         .iter()
-        .filter(|st| st.events.is_empty() && !st.turning)
+        .filter(|st| !st.settling && st.events.is_empty() && !st.turning)
         .count();
-    let events: Vec<&unilateral_contact::LoadStep> = moving
-        .into_iter()
-        .filter(|st| !st.events.is_empty() || st.turning)
+    let events: Vec<&unilateral_contact::LoadStep> = sol
+        .steps
+        .iter()
+        .filter(|st| every || (!st.settling && (!st.events.is_empty() || st.turning)))
         .collect();
     if quiet > 0 {
         let _ = writeln!(
             s,
             "{quiet} pivot{} of the path change no pair's state (friction parts of open pairs \
-             trading places): not listed (they are in --json)",
+             trading places): {listed_where}",
             if quiet == 1 { "" } else { "s" }
         );
     }
@@ -172,6 +184,11 @@ pub fn contact_summary_detail(
                 continue;
             }
             let mut ev: Vec<String> = st.events.iter().map(|e| e.to_string()).collect();
+            if st.settling {
+                ev.push("(settles the start at p = 0)".into());
+            } else if ev.is_empty() && !st.turning {
+                ev.push("(no pair's state changes)".into());
+            }
             if st.turning {
                 ev.push("(load decreases: turning point)".into());
             }
