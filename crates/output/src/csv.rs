@@ -204,7 +204,7 @@ pub fn write_structural_csv(
 
 /// [`write_structural_csv`] with the file's units in the column names (`ux [m]`, `M1 [N·m]`,
 /// `sxx [N/m²]`; rotations in `rad`; the reactions' `value` is a force or a moment by its
-/// `dof`, so it stays unlabelled).
+/// `dof`: a column `unit` says which on each row).
 pub fn write_structural_csv_with(
     a: &unilateral_analysis::Analysis,
     dir: &Path,
@@ -233,15 +233,30 @@ pub fn write_structural_csv_with(
         );
     }
     files.push(write_table(dir, "displacements.csv", t)?);
-    let mut t = String::from("node,dof,value\n");
+    // A reaction is a force or a moment by its DOF: with the file's units, a `unit` column
+    // says which, row by row.
+    let units = about.force_length();
+    let mut t = String::from(if units.is_some() {
+        "node,dof,value,unit\n"
+    } else {
+        "node,dof,value\n"
+    });
     for x in &r.reactions {
-        let _ = writeln!(
+        let _ = write!(
             t,
             "{},{},{}",
             csv_field(&names.node(x.node)),
             csv_field(&dof_name(&x.dof)),
             n(x.value)
         );
+        if let Some((f, l)) = units {
+            let unit = match x.dof {
+                unilateral_fem::SupportDof::Rz => format!("{f}·{l}"),
+                _ => f.to_string(),
+            };
+            let _ = write!(t, ",{}", csv_field(&unit));
+        }
+        t.push('\n');
     }
     files.push(write_table(dir, "reactions.csv", t)?);
     let mut t = format!(

@@ -162,7 +162,27 @@ fn structural_tables_label_every_quantity() {
         head("frame_end_forces.csv"),
         "element,N1 [N],V1 [N],M1 [N·m],N2 [N],V2 [N],M2 [N·m]"
     );
-    assert_eq!(head("reactions.csv"), "node,dof,value");
+    assert_eq!(head("reactions.csv"), "node,dof,value,unit");
+    // each reaction's unit by its DOF, on two clamped cantilevers (tests/data/models/
+    // gap-tips.toml): forces in N, the clamps' moments in N·m
+    let Ok(unilateral_io::Problem::Structural(wall)) = unilateral_io::read_problem(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/models/gap-tips.toml"),
+    ) else {
+        panic!("a structural model");
+    };
+    let aw = unilateral_analysis::analyze(&wall.model, &wall.settings).unwrap();
+    let dw = tempfile::tempdir().unwrap();
+    write_structural_csv_with(&aw, dw.path(), &about).unwrap();
+    let rows = std::fs::read_to_string(dw.path().join("reactions.csv")).unwrap();
+    let mut kinds = std::collections::BTreeSet::new();
+    for row in rows.lines().skip(1) {
+        let cols: Vec<&str> = row.split(',').collect();
+        let want = if cols[1] == "rz" { "N·m" } else { "N" };
+        assert_eq!(cols[3], want, "{row}");
+        kinds.insert(cols[3].to_string());
+    }
+    assert_eq!(kinds.len(), 2, "forces and a moment: {rows}");
     let s = structural_summary_with(&a, "unilateral — beam", &about).unwrap();
     assert!(s.lines().any(|l| l == "units: N, m"), "{s}");
 }
