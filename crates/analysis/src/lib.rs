@@ -93,6 +93,30 @@ pub enum AnalysisError {
         /// The relative out-of-balance force.
         relative: f64,
     },
+    /// The recovered results are out of balance by no more than the round-off of the gaps'
+    /// dislocations allows: the forces those make term by term (`dislocation`) exceed the
+    /// forces of the state (`forces`) by more than double precision resolves within the
+    /// check's tolerance (a 1 mm gap closed by a rigid motion of a steel block, and loads of
+    /// a hundredth of a newton). The data's conditioning, not the program's fault.
+    #[error(
+        "the results at p = {} cannot be resolved in double precision: the links' \
+         dislocations (gaps and slips) make forces of {dislocation:.3e} term by term, {:.1e} \
+         times the forces of this state ({forces:.3e}), whose round-off leaves them out of \
+         balance by {relative:.3e} of those (accepted {EQUILIBRIUM_TOLERANCE:e}); give a larger \
+         load (target) against the gaps, or smaller gaps",
+        unilateral_contact::number_text(*p),
+        dislocation / forces
+    )]
+    Unresolved {
+        /// The load parameter.
+        p: f64,
+        /// The relative out-of-balance force.
+        relative: f64,
+        /// The size of the dislocations' forces ([`unilateral_fem::Equilibrium::dislocation_force`]).
+        dislocation: f64,
+        /// The force scale of the state ([`unilateral_fem::Equilibrium::scale`]).
+        forces: f64,
+    },
     /// Another failure of the program itself: data it computed from a valid model was wrong
     /// (for instance a condensed contact stiffness the contact solver refused) or a numerical
     /// method failed.
@@ -173,6 +197,7 @@ impl AnalysisError {
             | AnalysisError::Internal { .. } => true,
             AnalysisError::Model { source, .. } => source.is_internal(),
             AnalysisError::Unstable { .. }
+            | AnalysisError::Unresolved { .. }
             | AnalysisError::Contact(_)
             | AnalysisError::PulledApart { .. }
             | AnalysisError::NotOnPath { .. } => false,
@@ -478,6 +503,19 @@ fn checked(r: Results, p: f64) -> Result<Results, AnalysisError> {
     }
     let relative = r.equilibrium.relative();
     if relative.is_nan() || relative > EQUILIBRIUM_TOLERANCE {
+        // Out of balance by what the dislocations' round-off (1e-16 of their forces, times the
+        // amplification of a structure's solve, up to 1e4 here) can make against the state's
+        // forces: the data's conditioning.
+        let (dislocation, forces) = (r.equilibrium.dislocation_force, r.equilibrium.scale);
+        if relative.is_finite() && dislocation * f64::EPSILON * 1e4 > EQUILIBRIUM_TOLERANCE * forces
+        {
+            return Err(AnalysisError::Unresolved {
+                p,
+                relative,
+                dislocation,
+                forces,
+            });
+        }
         return Err(AnalysisError::Equilibrium { p, relative });
     }
     Ok(r)
@@ -616,11 +654,9 @@ impl Analysis {
         let Some((pairs, _)) = self.solution.at(p)? else {
             let end = match &self.solution.outcome {
                 Outcome::Ray { .. } => "infinity (ray)".to_string(),
-                _ => self
-                    .solution
-                    .steps
-                    .last()
-                    .map_or("p = 0".to_string(), |s| format!("p = {}", s.p)),
+                _ => self.solution.steps.last().map_or("p = 0".to_string(), |s| {
+                    format!("p = {}", unilateral_contact::number_text(s.p))
+                }),
             };
             return Err(AnalysisError::NotOnPath { p, end });
         };

@@ -117,7 +117,7 @@ pub(crate) fn analysis_failure(file: &Path, e: &unilateral_analysis::AnalysisErr
     use unilateral_analysis::AnalysisError as E;
     match e {
         E::Model { .. } if e.is_internal() => Failure::Internal(format!("{}: {e}", file.display())),
-        E::Model { .. } | E::Unstable { .. } | E::PulledApart { .. } => {
+        E::Model { .. } | E::Unstable { .. } | E::PulledApart { .. } | E::Unresolved { .. } => {
             Failure::Input(format!("{}: {e}", file.display()))
         }
         E::Contact(c) => contact_failure(file, c, ZoneOrigin::Condensed),

@@ -173,32 +173,24 @@ mod tests {
 }
 
 /// The force scales of a (normalised) zone without the tightening: the largest constant load
-/// of a row with the gap forces `R·η` it carries (the sizes of the terms), and the largest
-/// variable load, both over the normal and tangential rows.
+/// of a row with the gap forces `R·η` it carries (as the LCP sums them: a row whose terms
+/// cancel to round-off, the gaps a rigid motion closes, carries none — its terms' sizes would
+/// make a pair's real force of a small load read as round-off), and the largest variable load,
+/// both over the normal and tangential rows.
 pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
     let m = zone.pairs();
-    let mut constant = 0.0f64;
-    for i in 0..m {
-        let (mut n, mut t) = (
-            zone.constant.normal[i].abs(),
-            zone.constant.tangential[i].abs(),
-        );
-        for j in 0..m {
-            let g = zone.gap[j];
-            if g != 0.0 {
-                n += (zone.rnn[(i, j)] * g).abs();
-                t += (zone.rtn[(i, j)] * g).abs();
-            }
-        }
-        constant = constant.max(n).max(t);
+    let (q0, d) = crate::lcp::load_vectors(zone);
+    // the rows are [n; f·n + t; f·n − t]: the tangential part is half their difference
+    let rows = |v: &[f64]| {
+        (0..m).fold(0.0f64, |a, i| {
+            a.max(v[i].abs())
+                .max(((v[m + i] - v[2 * m + i]) / 2.0).abs())
+        })
+    };
+    DataForce {
+        constant: rows(&q0),
+        variable: rows(&d),
     }
-    let variable = zone
-        .variable
-        .normal
-        .iter()
-        .chain(&zone.variable.tangential)
-        .fold(0.0f64, |a, v| a.max(v.abs()));
-    DataForce { constant, variable }
 }
 
 /// The force scales of the data without the tightening ([`load_scales`]).

@@ -556,18 +556,22 @@ impl Condensed {
         // round-off of the dislocations z_n − η, differences of terms |z_n| + |η|, times the
         // links' stiffness: every force it makes is that round-off. With any load, the loads
         // scale the check (a state whose loads the gaps' round-off swamps fails it).
-        if unloaded {
-            for k in 0..2 * m {
-                let terms = if k < m {
-                    sol.z_n[k].abs() + self.gap[k].abs()
-                } else {
-                    sol.z_t[k - m].abs()
-                };
+        let mut dislocation_force = 0.0f64;
+        for k in 0..2 * m {
+            let terms = if k < m {
+                sol.z_n[k].abs() + self.gap[k].abs()
+            } else {
+                sol.z_t[k - m].abs()
+            };
+            if terms > 0.0 {
                 let stiffness = self.asm.kiz[k]
                     .iter()
                     .fold(0.0f64, |a, &(_, v)| a.max(v.abs()));
-                scale = scale.max(terms * stiffness);
+                dislocation_force = dislocation_force.max(terms * stiffness);
             }
+        }
+        if unloaded {
+            scale = scale.max(dislocation_force);
         }
         let x_given: Vec<f64> = sol.x_n.iter().chain(&sol.x_t).copied().collect();
         let mismatch = x_of_z
@@ -617,6 +621,7 @@ impl Condensed {
                 free_dof_relative: free_rel,
                 link_force_relative: ratio(mismatch, link_mag),
                 scale: scale.max(f64::MIN_POSITIVE),
+                dislocation_force,
             },
         };
         Ok((results, res_i))

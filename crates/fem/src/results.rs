@@ -132,6 +132,11 @@ pub struct Equilibrium {
     pub free_dof_relative: f64,
     /// `link_force_mismatch` relative to the largest link force (given or implied).
     pub link_force_relative: f64,
+    /// The size of the forces the links' dislocations make term by term (|z_n| + |η| and |z_t|
+    /// times the links' largest stiffness): where they cancel (a gap closed by a rigid motion)
+    /// their round-off, about 1e-16 of this, is in every force recovered; against loads
+    /// smaller than that round-off allows, a state cannot be resolved in double precision.
+    pub dislocation_force: f64,
 }
 
 /// `a / b`, 0 when `a = 0` (nothing to compare), infinite when only `b` is 0.

@@ -331,7 +331,8 @@ pub(crate) fn start_basis(
             }
         }
     }
-    (None, pivots, capped)
+    // The enumeration (n ≤ 16) answers for good: no solution is no solution, whatever the cap.
+    (None, pivots, capped && n > 16)
 }
 
 fn basic_z(prep: &Prepared, slots: &[usize], beta: &[f64]) -> Vec<(usize, f64)> {

@@ -468,6 +468,35 @@ fn a_small_target_does_not_open_a_pressed_pair() {
     }
 }
 
+/// Gaps a rigid motion closes carry no force, and do not scale the reading of the states:
+/// two pairs whose normal stiffness resists only their relative opening
+/// (`Rnn = k·[[1, −1], [−1, 1]]`, k = 1e9), the same gap 0.01 at both, pushed by `p·(1, 1)`.
+/// By hand: the body moves down by the gap for free, both pairs close and carry `x_n = p`
+/// (stick, the tangential stiffness keeps them). The gap forces' terms (k·η = 1e7) cancel;
+/// judged against them, the forces of p = 1e-3 read "open" with x_n = 0.
+#[test]
+fn gaps_a_rigid_motion_closes_do_not_scale_the_states() {
+    let k = 1e9;
+    let mut zone = ContactZone::new(mat![[k, -k], [-k, k]], mat![[k, 0.0], [0.0, k]]);
+    zone.friction = vec![0.5, 0.5];
+    zone.gap = vec![0.01, 0.01];
+    zone.variable.normal = vec![1.0, 1.0];
+    for target in [1.0, 1e-3, 1e-9] {
+        let settings = SolveSettings {
+            tightening: 0.0,
+            target,
+            follow: Follow::ToTarget,
+            ..SolveSettings::default()
+        };
+        let sol = solve(&zone, &settings).unwrap();
+        for r in &sol.pairs {
+            assert_eq!(r.state, PairState::Stick, "p* = {target}: {r:?}");
+            assert!(close(r.x_n, target, 1e-9), "p* = {target}: {r:?}");
+            assert!(r.z_n == 0.0, "{r:?}");
+        }
+    }
+}
+
 /// The tightening never changes the reported slip: one pair, `Rnn = Rtt = 1`, f = 0.5, `R_c = 1`
 /// in the normal, `R_v = 1` along the tangent. Hand: at p = 1 the bonded tangential force 1
 /// exceeds f·x_n = 0.5, the pair slips until `x_t = 1 + Rtt·z_t = 0.5`: `z_t = −0.5`, slip−,
