@@ -390,21 +390,22 @@ impl Builder<'_> {
                 })
                 .collect();
             let members: Vec<&MshElement> = indexed.iter().map(|&i| &mesh.elements[i]).collect();
-            // A named group without elements would be an empty set: supports and loads on it
-            // silently dropped.
+            // A named group without elements would be an empty set, supports and loads on it
+            // silently dropped: it makes no set, and a reference to it is told why.
             if members.is_empty() {
-                return Err(mf.err(
-                    g.line,
-                    InputErrorKind::Invalid,
+                self.empty_groups.insert(
+                    set.clone(),
                     format!(
-                        "physical group `{label}` (dimension {}) has no elements of its \
-                         dimension in the mesh, so the model cannot use it (Gmsh writes MSH 2.2 \
-                         with Mesh.SaveAll = 1 without the elements' groups: save without \
-                         SaveAll, or in MSH 4.1); give the group its curves or surfaces, or \
-                         remove it",
-                        g.dimension
+                        "`{set}` is physical group `{label}` (dimension {}) of {}{}, which has no \
+                         elements of its dimension (Gmsh writes MSH 2.2 with Mesh.SaveAll = 1 \
+                         without the elements' groups: save without SaveAll, or in MSH 4.1); \
+                         give the group its curves or surfaces",
+                        g.dimension,
+                        mf.path.display(),
+                        g.line.map(|l| format!(" (line {l})")).unwrap_or_default()
                     ),
-                ));
+                );
+                continue;
             }
             let mut tags: Vec<usize> = Vec::new();
             if g.dimension == 1 {

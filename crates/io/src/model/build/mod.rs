@@ -114,6 +114,9 @@ struct Builder<'d> {
     blocks: Vec<(String, [f64; 4], Option<Pos>)>,
     /// Contact surfaces by name (the 1D groups of meshes), segments in order.
     surfaces: HashMap<String, meshes::Surface>,
+    /// The named physical groups of meshes that hold no element of their dimension, by the
+    /// set name they would have: why a reference to one finds nothing.
+    empty_groups: HashMap<String, String>,
     /// How many pairs each `[[contact]]` entry made, with its name (`contact[K]` unnamed).
     contact_counts: Vec<(String, usize)>,
     /// Nodes created so far by blocks and members (bounded by [`MAX_GENERATED`] in all).
@@ -162,6 +165,7 @@ pub(crate) fn read(doc: &Doc, top: &Table) -> Result<StructuralProblem, InputErr
         merge: NodeMerge::default(),
         blocks: Vec::new(),
         surfaces: HashMap::new(),
+        empty_groups: HashMap::new(),
         contact_counts: Vec::new(),
         generated: 0,
         final_of: Vec::new(),
@@ -300,6 +304,9 @@ impl<'d> Builder<'d> {
         what: &str,
         known: impl Iterator<Item = &'a String>,
     ) -> InputError {
+        if let Some(why) = self.empty_groups.get(&r.name) {
+            return self.invalid_at(r, why.clone());
+        }
         let known: Vec<&str> = known.map(String::as_str).take(20_000).collect();
         let hint = match did_you_mean(&r.name, &known) {
             Some(k) => format!(" (did you mean `{k}`?)"),
