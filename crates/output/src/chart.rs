@@ -367,14 +367,25 @@ pub fn chart(
     );
 
     if s.loads.len() < 2 || selected.is_empty() {
-        g.text(
-            "no load path to draw (no solution along the path)",
-            20.0,
-            top + 20.0,
-            10.0,
-            Anchor::Start,
-            "#b3261e",
-        );
+        // A path traced with the tightening records its values at its events only: one
+        // stopped at its target before the first has nothing but its start to draw, while its
+        // solution is reported.
+        let why = if tightened && sol.p.is_some() && sol.steps.is_empty() {
+            "no curve to draw: the traced path (with c) keeps one working scheme up to its \
+             target; the solution there is reported in the tables"
+        } else {
+            "no load path to draw (no solution along the path)"
+        };
+        for (i, line) in wrap(why, 10.0, width - 40.0).iter().enumerate() {
+            g.text(
+                line,
+                20.0,
+                top + 20.0 + 14.0 * i as f64,
+                10.0,
+                Anchor::Start,
+                "#b3261e",
+            );
+        }
         return g.finish();
     }
 

@@ -167,3 +167,28 @@ fn untightened_charts_end_on_the_ray() {
         }
     }
 }
+
+/// A tightened path stopped at its target before its first event (Example 1's beam, c = 1, the
+/// event at p = 32/3 beyond the target 1) records its values at its start only: its charts
+/// say so, not "no solution along the path" (the solution at the target is verified and
+/// reported).
+#[test]
+fn a_tightened_path_without_an_event_says_why_it_draws_no_curve() {
+    let Problem::Structural(pb) =
+        unilateral_io::read_problem(&examples().join("example1-beam.toml")).unwrap()
+    else {
+        panic!("a structural model");
+    };
+    let mut settings = pb.settings.clone();
+    settings.follow = unilateral_contact::Follow::ToTarget;
+    let a = unilateral_analysis::analyze(&pb.model, &settings).unwrap();
+    assert!(a.solution.tightening > 0.0 && a.solution.steps.is_empty());
+    assert_eq!(a.solution.p, Some(1.0));
+    let dir = tempfile::tempdir().unwrap();
+    unilateral_output::write_structural_report(&a, dir.path(), &Default::default()).unwrap();
+    for f in ["load-path-forces.svg", "load-path-displacements.svg"] {
+        let svg = std::fs::read_to_string(dir.path().join(f)).unwrap();
+        assert!(svg.contains("no curve to draw"), "{f}");
+        assert!(!svg.contains("no solution along the path"), "{f}");
+    }
+}
