@@ -80,9 +80,9 @@ pub(crate) struct ReportArgs {
     /// Draw the bending moment diagrams of frame members in the structure picture.
     #[arg(long, requires = "report")]
     pub(crate) moments: bool,
-    /// The stress that colours plane elements.
-    #[arg(long, value_enum, default_value = "vm", requires = "report")]
-    pub(crate) stress: StressArg,
+    /// The stress that colours plane elements (default: vm).
+    #[arg(long, value_enum, requires = "report")]
+    pub(crate) stress: Option<StressArg>,
 }
 
 impl ReportArgs {
@@ -102,6 +102,32 @@ impl ReportArgs {
         Ok(())
     }
 
+    /// `--moments` and `--stress` draw on the structure picture of a structural model's
+    /// report: where the report has none (a contact zone, a load history), they would be
+    /// ignored, so they are refused; `what` says what the file is.
+    pub(crate) fn no_structure_picture(&self, what: &str) -> Result<(), Failure> {
+        let given: Vec<&str> = [
+            ("--moments", self.moments),
+            ("--stress", self.stress.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(name, set)| set.then_some(name))
+        .collect();
+        if given.is_empty() {
+            return Ok(());
+        }
+        Err(Failure::Input(format!(
+            "{} {} the structure picture of a structural model's report; the report of {what} \
+             has none",
+            given.join(" and "),
+            if given.len() == 1 {
+                "draws on"
+            } else {
+                "draw on"
+            }
+        )))
+    }
+
     pub(crate) fn options(
         &self,
         title: Option<String>,
@@ -110,7 +136,7 @@ impl ReportArgs {
         unilateral_output::ReportOptions {
             pairs: self.report_pairs.clone(),
             moments: self.moments,
-            stress: match self.stress {
+            stress: match self.stress.unwrap_or(StressArg::Vm) {
                 StressArg::Vm => unilateral_output::StressComponent::VonMises,
                 StressArg::Sxx => unilateral_output::StressComponent::Sxx,
                 StressArg::Syy => unilateral_output::StressComponent::Syy,

@@ -2091,6 +2091,49 @@ fn verbose_lists_every_step() {
     assert_eq!(listed.len(), changing, "{}", short.stdout);
 }
 
+/// `--moments` and `--stress` draw on a structural model's structure picture: the reports of a
+/// contact zone and of load histories have none, and the options, which were accepted and
+/// ignored there (a byte-identical report), are refused; on a structural model they act.
+#[test]
+fn structure_picture_options_where_there_is_no_structure_picture() {
+    for (file, what) in [
+        (
+            "examples/example1-contact-zone.toml",
+            "the report of a contact zone has none",
+        ),
+        (
+            "examples/deck-bearings-temperature.toml",
+            "the report of a load history has none",
+        ),
+        (
+            "tests/data/history/zone-cycle.toml",
+            "the report of a contact zone's load history has none",
+        ),
+    ] {
+        for opt in [&["--moments"][..], &["--stress", "sxx"][..]] {
+            let cmd = TestCommand::new(&["solve"])
+                .arg(root().join(file))
+                .args(&["--report", "rep"])
+                .args(opt);
+            let out = cmd.run();
+            assert_eq!(out.code, 2, "{file} {opt:?}: {}", out.stderr);
+            assert!(
+                out.stderr.contains(opt[0]) && out.stderr.contains(what),
+                "{file} {opt:?}: {}",
+                out.stderr
+            );
+            assert!(!cmd.path("rep").exists(), "{file} {opt:?}");
+        }
+    }
+    let cmd = TestCommand::new(&["solve"])
+        .arg(root().join("examples/example3-sheet-pile.toml"))
+        .args(&["--report", "rep", "--stress", "sxx"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 0, "{}", out.stderr);
+    let picture = std::fs::read_to_string(cmd.path("rep/structure.svg")).unwrap();
+    assert!(picture.contains("σ_{xx}"), "the colour bar's label");
+}
+
 /// A history's summary and JSON carry the file's units and title too (the deck: `units =
 /// "N, m, K"`).
 #[test]

@@ -140,6 +140,8 @@ pub(crate) fn zone(
         ));
     }
     crate::commands::solve::nodes_need_a_structural_history(args, false, true)?;
+    args.report_args
+        .no_structure_picture("a contact zone's load history")?;
     if args.report.is_some() {
         args.report_args.check(&problem.zone.pair_names)?;
     }
@@ -213,6 +215,7 @@ pub(crate) fn structural(
             .collect();
         args.report_args.check(&pairs)?;
     }
+    args.report_args.no_structure_picture("a load history")?;
     let nodes: Vec<usize> = match &args.report_args.report_nodes {
         Some(names) => names
             .iter()

@@ -222,6 +222,7 @@ fn contact_zone(
             "--vtk needs a structural model: a contact-zone problem has no mesh".into(),
         ));
     }
+    args.report_args.no_structure_picture("a contact zone")?;
     if args.report.is_some() {
         args.report_args.check(&problem.zone.pair_names)?;
     }
