@@ -307,7 +307,7 @@ pub fn chart(
     let labels: Vec<(f64, String)> = sol
         .steps
         .iter()
-        .filter(|_| !many_events)
+        .filter(|st| !many_events && !st.settling)
         .map(|st| (st.p, format!("{}   p = {}", step_label(st), num(st.p))))
         .collect();
     let ev_size = 8.5;
@@ -496,9 +496,10 @@ pub fn chart(
                 r#"<path d="{ticks_d}" stroke="{C_EVENT}" stroke-width="0.9" fill="none"/>"#
             ));
         }
-        // events of all pairs: faint lines; of this pair: marks and numbers
+        // events of all pairs: faint lines; of this pair: marks and numbers (the pivots that
+        // settle the start at p = 0 are no events, as the ticks and the summary say)
         let mut own: Vec<(f64, usize)> = Vec::new();
-        for st in &sol.steps {
+        for st in sol.steps.iter().filter(|st| !st.settling) {
             if !(st.p >= p0 && st.p <= p1) {
                 continue;
             }
@@ -702,6 +703,13 @@ fn segments(sol: &ContactSolution) -> Vec<(usize, bool, f64, f64)> {
     let end = end_load(sol).unwrap_or(last.p);
     if end > last.p + tol || segs.is_empty() {
         segs.push((bps.len() - 1, true, last.p, end.max(last.p)));
+    }
+    // The pivots that settle the start move the load by round-off only: the first column
+    // starts at the start's load (p = 0), not at the round-off load they end at.
+    if let Some(first) = segs.first_mut() {
+        if (first.2 - bps[0].p).abs() <= tol {
+            first.2 = bps[0].p;
+        }
     }
     segs
 }
@@ -1158,6 +1166,26 @@ mod tests {
             cols[0].states,
             [PairState::Open, PairState::Stick, PairState::Stick]
         );
+    }
+
+    /// The working-scheme map starts at p = 0: the cylinder settles its start by pivots at
+    /// loads of round-off (8.5e-13), after which the map's first column began (its axis read
+    /// "8.466e-13"). Reference: the path's own start, p = 0.
+    #[test]
+    fn the_scheme_map_starts_at_the_start() {
+        let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../examples/cylinder-on-foundation.toml");
+        let unilateral_io::Problem::Structural(pb) = unilateral_io::read_problem(&file).unwrap()
+        else {
+            panic!("a structural model");
+        };
+        let sol = unilateral_analysis::analyze(&pb.model, &pb.settings)
+            .unwrap()
+            .solution;
+        assert!(sol.steps.iter().any(|s| s.settling && s.p > 0.0));
+        assert_eq!(sol.path.breakpoints[0].p, 0.0);
+        let cols = scheme_columns(&sol).unwrap();
+        assert_eq!(cols[0].p_from, 0.0, "{:?}", cols[0].p_from);
     }
 
     /// The working-scheme map of Example 3 (c = 1000): one column per segment of the traced path

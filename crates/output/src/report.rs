@@ -369,7 +369,13 @@ pub fn report_html(
             esc(&st.entering),
             esc(&st.leaving),
             esc(&ev),
-            if st.turning { " (turning point)" } else { "" }
+            if st.settling {
+                " (settles the start at p = 0: not an event)"
+            } else if st.turning {
+                " (turning point)"
+            } else {
+                ""
+            }
         );
     }
     h.push_str("</table>\n");

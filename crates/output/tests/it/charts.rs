@@ -192,3 +192,35 @@ fn a_tightened_path_without_an_event_says_why_it_draws_no_curve() {
         assert!(!svg.contains("no solution along the path"), "{f}");
     }
 }
+
+/// The pivots that settle the start at p = 0 are no events: Example 1's beam without the
+/// tightening settles its start by one pivot (support.1 lifts at p = 0: the problem is
+/// homogeneous). The charts listed and marked it as an event of support.1 (while leaving out
+/// its tick); the HTML's events table now marks it as no event.
+#[test]
+fn settling_pivots_are_no_events_in_the_report() {
+    let Problem::Structural(pb) =
+        unilateral_io::read_problem(&examples().join("example1-beam.toml")).unwrap()
+    else {
+        panic!("a structural model");
+    };
+    let mut settings = pb.settings.clone();
+    settings.tightening = 0.0;
+    let a = unilateral_analysis::analyze(&pb.model, &settings).unwrap();
+    let settling: Vec<_> = a.solution.steps.iter().filter(|s| s.settling).collect();
+    assert_eq!(settling.len(), 1, "{:?}", a.solution.steps);
+    // as the charts' event list names a step
+    let word = unilateral_output::step_label(settling[0]);
+    assert!(word.contains("support.1"), "{word}");
+    let dir = tempfile::tempdir().unwrap();
+    unilateral_output::write_structural_report(&a, dir.path(), &Default::default()).unwrap();
+    for f in ["load-path-forces.svg", "load-path-displacements.svg"] {
+        let svg = std::fs::read_to_string(dir.path().join(f)).unwrap();
+        assert!(
+            !svg.contains(&word),
+            "{f} lists the settling pivot as an event"
+        );
+    }
+    let html = std::fs::read_to_string(dir.path().join("report.html")).unwrap();
+    assert!(html.contains("settles the start at p = 0: not an event"));
+}
