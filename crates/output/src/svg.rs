@@ -176,6 +176,9 @@ const EM_PER_CAP: f64 = 1.4;
 pub struct Svg {
     body: String,
     mode: TextMode,
+    title: String,
+    /// The rightmost end of the horizontal text drawn (the picture is widened to hold it).
+    right: f64,
     /// Width in pixels.
     pub width: f64,
     /// Height in pixels.
@@ -185,20 +188,14 @@ pub struct Svg {
 impl Svg {
     /// An empty picture with a white background and a title (for accessibility).
     pub fn new(width: f64, height: f64, title: &str) -> Self {
-        let mut s = Svg {
+        Svg {
             body: String::new(),
             mode: text_mode(),
+            title: title.to_string(),
+            right: 0.0,
             width,
             height,
-        };
-        let _ = writeln!(s.body, "<title>{}</title>", esc(title));
-        let _ = writeln!(
-            s.body,
-            r##"<rect x="0" y="0" width="{}" height="{}" fill="#ffffff"/>"##,
-            n(width),
-            n(height)
-        );
-        s
+        }
     }
 
     /// Raw SVG markup.
@@ -349,6 +346,19 @@ impl Svg {
         if s.trim().is_empty() {
             return;
         }
+        if angle == 0.0 {
+            let w = if rich {
+                font::width_rich(s, size)
+            } else {
+                font::width(s, size)
+            };
+            let end = match anchor {
+                Anchor::Start => x + w,
+                Anchor::Middle => x + w / 2.0,
+                Anchor::End => x,
+            };
+            self.right = self.right.max(end);
+        }
         if self.mode == TextMode::Real {
             self.real_text(s, x, y, size, anchor, angle, color, rich);
             return;
@@ -429,10 +439,14 @@ impl Svg {
 
     /// The finished document.
     pub fn finish(self) -> String {
+        // wide enough for every line of text drawn (a long title on a one-panel chart ran
+        // past the right edge and was cut)
+        let width = self.width.max((self.right + 12.0).ceil());
         format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n{}</svg>\n",
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n<title>{}</title>\n<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"#ffffff\"/>\n{}</svg>\n",
+            esc(&self.title),
             self.body,
-            w = n(self.width),
+            w = n(width),
             h = n(self.height)
         )
     }
@@ -507,6 +521,33 @@ pub fn diverging(t: f64) -> String {
 
 #[cfg(test)]
 mod tests {
+
+    /// A line of text longer than the picture widens it (a chart of one panel, 330 px, had a
+    /// title of 360 px cut at its edge): the width holds every horizontal line drawn, and
+    /// the background covers it. Reference: the font's own width of the line.
+    #[test]
+    fn the_picture_holds_its_text() {
+        let line = "Load path: contact forces of the pairs (traced with the tightening c = 1)";
+        let mut g = Svg::new(330.0, 100.0, "t");
+        g.text(line, 20.0, 26.0, 13.0, Anchor::Start, "#111111");
+        let out = g.finish();
+        let want = 20.0 + font::width(line, 13.0);
+        assert!(want > 330.0);
+        let w: f64 = out
+            .split("width=\"")
+            .nth(1)
+            .and_then(|r| r.split('"').next())
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!(w >= want, "{w} < {want}");
+        assert!(out.contains(&format!("<rect x=\"0\" y=\"0\" width=\"{}\"", n(w))));
+        // a short one leaves the width as asked
+        let mut g = Svg::new(330.0, 100.0, "t");
+        g.text("short", 20.0, 26.0, 13.0, Anchor::Start, "#111111");
+        assert!(g.finish().contains("width=\"330\""));
+    }
+
     use super::*;
 
     #[test]
