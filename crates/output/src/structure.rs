@@ -515,29 +515,6 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
         }
         g.polyline(&tails, ink(constant), 0.9, "");
     }
-    for &(constant, n, f, m) in &loads.nodal {
-        let d = def(n);
-        let c = view.p(d[0], d[1]);
-        let fl = f[0].hypot(f[1]);
-        if fl > 1e-12 * fl_max && fl_max > 0.0 {
-            let len = (LOAD_ARROW * fl / fl_max).max(MIN_ARROW);
-            g.raw(&format!("<g class=\"load {} force\">", group(constant)));
-            marks.extend(load_arrow(
-                &mut g,
-                c,
-                (f[0] / fl, -f[1] / fl),
-                len,
-                3.0,
-                ink(constant),
-            ));
-            g.raw("</g>");
-        }
-        if m != 0.0 {
-            g.raw(&format!("<g class=\"load {} moment\">", group(constant)));
-            marks.extend(moment_arrow(&mut g, c, m, ink(constant)));
-            g.raw("</g>");
-        }
-    }
     // contact forces and pair symbols
     let off = 7.0; // pixels, along the normal into side B, so that the two sides of a wall separate
     let mut labels: Vec<(String, (f64, f64))> = Vec::with_capacity(pairs.len());
@@ -577,6 +554,31 @@ pub fn structure_svg(model: &Model, a: &Analysis, options: &ReportOptions) -> St
             (c.0, c.1 + 4.5),
         ]);
         labels.push((model.pair_name(i), c));
+    }
+    // nodal loads over the pair symbols (a force into a paired node had its head under the
+    // node's symbol)
+    for &(constant, n, f, m) in &loads.nodal {
+        let d = def(n);
+        let c = view.p(d[0], d[1]);
+        let fl = f[0].hypot(f[1]);
+        if fl > 1e-12 * fl_max && fl_max > 0.0 {
+            let len = (LOAD_ARROW * fl / fl_max).max(MIN_ARROW);
+            g.raw(&format!("<g class=\"load {} force\">", group(constant)));
+            marks.extend(load_arrow(
+                &mut g,
+                c,
+                (f[0] / fl, -f[1] / fl),
+                len,
+                3.0,
+                ink(constant),
+            ));
+            g.raw("</g>");
+        }
+        if m != 0.0 {
+            g.raw(&format!("<g class=\"load {} moment\">", group(constant)));
+            marks.extend(moment_arrow(&mut g, c, m, ink(constant)));
+            g.raw("</g>");
+        }
     }
     let skipped = place_labels(
         &mut g,

@@ -189,3 +189,28 @@ fn supports_and_loads_are_drawn_by_kind_and_group() {
         );
     }
 }
+
+/// A nodal force into a paired node is drawn over the pair's symbol (its head, 3 px from the
+/// node, lay under the symbol drawn after it, 7 px away along the normal: a line with no head).
+/// Reference: the order of the SVG: the load's group after the last symbol (the beam's pads,
+/// the middle one loaded).
+#[test]
+fn a_load_into_a_paired_node_is_drawn_over_its_symbol() {
+    let (_, svg) = picture(&beam_on_pairs(4, 3));
+    let load = svg
+        .find("<g class=\"load variable force\">")
+        .expect("the load's arrow");
+    // the pairs' symbols (squares, circles, triangles) come before their name labels (the
+    // legend's, after them, are not the pairs')
+    let labels = svg.find("<rect class=\"label\"").expect("labels");
+    // (squares and circles: the triangles' polygons are like the arrows' heads)
+    let last_symbol = ["<rect x=", "<circle"]
+        .iter()
+        .filter_map(|m| svg[..labels].rfind(m))
+        .max()
+        .unwrap();
+    assert!(
+        load > last_symbol && load < labels,
+        "the load's arrow is drawn before a pair symbol"
+    );
+}
