@@ -379,6 +379,52 @@ fn example_lists_and_writes_a_solvable_file() {
     assert!(missing.stderr.contains("no example named"));
 }
 
+/// Every bundled example of `examples/` is listed and written out, the ones on Gmsh meshes with
+/// their meshes beside them (`meshes/`), byte for byte the repository's files, and solves where
+/// it was written (the mesh examples were not listed). A second write is refused without
+/// `--force`, naming the file.
+#[test]
+fn every_bundled_example_is_written_with_its_meshes() {
+    let list = TestCommand::new(&["example"]).run();
+    let mut bundled: Vec<String> = std::fs::read_dir(root().join("examples"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| p.file_stem().unwrap().to_string_lossy().into_owned())
+        .collect();
+    bundled.sort();
+    for name in &bundled {
+        assert!(list.stdout.contains(name.as_str()), "{name} is not listed");
+    }
+    for (name, meshes) in [
+        (
+            "cylinder-on-foundation",
+            &["meshes/disc-coarse.msh", "meshes/block-coarse.msh"][..],
+        ),
+        (
+            "footing-on-soil",
+            &["meshes/footing.msh", "meshes/soil.msh"][..],
+        ),
+    ] {
+        let cmd = TestCommand::new(&["example", name, "--to", "here"]);
+        let out = cmd.run();
+        assert_eq!(out.code, 0, "{name}: {}", out.stderr);
+        for rel in meshes {
+            let written = std::fs::read(cmd.path(&format!("here/{rel}"))).unwrap();
+            assert_eq!(
+                written,
+                std::fs::read(root().join("examples").join(rel)).unwrap()
+            );
+        }
+        let model = cmd.path(&format!("here/{name}.toml"));
+        let solved = TestCommand::new(&["solve"]).arg(&model).run();
+        assert_eq!(solved.code, 0, "{name}: {}", solved.stderr);
+        let again = cmd.run();
+        assert_eq!(again.code, 2, "{name}");
+        assert!(again.stderr.contains("use --force"), "{}", again.stderr);
+    }
+}
+
 #[test]
 fn lcp_command_on_every_siconos_file() {
     let mut files: Vec<PathBuf> = std::fs::read_dir(siconos("lcp"))

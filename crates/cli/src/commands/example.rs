@@ -48,6 +48,42 @@ const EXAMPLES: &[(&str, &str, &str, &str)] = &[
         "a deck on sliding bearings under a daily temperature cycle ([[history]]: shakedown)",
         include_str!("../../../../examples/deck-bearings-temperature.toml"),
     ),
+    (
+        "cylinder-on-foundation",
+        "cylinder-on-foundation.toml",
+        "a steel cylinder pressed on a block (Hertz; Gmsh meshes, written beside it in meshes/)",
+        include_str!("../../../../examples/cylinder-on-foundation.toml"),
+    ),
+    (
+        "footing-on-soil",
+        "footing-on-soil.toml",
+        "a footing on soil, non-matching Gmsh meshes (written beside it in meshes/)",
+        include_str!("../../../../examples/footing-on-soil.toml"),
+    ),
+];
+
+/// The mesh files an example reads, `(example name, path relative to it, content)`.
+const MESHES: &[(&str, &str, &str)] = &[
+    (
+        "cylinder-on-foundation",
+        "meshes/disc-coarse.msh",
+        include_str!("../../../../examples/meshes/disc-coarse.msh"),
+    ),
+    (
+        "cylinder-on-foundation",
+        "meshes/block-coarse.msh",
+        include_str!("../../../../examples/meshes/block-coarse.msh"),
+    ),
+    (
+        "footing-on-soil",
+        "meshes/footing.msh",
+        include_str!("../../../../examples/meshes/footing.msh"),
+    ),
+    (
+        "footing-on-soil",
+        "meshes/soil.msh",
+        include_str!("../../../../examples/meshes/soil.msh"),
+    ),
 ];
 
 pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Failure> {
@@ -58,7 +94,7 @@ pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Fail
         }
         return Ok(());
     };
-    let Some((_, file, _, content)) = EXAMPLES
+    let Some((example, file, _, content)) = EXAMPLES
         .iter()
         .find(|(n, f, _, _)| *n == name || *f == name)
     else {
@@ -68,16 +104,29 @@ pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Fail
             names.join(", ")
         )));
     };
-    let path = to.join(file);
-    if path.exists() && !force {
-        return Err(Failure::Input(format!(
-            "{} exists; use --force to overwrite it",
-            path.display()
-        )));
+    // the model file and the meshes it reads, every one checked before any is written
+    let files: Vec<(std::path::PathBuf, &str)> = std::iter::once((to.join(file), *content))
+        .chain(
+            MESHES
+                .iter()
+                .filter(|(e, _, _)| e == example)
+                .map(|(_, rel, text)| (to.join(rel), *text)),
+        )
+        .collect();
+    if !force {
+        if let Some((path, _)) = files.iter().find(|(p, _)| p.exists()) {
+            return Err(Failure::Input(format!(
+                "{} exists; use --force to overwrite it",
+                path.display()
+            )));
+        }
     }
-    std::fs::create_dir_all(to)
-        .and_then(|_| std::fs::write(&path, content))
-        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
-    crate::output::outln!("wrote {}", path.display());
+    for (path, text) in &files {
+        path.parent()
+            .map_or(Ok(()), std::fs::create_dir_all)
+            .and_then(|_| std::fs::write(path, text))
+            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+        crate::output::outln!("wrote {}", path.display());
+    }
     Ok(())
 }
