@@ -399,11 +399,15 @@ fn every_bundled_example_is_written_with_its_meshes() {
     for (name, meshes) in [
         (
             "cylinder-on-foundation",
-            &["meshes/disc-coarse.msh", "meshes/block-coarse.msh"][..],
+            &[
+                "meshes/disc-coarse.msh",
+                "meshes/block-coarse.msh",
+                "meshes/make.py",
+            ][..],
         ),
         (
             "footing-on-soil",
-            &["meshes/footing.msh", "meshes/soil.msh"][..],
+            &["meshes/footing.msh", "meshes/soil.msh", "meshes/make.py"][..],
         ),
     ] {
         let cmd = TestCommand::new(&["example", name, "--to", "here"]);
@@ -423,6 +427,13 @@ fn every_bundled_example_is_written_with_its_meshes() {
         assert_eq!(again.code, 2, "{name}");
         assert!(again.stderr.contains("use --force"), "{}", again.stderr);
     }
+    // both into one directory: the mesh script they share is written once, not refused
+    let both = TestCommand::new(&["example", "cylinder-on-foundation", "--to", "d"]);
+    assert_eq!(both.run().code, 0);
+    let second = TestCommand::new(&["example", "footing-on-soil", "--to"])
+        .arg(both.path("d"))
+        .run();
+    assert_eq!(second.code, 0, "{}", second.stderr);
 }
 
 #[test]

@@ -126,10 +126,19 @@ pub fn solve_shared(
     // at p = 10.7, read as settling), and never less than p = 1's (a small target would make
     // the round-off pivots of the start events).
     let p_reached = path.steps.iter().fold(1.0f64, |a, s| a.max(s.p.abs()));
+    // Only the steps before the path first leaves p = 0 settle the start: a path that comes
+    // back to p = 0 later (returned to zero) does so by an event.
+    let at_start = |s: &unilateral_lcp::Step| s.p.abs() <= 1e-12 * p_reached;
+    let settled = path
+        .steps
+        .iter()
+        .position(|s| !at_start(s))
+        .unwrap_or(path.steps.len());
     let steps: Vec<LoadStep> = path
         .steps
         .iter()
-        .map(|s| {
+        .enumerate()
+        .map(|(k, s)| {
             let mut events = events_of(s.leaving, m, &names);
             for e in &mut events {
                 match e.kind {
@@ -147,7 +156,7 @@ pub fn solve_shared(
             }
             LoadStep {
                 index: s.index,
-                settling: s.p.abs() <= 1e-12 * p_reached,
+                settling: k < settled && at_start(s),
                 p: s.p,
                 entering: label(m, s.entering),
                 leaving: label(m, s.leaving),

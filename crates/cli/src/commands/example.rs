@@ -84,6 +84,17 @@ const MESHES: &[(&str, &str, &str)] = &[
         "meshes/soil.msh",
         include_str!("../../../../examples/meshes/soil.msh"),
     ),
+    // the Gmsh script both examples name as the meshes' source
+    (
+        "cylinder-on-foundation",
+        "meshes/make.py",
+        include_str!("../../../../examples/meshes/make.py"),
+    ),
+    (
+        "footing-on-soil",
+        "meshes/make.py",
+        include_str!("../../../../examples/meshes/make.py"),
+    ),
 ];
 
 pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Failure> {
@@ -113,8 +124,15 @@ pub(crate) fn run(name: Option<&str>, to: &Path, force: bool) -> Result<(), Fail
                 .map(|(_, rel, text)| (to.join(rel), *text)),
         )
         .collect();
+    // a file there already is refused, but for one with these very bytes (the mesh script
+    // both mesh examples share): it is left as it is
+    let same =
+        |p: &std::path::Path, text: &str| std::fs::read(p).is_ok_and(|b| b == text.as_bytes());
     if !force {
-        if let Some((path, _)) = files.iter().find(|(p, _)| p.exists()) {
+        if let Some((path, _)) = files
+            .iter()
+            .find(|(p, text)| p.exists() && !(p != &files[0].0 && same(p, text)))
+        {
             return Err(Failure::Input(format!(
                 "{} exists; use --force to overwrite it",
                 path.display()

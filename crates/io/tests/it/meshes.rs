@@ -580,6 +580,22 @@ fn bad_meshes_name_the_msh_file_and_line() {
             && shown.contains("small.msh (line 6), which has no elements"),
         "{shown}"
     );
+    // an empty group named in `materials` (or `sections`) gives its property to nothing:
+    // refused at the key (a `sections` group's frames were silently lost)
+    let m = small_msh("", &[])
+        .replace("2 2 2 1 1 1 2 3\n", "2 2 2 0 1 1 2 3\n")
+        .replace("3 2 2 1 1 1 3 4\n", "3 2 2 0 1 1 3 4\n");
+    assert!(m.contains("3 2 2 0 1 1 3 4"));
+    let (_d, r) = read(
+        &small_model("materials = { body = \"steel\" }"),
+        &[("small.msh", &m)],
+    );
+    let shown = r.unwrap_err().to_string();
+    assert!(
+        shown.contains("materials.body")
+            && shown.contains("physical group `body` of the mesh has no elements"),
+        "{shown}"
+    );
     // the reader's own errors carry where the model names the mesh
     let m = small_msh("", &["4 2 2 1 1 1 3 9"]);
     bad_mesh(&m, steel, "4 2 2 1 1 1 3 9", "node 9");

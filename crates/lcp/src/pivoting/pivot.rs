@@ -948,19 +948,19 @@ impl<'a> Pivoter<'a> {
                 return (Ending::Singular, entering);
             };
             let amax = max_abs(&alpha);
-            // How far the driver moves along this segment.
-            let (t_now, t_rate) = if entering == driver {
-                (0.0, 1.0)
+            // How far the driver moves along this segment: its rate as computed, and whether
+            // that rate is above the pivot tolerance of the column. A rate below it can still
+            // carry the driver over the target within the step (a soft structure sliding: the
+            // slips' rates are 1e6 times the load's, and the load went from 0.998 to 1.56 on
+            // one segment without the target 1 being seen); on a ray (no step) only a rate
+            // above the tolerance reaches it.
+            let (t_now, t_rate, t_sure) = if entering == driver {
+                (0.0, 1.0, true)
             } else if let Some(ds) = self.driver_slot() {
                 let a = alpha[ds];
-                let a = if a.abs() <= self.tol.pivot * amax {
-                    0.0
-                } else {
-                    a
-                };
-                (self.beta[ds], -a)
+                (self.beta[ds], -a, a.abs() > self.tol.pivot * amax)
             } else {
-                (0.0, 0.0)
+                (0.0, 0.0, false)
             };
             if let Some((t_target, stop)) = target {
                 if crossed.is_none() && t_rate > 0.0 && t_now <= t_target {
@@ -968,7 +968,7 @@ impl<'a> Pivoter<'a> {
                     // Reaching the target together with a basic variable counts as reaching
                     // the target: the solution there is the same, and no pivot is needed.
                     let hit = match step {
-                        None => true,
+                        None => t_sure,
                         Some((_, th)) => theta_t <= th + TIE * th.abs().max(theta_t.abs()),
                     };
                     if hit {

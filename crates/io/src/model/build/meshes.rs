@@ -615,6 +615,24 @@ impl Builder<'_> {
             key: key.to_string(),
         };
         match mesh.group(label) {
+            // a group with no element of its dimension would give its material or section to
+            // nothing: the frames of `sections` were silently lost
+            Some(g)
+                if g.dimension == dim
+                    && !mesh
+                        .elements
+                        .iter()
+                        .any(|e| e.kind.dimension() == dim && e.physical.contains(&g.tag)) =>
+            {
+                Err(self.invalid_at(
+                    &r,
+                    format!(
+                        "physical group `{label}` of the mesh has no elements of its dimension \
+                         (Gmsh writes MSH 2.2 with Mesh.SaveAll = 1 without the elements' \
+                         groups: save without SaveAll, or in MSH 4.1)"
+                    ),
+                ))
+            }
             Some(g) if g.dimension == dim => Ok(g.tag),
             Some(g) => Err(self.invalid_at(
                 &r,
