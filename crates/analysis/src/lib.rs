@@ -612,7 +612,9 @@ fn fem_error(e: FemError, names: &Names) -> AnalysisError {
                     names.node(*b)
                 ),
                 (
-                    FemError::NonPositiveProperty { .. } | FemError::Overflow { .. },
+                    FemError::NonPositiveProperty { .. }
+                    | FemError::Overflow { .. }
+                    | FemError::Underflow { .. },
                     Some(Subject::Element(element)),
                     Some(detail),
                 ) => format!("element `{}`: {detail}", names.element(element)),

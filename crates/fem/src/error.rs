@@ -245,6 +245,16 @@ pub enum FemError {
         /// What overflows.
         what: String,
     },
+    /// A stiffness computed from finite input underflows double precision (for instance
+    /// `E·I/L³` with L near 1e150): the element would stiffen nothing, and the structure would
+    /// read as a mechanism; the numbers are out of range for the units used.
+    #[error("{}{}", element.map_or(String::new(), |e| format!("{e}: ")), self.detail().unwrap_or_default())]
+    Underflow {
+        /// The element whose data underflow, if one.
+        element: Option<ElementId>,
+        /// What underflows.
+        what: String,
+    },
     /// The model needs more memory than the machine has (checked before allocating).
     #[error("the model is too large: {what} need {} of memory for the dense contact matrices{}; \
              reduce the number of contact pairs", gigabytes(*.needed), machine_has(*.available))]
@@ -287,6 +297,10 @@ impl FemError {
             | FemError::Overflow {
                 element: Some(element),
                 ..
+            }
+            | FemError::Underflow {
+                element: Some(element),
+                ..
             } => Some(Subject::Element(*element)),
             FemError::BadContactPair { pair, .. } | FemError::LinkPlacement { pair, .. } => {
                 Some(Subject::Pair(*pair))
@@ -320,6 +334,10 @@ impl FemError {
             FemError::Overflow { what, .. } => format!(
                 "{what} overflows double precision: the values are too large (or the lengths \
                  too small) for the units used; choose other units"
+            ),
+            FemError::Underflow { what, .. } => format!(
+                "{what} underflows double precision: the values are too small (or the lengths \
+                 too large) for the units used; choose other units"
             ),
             _ => return None,
         })

@@ -39,6 +39,23 @@ impl Line<'_> {
         if self.is_frame() {
             positive(id, "I", section.inertia)?;
         }
+        // The stiffnesses E·A/L and E·I/L³, by their binary exponents (their products could
+        // underflow on the way): below the normal range the element would stiffen nothing (a
+        // member at x = 4e150 read as a mechanism).
+        let lg = |v: f64| v.log2();
+        let axial = lg(section.e) + lg(section.area) - lg(len);
+        let bending = lg(section.e) + lg(section.inertia) - 3.0 * lg(len);
+        let floor = f64::MIN_POSITIVE.log2();
+        if axial < floor || (self.is_frame() && bending < floor) {
+            return Err(FemError::Underflow {
+                element: Some(id),
+                what: if axial < floor {
+                    "its axial stiffness E·A/L".into()
+                } else {
+                    "its bending stiffness E·I/L³".into()
+                },
+            });
+        }
         if !section.alpha.is_finite() || !section.depth.is_finite() {
             return Err(FemError::NotFinite {
                 what: format!("section of element {}", id.0),
