@@ -712,15 +712,16 @@ fn pair_results_scaled(
             } else {
                 PairState::Stick
             };
-            // Round-off of the friction rows of an open pair is not a force, nor is the
-            // round-off normal force that reads it open (8.5e-9 N at a pair of the cylinder
-            // touching at p = 0 beside gap forces of 1e11).
+            // Round-off of the friction rows of an open pair is not a force. Its normal force
+            // is kept (a stopper carrying 3 N beside gap forces of 1e11 reads open by the
+            // states' margin, but its force is real and the structure's balance needs it),
+            // unless it is round-off of the data itself (64 ε of the scale).
             let x_t = if state == PairState::Open && x_t.abs() <= tx {
                 0.0
             } else {
                 x_t
             };
-            let x_n = if state == PairState::Open && x_n <= tx {
+            let x_n = if state == PairState::Open && x_n <= 64.0 * f64::EPSILON * xmax {
                 0.0
             } else {
                 x_n

@@ -126,19 +126,16 @@ pub fn solve_shared(
     // at p = 10.7, read as settling), and never less than p = 1's (a small target would make
     // the round-off pivots of the start events).
     let p_reached = path.steps.iter().fold(1.0f64, |a, s| a.max(s.p.abs()));
-    // Only the steps before the path first leaves p = 0 settle the start: a path that comes
-    // back to p = 0 later (returned to zero) does so by an event.
-    let at_start = |s: &unilateral_lcp::Step| s.p.abs() <= 1e-12 * p_reached;
-    let settled = path
-        .steps
-        .iter()
-        .position(|s| !at_start(s))
-        .unwrap_or(path.steps.len());
+    // A path that comes back to p = 0 (returned to zero, the load leaving the basis) does so
+    // by an event, not a settling pivot; pivots at loads of round-off after the path has
+    // wandered by round-off (the cylinder's, up to 7e-9 and back) still settle it.
+    let at_start = |s: &unilateral_lcp::Step| {
+        s.p.abs() <= 1e-12 * p_reached && s.leaving != unilateral_lcp::Var::Driver
+    };
     let steps: Vec<LoadStep> = path
         .steps
         .iter()
-        .enumerate()
-        .map(|(k, s)| {
+        .map(|s| {
             let mut events = events_of(s.leaving, m, &names);
             for e in &mut events {
                 match e.kind {
@@ -156,7 +153,7 @@ pub fn solve_shared(
             }
             LoadStep {
                 index: s.index,
-                settling: k < settled && at_start(s),
+                settling: at_start(s),
                 p: s.p,
                 entering: label(m, s.entering),
                 leaving: label(m, s.leaving),

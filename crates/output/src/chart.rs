@@ -1183,6 +1183,9 @@ mod tests {
             .unwrap()
             .solution;
         assert!(sol.steps.iter().any(|s| s.settling && s.p > 0.0));
+        // its pivots at loads of round-off settle the start, those after a wander to 7e-9
+        // and back too (the summary says "settled by 4 pivots")
+        assert_eq!(sol.steps.iter().filter(|s| s.settling).count(), 4);
         assert_eq!(sol.path.breakpoints[0].p, 0.0);
         let cols = scheme_columns(&sol).unwrap();
         assert_eq!(cols[0].p_from, 0.0, "{:?}", cols[0].p_from);

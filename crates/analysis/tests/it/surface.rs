@@ -537,6 +537,84 @@ fx = 5000.0
     );
 }
 
+/// A steel block sliding on the ground (f = 0.3, W = 10 kN) into a stopper 1 mm away, pushed
+/// at its top by 5000 N·p: it slides at p = 0.6, closes the gap at once (it moves freely), and
+/// at p = 0.600006 the stopper carries the rest of the push, 5000·0.000006 = 0.03 N by hand.
+/// That force is small beside the stopper's gap forces (1e11 N·m⁻¹ × 1 mm): the pair read
+/// open with it, and its force was set to 0 — the structure then out of balance by it (exit 1).
+/// The force stays (the state of such a pair is judged with the states' margin, 1e-9 of the
+/// gap forces).
+#[test]
+fn a_small_force_beside_large_gap_forces_is_kept() {
+    let text = r#"units = "N, m"
+[[materials]]
+name = "steel"
+E = 2.0e11
+nu = 0.3
+thickness = 1.0
+
+[[blocks]]
+name = "blk"
+origin = [0.0, 0.0]
+width = 1.0
+height = 0.5
+nx = 4
+ny = 2
+material = "steel"
+analysis = "plane_stress"
+
+[[contact]]
+name = "g"
+from = "ground"
+to = "blk.bottom"
+normal = [0.0, 1.0]
+friction = 0.3
+
+[[contact]]
+name = "s"
+from = "ground"
+to = "blk.right"
+normal = [-1.0, 0.0]
+friction = 0.0
+gap = 0.001
+exclude = "blk.bottom_right"
+
+[[loads.constant.nodal]]
+nodes = "blk.top"
+fy = -2000.0
+
+[[loads.variable.nodal]]
+nodes = "blk.top_right"
+fx = 5000.0
+"#;
+    let p = read("s.toml", text).unwrap();
+    let s = SolveSettings {
+        target: 0.600006,
+        ..settings()
+    };
+    let a = analyze(&p.model, &s).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(a.solution.p, Some(0.600006));
+    let stopper: f64 = a
+        .solution
+        .pairs
+        .iter()
+        .filter(|r| r.name.starts_with("s."))
+        .map(|r| r.x_n)
+        .sum();
+    assert!((stopper - 0.03).abs() < 1e-6, "stopper {stopper}");
+    let friction: f64 = a
+        .solution
+        .pairs
+        .iter()
+        .filter(|r| r.name.starts_with("g."))
+        .map(|r| r.x_t)
+        .sum();
+    assert!(
+        (friction + 3000.0).abs() < 1e-6 * 3000.0,
+        "friction {friction}"
+    );
+}
+
 /// A beam of span 2L = 4 m on three ground pairs (ends with gap 0, the middle with gap g),
 /// loaded at mid-span by P: with the middle pair open the mid-span deflection is
 /// δ = P(2L)³/(48EI) (simply supported); with g < δ the middle pair closes and carries

@@ -967,9 +967,16 @@ impl<'a> Pivoter<'a> {
                     let theta_t = (t_target - t_now) / t_rate;
                     // Reaching the target together with a basic variable counts as reaching
                     // the target: the solution there is the same, and no pivot is needed.
+                    // A rate below the tolerance counts only where the step carries the driver
+                    // a real way (1e-6 of the target): a block sliding at constant load to a
+                    // far stopper moves the load by round-off over a huge step, and stopping
+                    // there read the state on another branch.
                     let hit = match step {
                         None => t_sure,
-                        Some((_, th)) => theta_t <= th + TIE * th.abs().max(theta_t.abs()),
+                        Some((_, th)) => {
+                            theta_t <= th + TIE * th.abs().max(theta_t.abs())
+                                && (t_sure || th * t_rate > 1e-6 * t_target.abs())
+                        }
                     };
                     if hit {
                         *crossed = Some(records.len());
