@@ -179,6 +179,9 @@ pub struct Svg {
     title: String,
     /// The rightmost end of the horizontal text drawn (the picture is widened to hold it).
     right: f64,
+    /// The leftmost start of the horizontal text drawn (the picture is shifted right and
+    /// widened to hold it, when it starts before the left edge).
+    left: f64,
     /// Width in pixels.
     pub width: f64,
     /// Height in pixels.
@@ -193,6 +196,7 @@ impl Svg {
             mode: text_mode(),
             title: title.to_string(),
             right: 0.0,
+            left: 0.0,
             width,
             height,
         }
@@ -352,12 +356,13 @@ impl Svg {
             } else {
                 font::width(s, size)
             };
-            let end = match anchor {
-                Anchor::Start => x + w,
-                Anchor::Middle => x + w / 2.0,
-                Anchor::End => x,
+            let (start, end) = match anchor {
+                Anchor::Start => (x, x + w),
+                Anchor::Middle => (x - w / 2.0, x + w / 2.0),
+                Anchor::End => (x - w, x),
             };
             self.right = self.right.max(end);
+            self.left = self.left.min(start);
         }
         if self.mode == TextMode::Real {
             self.real_text(s, x, y, size, anchor, angle, color, rich);
@@ -440,12 +445,26 @@ impl Svg {
     /// The finished document.
     pub fn finish(self) -> String {
         // wide enough for every line of text drawn (a long title on a one-panel chart ran
-        // past the right edge and was cut)
-        let width = self.width.max((self.right + 12.0).ceil());
+        // past the right edge and was cut; long pair names right-aligned on the scheme map's
+        // left edge ran off it): the drawing shifted right by what runs off the left
+        let shift = if self.left < 0.0 {
+            (12.0 - self.left).ceil()
+        } else {
+            0.0
+        };
+        let width = (self.width + shift).max((self.right + shift + 12.0).ceil());
+        let body = if shift > 0.0 {
+            format!(
+                "<g transform=\"translate({} 0)\">\n{}</g>\n",
+                n(shift),
+                self.body
+            )
+        } else {
+            self.body
+        };
         format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n<title>{}</title>\n<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"#ffffff\"/>\n{}</svg>\n",
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n<title>{}</title>\n<rect x=\"0\" y=\"0\" width=\"{w}\" height=\"{h}\" fill=\"#ffffff\"/>\n{body}</svg>\n",
             esc(&self.title),
-            self.body,
             w = n(width),
             h = n(self.height)
         )
@@ -545,7 +564,23 @@ mod tests {
         // a short one leaves the width as asked
         let mut g = Svg::new(330.0, 100.0, "t");
         g.text("short", 20.0, 26.0, 13.0, Anchor::Start, "#111111");
-        assert!(g.finish().contains("width=\"330\""));
+        let out = g.finish();
+        assert!(out.contains("width=\"330\"") && !out.contains("translate"));
+        // a label right-aligned near the left edge and longer than the room there shifts the
+        // drawing right by what runs off, and widens it as much
+        let label = "a_pair_name_of_sixty_four_characters_on_a_continuous_beam_1";
+        let mut g = Svg::new(330.0, 100.0, "t");
+        g.text(label, 56.0, 60.0, 9.0, Anchor::End, "#111111");
+        let off = font::width(label, 9.0) - 56.0;
+        assert!(off > 0.0);
+        let out = g.finish();
+        let shift = (12.0 + off).ceil();
+        assert!(
+            out.contains(&format!("translate({} 0)", n(shift))),
+            "{}",
+            &out[..300]
+        );
+        assert!(out.contains(&format!("width=\"{}\"", n(330.0 + shift))));
     }
 
     use super::*;
