@@ -269,8 +269,13 @@ impl Engine {
         // A reported point is free of the tightening: its round-off is judged against the
         // data's forces and displacements without `c` (the displacement scale is force over
         // stiffness, and the stiffness does not depend on `c`: the same ratio).
-        let scale = self.data_force.at(sol.p);
-        let mut pairs = pair_results_scaled(&sol.x, &sol.z, &self.names, scale, scale);
+        let mut pairs = pair_results_scaled(
+            &sol.x,
+            &sol.z,
+            &self.names,
+            self.data_force.forces_at(sol.p),
+            self.data_force.at(sol.p),
+        );
         for r in &mut pairs {
             r.x_n = self.units.user_force(r.x_n);
             r.x_t = self.units.user_force(r.x_t);

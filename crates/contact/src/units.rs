@@ -187,8 +187,15 @@ pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
                 .max(((v[m + i] - v[2 * m + i]) / 2.0).abs())
         })
     };
+    // the constant loads alone (the same rows without the gaps)
+    let loads = ContactZone {
+        gap: vec![0.0; m],
+        ..zone.clone()
+    };
+    let (c0, _) = crate::lcp::load_vectors(&loads);
     DataForce {
         constant: rows(&q0),
+        loads: rows(&c0),
         variable: rows(&d),
     }
 }
@@ -198,13 +205,30 @@ pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
 pub(crate) struct DataForce {
     /// The constant load with the gap forces.
     pub constant: f64,
+    /// The constant load alone.
+    pub loads: f64,
     /// The variable load at p = 1.
     pub variable: f64,
 }
 
+/// The share of the gap forces in the scale the states' forces are judged against: their
+/// round-off is about 1e-16 of them times the conditioning, which 1e-4 × the states' margin
+/// (1e-9) covers up to 1e3; a full share would read a stopper's 3 N beside gap forces of 1e10
+/// (1000 m × 1e7 N/m) as round-off, the stopper "open" while it carries the push.
+const GAP_FORCE_SHARE: f64 = 1e-4;
+
 impl DataForce {
-    /// The scale of the loads a point at `p` carries.
+    /// The scale of the displacements a point at `p` carries (the gaps' own size in it: its
+    /// force equivalent, the gap forces).
     pub fn at(&self, p: f64) -> f64 {
         self.constant.max(p.abs() * self.variable)
+    }
+
+    /// The scale the forces of a point at `p` are judged against: its loads, and the gap
+    /// forces' round-off ([`GAP_FORCE_SHARE`]).
+    pub fn forces_at(&self, p: f64) -> f64 {
+        self.loads
+            .max(p.abs() * self.variable)
+            .max(GAP_FORCE_SHARE * self.constant)
     }
 }

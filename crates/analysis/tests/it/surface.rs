@@ -542,8 +542,7 @@ fx = 5000.0
 /// at p = 0.600006 the stopper carries the rest of the push, 5000·0.000006 = 0.03 N by hand.
 /// That force is small beside the stopper's gap forces (1e11 N·m⁻¹ × 1 mm): the pair read
 /// open with it, and its force was set to 0 — the structure then out of balance by it (exit 1).
-/// The force stays (the state of such a pair is judged with the states' margin, 1e-9 of the
-/// gap forces).
+/// The force stays, and the state with it (below).
 #[test]
 fn a_small_force_beside_large_gap_forces_is_kept() {
     let text = r#"units = "N, m"
@@ -613,6 +612,32 @@ fx = 5000.0
         (friction + 3000.0).abs() < 1e-6 * 3000.0,
         "friction {friction}"
     );
+
+    // A softer block (E = 1e7) against a stopper 1000 m away, coarsely meshed (one stopper
+    // pair): at p = 0.6006 the stopper carries 5000·0.0006 = 3 N by hand and is closed
+    // (frictionless: slip−). Judged against a full share of its gap forces (1e7 N/m × 1000 m)
+    // its 3 N read as round-off: "open" while it carries the push.
+    let soft = text
+        .replace("E = 2.0e11", "E = 1.0e7")
+        .replace("nx = 4\nny = 2", "nx = 2\nny = 1")
+        .replace("gap = 0.001", "gap = 1000.0")
+        .replace("fy = -2000.0", "fy = -3333.3333333333335");
+    assert!(soft.contains("gap = 1000.0") && soft.contains("ny = 1"));
+    let p = read("soft.toml", &soft).unwrap();
+    let s = SolveSettings {
+        target: 0.6006,
+        ..settings()
+    };
+    let a = analyze(&p.model, &s).unwrap_or_else(|e| panic!("{e}"));
+    let stopper: Vec<_> = a
+        .solution
+        .pairs
+        .iter()
+        .filter(|r| r.name.starts_with('s'))
+        .collect();
+    assert_eq!(stopper.len(), 1, "{stopper:?}");
+    assert!((stopper[0].x_n - 3.0).abs() < 1e-3, "{:?}", stopper[0]);
+    assert_eq!(stopper[0].state, PairState::SlipMinus, "{:?}", stopper[0]);
 }
 
 /// A beam of span 2L = 4 m on three ground pairs (ends with gap 0, the middle with gap g),
