@@ -106,13 +106,10 @@ impl ReportArgs {
     /// report: where the report has none (a contact zone, a load history), they would be
     /// ignored, so they are refused; `what` says what the file is.
     pub(crate) fn no_structure_picture(&self, what: &str) -> Result<(), Failure> {
-        let given: Vec<&str> = [
+        let given = crate::failure::given_options(&[
             ("--moments", self.moments),
             ("--stress", self.stress.is_some()),
-        ]
-        .into_iter()
-        .filter_map(|(name, set)| set.then_some(name))
-        .collect();
+        ]);
         if given.is_empty() {
             return Ok(());
         }

@@ -232,6 +232,15 @@ impl From<unilateral_output::NonFiniteOutput> for Failure {
 /// contract (reference: the contract of `docs/contact-zone.md`, "Exit status": the user's data
 /// → 2, the program's own computation → 1, an answer → 0). The binary-level tests in
 /// `tests/cli.rs` show the same through real runs for bad input.
+/// The names of the options given, of `(name, given)` pairs, in order: what a refusal of
+/// options that do not apply names.
+pub(crate) fn given_options<'a>(options: &[(&'a str, bool)]) -> Vec<&'a str> {
+    options
+        .iter()
+        .filter_map(|&(name, set)| set.then_some(name))
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

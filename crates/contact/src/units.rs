@@ -179,24 +179,22 @@ mod tests {
 /// both over the normal and tangential rows.
 pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
     let m = zone.pairs();
-    let (q0, d) = crate::lcp::load_vectors(zone);
+    let (q0, _) = crate::lcp::load_vectors(zone);
     // the rows are [n; f·n + t; f·n − t]: the tangential part is half their difference
-    let rows = |v: &[f64]| {
-        (0..m).fold(0.0f64, |a, i| {
-            a.max(v[i].abs())
-                .max(((v[m + i] - v[2 * m + i]) / 2.0).abs())
-        })
+    let constant = (0..m).fold(0.0f64, |a, i| {
+        a.max(q0[i].abs())
+            .max(((q0[m + i] - q0[2 * m + i]) / 2.0).abs())
+    });
+    let largest = |l: &ContactLoad| {
+        l.normal
+            .iter()
+            .chain(&l.tangential)
+            .fold(0.0f64, |a, v| a.max(v.abs()))
     };
-    // the constant loads alone (the same rows without the gaps)
-    let loads = ContactZone {
-        gap: vec![0.0; m],
-        ..zone.clone()
-    };
-    let (c0, _) = crate::lcp::load_vectors(&loads);
     DataForce {
-        constant: rows(&q0),
-        loads: rows(&c0),
-        variable: rows(&d),
+        constant,
+        loads: largest(&zone.constant),
+        variable: largest(&zone.variable),
     }
 }
 

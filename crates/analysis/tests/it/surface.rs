@@ -448,16 +448,12 @@ fn every_pair_of_a_sliding_mechanism_slips_at_the_limit_load() {
     }
 }
 
-/// A steel block (1 m × 0.5 m) on frictional ground (f = 0.3) under 5 × 2000 N, held
-/// sideways by a soft spring (300 N/m) at its heel and pushed at its top right corner by
-/// 5000 N·p. By hand: it slides when 5000·p = f·W = 3000 (p = 0.6), then the spring alone adds
-/// resistance: at p = 1 the slip is (5000 − 3000)/300 = 6.6667 m. On the segment that carries
-/// the load over the target (0.998 → 1.56, the heel lifting), the load's rate is 1e-6 of the
-/// slips' — below the pivot tolerance of that column, which hid the target: the path ran on
-/// past it to p = 2 and back to p = 0 ("returned to zero", the solution at p = 0).
-#[test]
-fn a_slow_load_rate_still_reaches_the_target() {
-    let text = r#"units = "N, m"
+/// A steel block 1 m × 0.5 m (E = 2e11, plane stress, 4 × 2 elements) on frictional ground
+/// (pairs `g.*`, f = 0.3) under 5 × 2000 N on its top, pushed at its top right corner by
+/// 5000 N·p, with `extra` (a spring, a stopper) added to the model.
+fn steel_block_pushed(extra: &str) -> String {
+    format!(
+        r#"units = "N, m"
 [[materials]]
 name = "steel"
 E = 2.0e11
@@ -474,18 +470,13 @@ ny = 2
 material = "steel"
 analysis = "plane_stress"
 
-[[springs]]
-nodes = "blk.bottom_left"
-direction = [1.0, 0.0]
-stiffness = 300.0
-
 [[contact]]
 name = "g"
 from = "ground"
 to = "blk.bottom"
 normal = [0.0, 1.0]
 friction = 0.3
-
+{extra}
 [[loads.constant.nodal]]
 nodes = "blk.top"
 fy = -2000.0
@@ -493,8 +484,41 @@ fy = -2000.0
 [[loads.variable.nodal]]
 nodes = "blk.top_right"
 fx = 5000.0
+"#
+    )
+}
+
+/// A spring of 300 N/m holding the block's heel sideways.
+const SPRING_AT_THE_HEEL: &str = r#"
+[[springs]]
+nodes = "blk.bottom_left"
+direction = [1.0, 0.0]
+stiffness = 300.0
 "#;
-    let p = read("s.toml", text).unwrap();
+
+/// A frictionless stopper at the block's right face, 1 mm away (pairs `s.*`).
+const STOPPER_1_MM_AWAY: &str = r#"
+[[contact]]
+name = "s"
+from = "ground"
+to = "blk.right"
+normal = [-1.0, 0.0]
+friction = 0.0
+gap = 0.001
+exclude = "blk.bottom_right"
+"#;
+
+/// A steel block (1 m × 0.5 m) on frictional ground (f = 0.3) under 5 × 2000 N, held
+/// sideways by a soft spring (300 N/m) at its heel and pushed at its top right corner by
+/// 5000 N·p. By hand: it slides when 5000·p = f·W = 3000 (p = 0.6), then the spring alone adds
+/// resistance: at p = 1 the slip is (5000 − 3000)/300 = 6.6667 m. On the segment that carries
+/// the load over the target (0.998 → 1.56, the heel lifting), the load's rate is 1e-6 of the
+/// slips' — below the pivot tolerance of that column, which hid the target: the path ran on
+/// past it to p = 2 and back to p = 0 ("returned to zero", the solution at p = 0).
+#[test]
+fn a_slow_load_rate_still_reaches_the_target() {
+    let text = steel_block_pushed(SPRING_AT_THE_HEEL);
+    let p = read("s.toml", &text).unwrap();
     let a = analyze(&p.model, &settings()).unwrap();
     assert_eq!(
         a.solution.outcome,
@@ -545,48 +569,8 @@ fx = 5000.0
 /// The force stays, and the state with it (below).
 #[test]
 fn a_small_force_beside_large_gap_forces_is_kept() {
-    let text = r#"units = "N, m"
-[[materials]]
-name = "steel"
-E = 2.0e11
-nu = 0.3
-thickness = 1.0
-
-[[blocks]]
-name = "blk"
-origin = [0.0, 0.0]
-width = 1.0
-height = 0.5
-nx = 4
-ny = 2
-material = "steel"
-analysis = "plane_stress"
-
-[[contact]]
-name = "g"
-from = "ground"
-to = "blk.bottom"
-normal = [0.0, 1.0]
-friction = 0.3
-
-[[contact]]
-name = "s"
-from = "ground"
-to = "blk.right"
-normal = [-1.0, 0.0]
-friction = 0.0
-gap = 0.001
-exclude = "blk.bottom_right"
-
-[[loads.constant.nodal]]
-nodes = "blk.top"
-fy = -2000.0
-
-[[loads.variable.nodal]]
-nodes = "blk.top_right"
-fx = 5000.0
-"#;
-    let p = read("s.toml", text).unwrap();
+    let text = steel_block_pushed(STOPPER_1_MM_AWAY);
+    let p = read("s.toml", &text).unwrap();
     let s = SolveSettings {
         target: 0.600006,
         ..settings()

@@ -146,14 +146,11 @@ pub(crate) fn nodes_need_a_structural_history(
 /// `--target`, `--trace` and `--tightening` belong to the paper's single load path; a file with
 /// a `[[history]]` is followed stage by stage without them.
 fn no_path_options(o: &Overrides) -> Result<(), Failure> {
-    let given: Vec<&str> = [
+    let given = crate::failure::given_options(&[
         ("--target", o.target.is_some()),
         ("--trace", o.trace.is_some()),
         ("--tightening", o.tightening.is_some()),
-    ]
-    .into_iter()
-    .filter_map(|(name, set)| set.then_some(name))
-    .collect();
+    ]);
     if given.is_empty() {
         return Ok(());
     }
