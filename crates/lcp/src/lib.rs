@@ -48,6 +48,7 @@ mod pivoting;
 mod problem;
 mod progress;
 mod residual;
+mod schur;
 mod settings;
 mod solution;
 mod solver;
@@ -67,6 +68,7 @@ pub use path::{
 pub use problem::{Lcp, ParametricLcp};
 pub use progress::{Phase, Progress, Snapshot};
 pub use residual::Residual;
+pub use schur::{follow_schur_path, SchurLcp, SchurOptions, SchurPath};
 pub use settings::{RowRelation, Settings, ACCEPT_RESIDUAL};
 pub use solution::{LcpPoint, LcpSolution, LcpStatus, Strategy};
 pub use solver::{follow_path, solution_at, tableaux, PathSolver};

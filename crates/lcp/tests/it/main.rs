@@ -9,6 +9,8 @@ mod hostile;
 mod paper_example1;
 mod ray_verification;
 mod related_rows;
+mod schur;
+mod schur_beam;
 mod solver;
 mod sweep;
 mod units;

@@ -1,0 +1,114 @@
+//! The Schur-complement engine on the continuous beam on `m` frictional bearings (default
+//! 2000), timed, beside one dense LU of the contact LCP's order and, with `--dense`, the dense
+//! engine on the same problem formed densely:
+//!
+//! ```text
+//! cargo run --release -p unilateral-lcp --example schur_beam -- 2000 [--dense]
+//! ```
+
+#[path = "../tests/it/schur_beam.rs"]
+mod schur_beam;
+
+use std::time::Instant;
+use unilateral_lcp::{
+    follow_schur_path, Follow, PathOptions, PathSolver, RowRelation, SchurOptions, Settings,
+};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let m: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(2000);
+    let dense = args.iter().any(|a| a == "--dense");
+    let n = 3 * m;
+    let t = Instant::now();
+    let lcp = schur_beam::beam_schur(m, &schur_beam::BeamData::default());
+    println!(
+        "m = {m}, n = {n}, N = {}: built in {:.3} s",
+        lcp.a.nrows(),
+        t.elapsed().as_secs_f64()
+    );
+    let a = faer::Mat::<f64>::from_fn(n, n, |i, j| {
+        1.0 / (1.0 + i.abs_diff(j) as f64) + f64::from(i == j) * n as f64
+    });
+    let t = Instant::now();
+    let lu = a.partial_piv_lu();
+    let lu_s = t.elapsed().as_secs_f64();
+    std::hint::black_box(&lu);
+    drop(lu);
+    drop(a);
+    println!("one dense LU of order {n}: {lu_s:.3} s");
+    let order: Vec<usize> = (m..3 * m).chain(0..m).collect();
+    let opts = SchurOptions {
+        target: 1.0,
+        follow: Follow::ToEnd,
+        max_pivots: 20 * n + 100,
+        max_border: 40,
+        order: Some(order.clone()),
+        relations: relations(m, 0.3),
+    };
+    let t = Instant::now();
+    let path = follow_schur_path(&lcp, &opts);
+    let s = t.elapsed().as_secs_f64();
+    println!(
+        "schur engine: {:?}, {} steps, {} refactorisations ({} forced), {s:.3} s ({:.2} × one LU, {:.0} µs a step)",
+        path.status,
+        path.steps.len(),
+        path.refactorizations,
+        path.singular_updates,
+        s / lu_s,
+        1e6 * s / path.steps.len().max(1) as f64
+    );
+    if dense {
+        let t = Instant::now();
+        let problem = lcp.dense();
+        let form = t.elapsed().as_secs_f64();
+        let f = 0.3;
+        let settings = Settings {
+            lexicographic_order: Some(order),
+            row_relations: relations(m, f),
+            ..Settings::default()
+        };
+        let popts = PathOptions {
+            target: 1.0,
+            follow: Follow::ToEnd,
+            tightening: None,
+        };
+        let t = Instant::now();
+        let solver = PathSolver::new(problem, popts, settings).unwrap();
+        let want = solver.follow();
+        let d = t.elapsed().as_secs_f64();
+        let same = want.steps.len() == path.steps.len()
+            && want
+                .steps
+                .iter()
+                .zip(&path.steps)
+                .all(|(a, b)| (a.entering, a.leaving) == (b.entering, b.leaving));
+        if let Some(k) = want
+            .steps
+            .iter()
+            .zip(&path.steps)
+            .position(|(a, b)| (a.entering, a.leaving) != (b.entering, b.leaving))
+        {
+            println!(
+                "first difference at step {}: dense {:?}, schur {:?}",
+                k + 1,
+                &want.steps[k.saturating_sub(1)..(k + 2).min(want.steps.len())],
+                &path.steps[k.saturating_sub(1)..(k + 2).min(path.steps.len())]
+            );
+        }
+        println!(
+            "dense engine: {:?}, {} steps, {d:.3} s ({:.2} × one LU; forming M {form:.3} s); the same pivots: {same}",
+            want.status,
+            want.steps.len(),
+            d / lu_s
+        );
+    }
+}
+
+/// Each pair's friction relation `x_t+ + x_t- − 2f·x_n = 0`.
+fn relations(m: usize, f: f64) -> Vec<RowRelation> {
+    (0..m)
+        .map(|i| RowRelation {
+            terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * f)],
+        })
+        .collect()
+}

@@ -1,0 +1,486 @@
+//! A basis of a Schur-complement LCP kept as one sparse LU factorisation of a *base* system
+//! and a small dense *border* for the changes since.
+//!
+//! The unknowns of the base system are `v = (y, x, z, p)` (`N + 2n + 1`), its rows the `N`
+//! rows of `A y − B z − da·p = …`, the `n` rows of `x − D z + C y − d0·p = …`, one *fix row*
+//! per index `i` that holds one of `x_i`, `z_i` at a given value, and one *extra* fix row for
+//! the basis's one more non-basic variable (the driver at the start, then the second of the
+//! missing pair). The fix rows' patterns hold every variable they may fix (the extra row's
+//! all of them), so that every base has one pattern and one symbolic factorisation serves all;
+//! a base is a basis of the path, so it is as regular as the path's bases are. A basis differs
+//! from the base in
+//!
+//! * *freed* fix rows: the base fixes a variable that is now basic — the row gets a border
+//!   column (an unknown that absorbs it);
+//! * *newly fixed* variables: non-basic now, but not fixed by the base — a border row `e_vᵀ`.
+//!
+//! With `W = 𝒜0⁻¹ U` (the border columns solved once when they join) the system
+//! `[𝒜0 U; Vᵀ C] [v; μ] = [r; r']` is solved as `S μ = r' − Vᵀ 𝒜0⁻¹ r` with the small
+//! `S = C − Vᵀ W`, then `v = 𝒜0⁻¹ (r − U μ)` (the block-LU, or Schur-complement, update of a
+//! basis; Bisschop and Meeraus 1977). A pivot costs a few sparse solves and a dense `S` of the
+//! border's size; the base is refactorised (numerically only) when the border grows.
+
+use faer::linalg::solvers::SolveCore;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Conj, Mat, MatMut};
+
+use super::SchurLcp;
+
+/// A variable of the tableau as a column: `x_i` is `i`, `z_i` is `n + i`, the driver `2n`.
+pub(crate) type Col = usize;
+
+/// A border column: the base's fix row of index `i` (the extra row as `n`), freed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Freed(usize);
+
+/// The base system, factorised.
+struct Base {
+    matrix: SparseColMat<usize, f64>,
+    symbolic: SymbolicLu<usize>,
+    lu: Lu<usize, f64>,
+    /// Position in `matrix`'s values of the `x_i` and `z_i` entries of fix row `i`.
+    fix_entries: Vec<[usize; 2]>,
+    /// Position in `matrix`'s values of each variable's entry in the extra row.
+    extra_entries: Vec<usize>,
+    /// The column each index's fix row holds (`x_i` as `i`, `z_i` as `n + i`).
+    fixed: Vec<Col>,
+    /// The column the extra row holds.
+    extra: Col,
+    /// The entry of a fix row at its variable (`x` then `z`): four times the largest entry of
+    /// the variable's column, so that partial pivoting takes a fixed variable's pivot in its
+    /// fix row and not in the equations it appears in.
+    fix_scale: Vec<f64>,
+}
+
+/// The basis: the base and its border.
+pub(crate) struct Bordered {
+    n: usize,
+    big_n: usize,
+    base: Base,
+    cols: Vec<Freed>,
+    /// `𝒜0⁻¹ u` for each border column `u`.
+    w: Vec<Vec<f64>>,
+    /// Newly fixed variables (border rows).
+    rows: Vec<Col>,
+    /// `S`, factorised, or `None` when singular.
+    s_lu: Option<faer::linalg::solvers::PartialPivLu<f64>>,
+    /// `S`'s row and column scalings: the factorised matrix is `diag(rs) S diag(cs)`.
+    s_rows: Vec<f64>,
+    s_cols: Vec<f64>,
+    /// Refactorisations so far.
+    pub refactorizations: usize,
+}
+
+/// The base or the border is numerically singular.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Singular;
+
+impl Bordered {
+    /// The slack basis: every `z_i` and the driver fixed.
+    pub fn slack(lcp: &SchurLcp) -> Result<Self, Singular> {
+        let n = lcp.order();
+        let big_n = lcp.a.nrows();
+        let fixed: Vec<Col> = (n..2 * n).collect();
+        let extra = 2 * n;
+        let fix_scale = fix_scales(lcp);
+        let (matrix, fix_entries, extra_entries) = base_matrix(lcp, &fixed, extra, &fix_scale);
+        let symbolic = SymbolicLu::try_new(matrix.symbolic()).map_err(|_| Singular)?;
+        let lu =
+            Lu::try_new_with_symbolic(symbolic.clone(), matrix.as_ref()).map_err(|_| Singular)?;
+        let b = Self {
+            n,
+            big_n,
+            base: Base {
+                matrix,
+                symbolic,
+                lu,
+                fix_entries,
+                extra_entries,
+                fixed,
+                extra,
+                fix_scale,
+            },
+            cols: Vec::new(),
+            w: Vec::new(),
+            rows: Vec::new(),
+            s_lu: None,
+            s_rows: Vec::new(),
+            s_cols: Vec::new(),
+            refactorizations: 0,
+        };
+        b.check_base()?;
+        Ok(b)
+    }
+
+    /// Unknowns of the base system.
+    fn size(&self) -> usize {
+        self.big_n + 2 * self.n + 1
+    }
+
+    /// Index of a variable's column among the base's unknowns.
+    pub fn unknown(&self, v: Col) -> usize {
+        self.big_n + v
+    }
+
+    /// The base's fix row (`i` for index `i`'s, `n` for the extra one) that fixes `v`.
+    fn base_row(&self, v: Col) -> Option<usize> {
+        let n = self.n;
+        if v < 2 * n && self.base.fixed[v % n] == v {
+            Some(v % n)
+        } else if self.base.extra == v {
+            Some(n)
+        } else {
+            None
+        }
+    }
+
+    /// The row of the base system that fixes `v` and its entry there, if the base fixes it
+    /// and the row is not freed.
+    pub fn fix_row(&self, v: Col) -> Option<(usize, f64)> {
+        self.base_row(v)
+            .filter(|&r| !self.cols.contains(&Freed(r)))
+            .map(|r| {
+                let scale = self.base.fix_scale[v] * if r == self.n { EXTRA } else { 1.0 };
+                (self.big_n + self.n + r, scale)
+            })
+    }
+
+    /// The entry of `v`'s fix row at `v` (a right-hand side for `v` is multiplied by it).
+    pub fn fix_scale(&self, v: Col) -> f64 {
+        self.base.fix_scale[v]
+    }
+
+    /// The border's size.
+    pub fn border(&self) -> usize {
+        self.cols.len()
+    }
+
+    fn solve_base(&self, r: &mut [f64]) {
+        let m = MatMut::from_column_major_slice_mut(r, r.len(), 1);
+        self.base.lu.solve_in_place_with_conj(Conj::No, m);
+    }
+
+    fn solve_base_transpose(&self, r: &mut [f64]) {
+        let m = MatMut::from_column_major_slice_mut(r, r.len(), 1);
+        self.base.lu.solve_transpose_in_place_with_conj(Conj::No, m);
+    }
+
+    /// The base row of a border column's single entry (`−1`).
+    fn col_row(&self, c: Freed) -> usize {
+        self.big_n + self.n + c.0
+    }
+
+    fn add_col(&mut self, c: Freed) {
+        let mut w = vec![0.0; self.size()];
+        w[self.col_row(c)] = -1.0;
+        self.solve_base(&mut w);
+        self.cols.push(c);
+        self.w.push(w);
+    }
+
+    /// Forms and factorises `S = C − Vᵀ W`.
+    fn refresh_s(&mut self) -> Result<(), Singular> {
+        let k = self.cols.len();
+        debug_assert_eq!(k, self.rows.len());
+        if k == 0 {
+            self.s_lu = None;
+            return Ok(());
+        }
+        let mut s = Mat::<f64>::zeros(k, k);
+        for (g, &v) in self.rows.iter().enumerate() {
+            let at = self.unknown(v);
+            for u in 0..k {
+                s[(g, u)] = -self.w[u][at];
+            }
+        }
+        // Rows and columns mix the units of forces and displacements: each row, then each
+        // column, brought to a largest entry of 1 by a power of two before the factorisation.
+        let pow2 = |v: f64| {
+            if v > 0.0 && v.is_finite() {
+                2f64.powi(-v.log2().round() as i32)
+            } else {
+                1.0
+            }
+        };
+        let rs: Vec<f64> = (0..k)
+            .map(|g| pow2((0..k).fold(0.0f64, |a, u| a.max(s[(g, u)].abs()))))
+            .collect();
+        for g in 0..k {
+            for u in 0..k {
+                s[(g, u)] *= rs[g];
+            }
+        }
+        let cs: Vec<f64> = (0..k)
+            .map(|u| pow2((0..k).fold(0.0f64, |a, g| a.max(s[(g, u)].abs()))))
+            .collect();
+        for u in 0..k {
+            for g in 0..k {
+                s[(g, u)] *= cs[u];
+            }
+        }
+        let lu = s.partial_piv_lu();
+        let ok = (0..k).all(|i| {
+            let u = lu.U()[(i, i)];
+            u.is_finite() && u.abs() > 1e-13
+        });
+        self.s_rows = rs;
+        self.s_cols = cs;
+        self.s_lu = ok.then_some(lu);
+        if ok {
+            Ok(())
+        } else {
+            Err(Singular)
+        }
+    }
+
+    /// The entering variable `e` becomes basic and `l` non-basic.
+    pub fn pivot(&mut self, e: Col, l: Col) -> Result<(), Singular> {
+        if let Some(at) = self.rows.iter().position(|&v| v == e) {
+            self.rows.swap_remove(at);
+        } else {
+            let r = self.base_row(e).expect("a non-basic variable is fixed");
+            self.add_col(Freed(r));
+        }
+        let freed = self
+            .base_row(l)
+            .and_then(|r| self.cols.iter().position(|&c| c == Freed(r)));
+        match freed {
+            Some(at) => {
+                self.cols.swap_remove(at);
+                self.w.swap_remove(at);
+            }
+            None => self.rows.push(l),
+        }
+        self.refresh_s()
+    }
+
+    /// A fresh base from the basis's non-basic variables (`nonbasic[v]`, length `2n + 1`):
+    /// each index's fix row holds its non-basic variable (the missing pair's `z`), the extra
+    /// row the one more (the missing pair's `x`, or the driver).
+    pub fn refactor(&mut self, nonbasic: &[bool]) -> Result<(), Singular> {
+        let n = self.n;
+        let mut extra = 2 * n;
+        let fixed: Vec<Col> = (0..n)
+            .map(|i| {
+                if nonbasic[i] && nonbasic[n + i] {
+                    extra = i;
+                    n + i
+                } else if nonbasic[i] {
+                    i
+                } else {
+                    n + i
+                }
+            })
+            .collect();
+        self.refactorizations += 1;
+        {
+            let sc = &self.base.fix_scale;
+            let vals = self.base.matrix.val_mut();
+            for (i, &f) in fixed.iter().enumerate() {
+                let [ax, az] = self.base.fix_entries[i];
+                vals[ax] = if f == i { sc[i] } else { 0.0 };
+                vals[az] = if f == n + i { sc[n + i] } else { 0.0 };
+            }
+            for (v, &at) in self.base.extra_entries.iter().enumerate() {
+                vals[at] = if v == extra { sc[v] * EXTRA } else { 0.0 };
+            }
+        }
+        self.base.fixed = fixed;
+        self.base.extra = extra;
+        self.base.lu =
+            Lu::try_new_with_symbolic(self.base.symbolic.clone(), self.base.matrix.as_ref())
+                .map_err(|_| Singular)?;
+        self.cols.clear();
+        self.w.clear();
+        self.rows.clear();
+        self.refresh_s()?;
+        self.check_base()
+    }
+
+    /// The base's factor solves a test system to a backward error of round-off, else the
+    /// base is (numerically) singular.
+    fn check_base(&self) -> Result<(), Singular> {
+        let size = self.size();
+        let b = Mat::<f64>::from_fn(size, 1, |i, _| 1.0 + (i % 7) as f64 / 7.0);
+        let mut x = b.clone();
+        self.base.lu.solve_in_place_with_conj(Conj::No, x.as_mut());
+        let r = &self.base.matrix * &x - &b;
+        let (mut worst, mut finite) = (0.0f64, true);
+        let a = &self.base.matrix;
+        let mut scale = vec![0.0f64; size];
+        for j in 0..size {
+            for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+                scale[i] += (v * x[(j, 0)]).abs();
+            }
+        }
+        for i in 0..size {
+            finite &= x[(i, 0)].is_finite();
+            worst = worst.max(r[(i, 0)].abs() / (scale[i] + b[(i, 0)].abs()));
+        }
+        if finite && worst < 1e-10 {
+            Ok(())
+        } else {
+            Err(Singular)
+        }
+    }
+
+    /// Solves the basis system whose right-hand side is `r` on the base's rows (the fix rows
+    /// of freed indices are ignored) and `fix(v)` on each newly fixed variable `v`; returns the
+    /// base's unknowns (`p` the last).
+    pub fn solve(&self, r: &[f64], fix: impl Fn(Col) -> f64) -> Vec<f64> {
+        let mut t = r.to_vec();
+        self.solve_base(&mut t);
+        let k = self.cols.len();
+        if k == 0 {
+            return t;
+        }
+        let mut rhs = Mat::<f64>::zeros(k, 1);
+        for (g, &v) in self.rows.iter().enumerate() {
+            rhs[(g, 0)] = (fix(v) - t[self.unknown(v)]) * self.s_rows[g];
+        }
+        let s = self.s_lu.as_ref().expect("a factorised border");
+        s.solve_in_place_with_conj(Conj::No, rhs.as_mut());
+        // v = 𝒜0⁻¹ r − W μ.
+        for (u, w) in self.w.iter().enumerate() {
+            let mu = rhs[(u, 0)] * self.s_cols[u];
+            for (a, b) in t.iter_mut().zip(w) {
+                *a -= b * mu;
+            }
+        }
+        t
+    }
+
+    /// Row `b` of the basis inverse: the sensitivities of basic variable `b` to the right-hand
+    /// side of the base's rows (the second block's rows are the tableau's rows).
+    pub fn inverse_row(&self, b: Col) -> Vec<f64> {
+        // [𝒜0ᵀ V; Uᵀ 0] [u; ν] = [e_b; 0]: Sᵀ ν = −Uᵀ 𝒜0⁻ᵀ e_b, u = 𝒜0⁻ᵀ (e_b − V ν).
+        let size = self.size();
+        let mut t = vec![0.0; size];
+        t[self.unknown(b)] = 1.0;
+        self.solve_base_transpose(&mut t);
+        let k = self.cols.len();
+        if k == 0 {
+            return t;
+        }
+        let mut rhs = Mat::<f64>::zeros(k, 1);
+        for (u, &c) in self.cols.iter().enumerate() {
+            // Sᵀ ν = b ⇔ (R S C)ᵀ (R⁻¹ ν) = C b; the column's entry is −1.
+            rhs[(u, 0)] = t[self.col_row(c)] * self.s_cols[u];
+        }
+        let st = self.s_lu.as_ref().expect("a factorised border");
+        st.solve_transpose_in_place_with_conj(Conj::No, rhs.as_mut());
+        let mut s2 = vec![0.0; size];
+        s2[self.unknown(b)] = 1.0;
+        for (g, &v) in self.rows.iter().enumerate() {
+            s2[self.unknown(v)] -= rhs[(g, 0)] * self.s_rows[g];
+        }
+        self.solve_base_transpose(&mut s2);
+        s2
+    }
+}
+
+/// The extra row's entry against its variable's fix scale: small, so that partial pivoting
+/// takes it last — its pattern holds every variable, and a pivot in it early fills the factor.
+const EXTRA: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// The fix rows' entries (see [`Base::fix_scale`]).
+fn fix_scales(lcp: &SchurLcp) -> Vec<f64> {
+    let n = lcp.order();
+    let mut sc = vec![0.0; 2 * n + 1];
+    sc[..n].fill(1.0);
+    sc[2 * n] = lcp
+        .d0
+        .iter()
+        .chain(&lcp.da)
+        .fold(0.0f64, |a, v| a.max(v.abs()));
+    for (m, off) in [(&lcp.b, n), (&lcp.d, n)] {
+        for j in 0..m.ncols() {
+            for v in m.val_of_col(j) {
+                sc[off + j] = f64::max(sc[off + j], v.abs());
+            }
+        }
+    }
+    sc.iter()
+        .map(|&v| if v > 0.0 { 4.0 * v } else { 1.0 })
+        .collect()
+}
+
+/// The base matrix for the given fixes, and where each fix row's entries are.
+type BaseMatrix = (SparseColMat<usize, f64>, Vec<[usize; 2]>, Vec<usize>);
+
+fn base_matrix(lcp: &SchurLcp, fixed: &[Col], extra: Col, scale: &[f64]) -> BaseMatrix {
+    let n = lcp.order();
+    let big_n = lcp.a.nrows();
+    let size = big_n + 2 * n + 1;
+    let mut t = Vec::new();
+    let push_all = |t: &mut Vec<Triplet<usize, usize, f64>>,
+                    m: &SparseColMat<usize, f64>,
+                    r0: usize,
+                    c0: usize,
+                    sign: f64| {
+        for j in 0..m.ncols() {
+            let rows = m.row_idx_of_col_raw(j);
+            let vals = m.val_of_col(j);
+            for (&i, &v) in rows.iter().zip(vals) {
+                t.push(Triplet::new(r0 + i, c0 + j, sign * v));
+            }
+        }
+    };
+    push_all(&mut t, &lcp.a, 0, 0, 1.0);
+    push_all(&mut t, &lcp.b, 0, big_n + n, -1.0);
+    push_all(&mut t, &lcp.c, big_n, 0, 1.0);
+    push_all(&mut t, &lcp.d, big_n, big_n + n, -1.0);
+    let pcol = big_n + 2 * n;
+    for (i, &v) in lcp.da.iter().enumerate() {
+        if v != 0.0 {
+            t.push(Triplet::new(i, pcol, -v));
+        }
+    }
+    for (i, &v) in lcp.d0.iter().enumerate() {
+        if v != 0.0 {
+            t.push(Triplet::new(big_n + i, pcol, -v));
+        }
+    }
+    let extra_row = big_n + 2 * n;
+    for i in 0..n {
+        t.push(Triplet::new(big_n + i, big_n + i, 1.0));
+        let f = fixed[i];
+        let (sx, sz) = (scale[i], scale[n + i]);
+        t.push(Triplet::new(
+            big_n + n + i,
+            big_n + i,
+            if f == i { sx } else { 0.0 },
+        ));
+        t.push(Triplet::new(
+            big_n + n + i,
+            big_n + n + i,
+            if f == n + i { sz } else { 0.0 },
+        ));
+    }
+    for (v, &sc) in scale.iter().enumerate() {
+        t.push(Triplet::new(
+            extra_row,
+            big_n + v,
+            if v == extra { sc * EXTRA } else { 0.0 },
+        ));
+    }
+    let matrix = SparseColMat::try_new_from_triplets(size, size, &t).expect("a valid pattern");
+    let mut fix_entries = vec![[usize::MAX; 2]; n];
+    let mut extra_entries = vec![usize::MAX; 2 * n + 1];
+    let col_ptr = matrix.col_ptr();
+    let row_idx = matrix.row_idx();
+    for v in 0..=2 * n {
+        let j = big_n + v;
+        let first = col_ptr[j];
+        for (k, &row) in row_idx[first..col_ptr[j + 1]].iter().enumerate() {
+            if v < 2 * n && row == big_n + n + v % n {
+                fix_entries[v % n][usize::from(v >= n)] = first + k;
+            }
+            if row == extra_row {
+                extra_entries[v] = first + k;
+            }
+        }
+    }
+    (matrix, fix_entries, extra_entries)
+}

@@ -1,0 +1,398 @@
+//! The parametric LCP whose matrix is a Schur complement of sparse data — an engine in the
+//! making (issue 11), not yet used by the contact crate.
+//!
+//! ```text
+//! x = q0 + p·d0 + D z − C y,   A y = qa + p·da + B z,   x ≥ 0, z ≥ 0, xᵀz = 0
+//! ```
+//!
+//! with sparse `A` (`N × N`, nonsingular), `B` (`N × n`), `C` (`n × N`), `D` (`n × n`): the
+//! parametric LCP `x = q + p·d + M z` with `M = D − C A⁻¹ B`, `q = q0 − C A⁻¹ qa`,
+//! `d = d0 − C A⁻¹ da`, never formed. A structure condensed to its contact zone is of this
+//! kind (`A` the stiffness of the DOFs off the links): the dense engine pays `O(n·k + k²)` a
+//! pivot on the formed `M` (`k` the kernel), this one a few sparse solves with one
+//! factorisation of the whole system (see `bordered`).
+//!
+//! What it does so far: the path from the slack basis (`q(0) ≥ 0`) with `p` as the driver, to
+//! the target or to the end; lexicographic ties in a given order of the rows; a row alone
+//! among its relation's basic rows never leaves; the basic values recomputed from the data at
+//! every pivot. What it does not do yet (the dense engine does): equilibration, the relations'
+//! own tie rule, a start that needs Lemke's method or a tightening, verification of the
+//! reported point, the sweep and the tableaux. Its base factor fills where the bearings slide
+//! (the state and the measurements: `docs/performance.md`, round 27).
+
+mod bordered;
+
+use faer::sparse::SparseColMat;
+use faer::Mat;
+
+use crate::{Breakpoint, Follow, ParametricLcp, PathStatus, Step, Var};
+use bordered::Bordered;
+
+/// A parametric LCP with `M = D − C A⁻¹ B` (see the module's documentation).
+#[derive(Debug, Clone)]
+pub struct SchurLcp {
+    /// `A` (`N × N`), nonsingular.
+    pub a: SparseColMat<usize, f64>,
+    /// `B` (`N × n`).
+    pub b: SparseColMat<usize, f64>,
+    /// `C` (`n × N`).
+    pub c: SparseColMat<usize, f64>,
+    /// `D` (`n × n`).
+    pub d: SparseColMat<usize, f64>,
+    /// `q0` (`n`).
+    pub q0: Vec<f64>,
+    /// `qa` (`N`).
+    pub qa: Vec<f64>,
+    /// `d0` (`n`).
+    pub d0: Vec<f64>,
+    /// `da` (`N`).
+    pub da: Vec<f64>,
+}
+
+impl SchurLcp {
+    /// The order `n` of the LCP.
+    pub fn order(&self) -> usize {
+        self.q0.len()
+    }
+
+    /// The shapes agree, else a message saying which does not.
+    pub fn check(&self) -> Result<(), String> {
+        let (n, big_n) = (self.order(), self.a.nrows());
+        let shapes = [
+            ("A", self.a.nrows(), self.a.ncols(), big_n, big_n),
+            ("B", self.b.nrows(), self.b.ncols(), big_n, n),
+            ("C", self.c.nrows(), self.c.ncols(), n, big_n),
+            ("D", self.d.nrows(), self.d.ncols(), n, n),
+        ];
+        for (name, r, c, er, ec) in shapes {
+            if (r, c) != (er, ec) {
+                return Err(format!("{name} is {r} × {c}, expected {er} × {ec}"));
+            }
+        }
+        if self.qa.len() != big_n || self.da.len() != big_n || self.d0.len() != n {
+            return Err("the vectors' lengths do not match the matrices".into());
+        }
+        Ok(())
+    }
+
+    /// The same problem with `M`, `q` and `d` formed densely (for tests and small problems).
+    pub fn dense(&self) -> ParametricLcp {
+        let n = self.order();
+        let a = self.a.to_dense();
+        let lu = a.partial_piv_lu();
+        let b = self.b.to_dense();
+        let c = self.c.to_dense();
+        let mut rhs = Mat::<f64>::zeros(self.a.nrows(), n + 2);
+        for j in 0..n {
+            for i in 0..self.a.nrows() {
+                rhs[(i, j)] = b[(i, j)];
+            }
+        }
+        for i in 0..self.a.nrows() {
+            rhs[(i, n)] = self.qa[i];
+            rhs[(i, n + 1)] = self.da[i];
+        }
+        use faer::linalg::solvers::Solve;
+        let sol = lu.solve(&rhs);
+        let csol = &c * &sol;
+        let dd = self.d.to_dense();
+        let m = Mat::from_fn(n, n, |i, j| dd[(i, j)] - csol[(i, j)]);
+        let q0 = (0..n).map(|i| self.q0[i] - csol[(i, n)]).collect();
+        let d = (0..n).map(|i| self.d0[i] - csol[(i, n + 1)]).collect();
+        ParametricLcp { m, q0, d }
+    }
+}
+
+/// How a Schur path ended and what it found.
+#[derive(Debug, Clone)]
+pub struct SchurPath {
+    /// How the path ended (`NoSolutionAtStart` when `q(0)` is not `≥ 0`: this engine does not
+    /// yet find a start by Lemke's method).
+    pub status: PathStatus,
+    /// Every pivot.
+    pub steps: Vec<Step>,
+    /// The start and the point after every step.
+    pub breakpoints: Vec<Breakpoint>,
+    /// `(x, z)` at the target when the path reached it.
+    pub at_target: Option<(Vec<f64>, Vec<f64>)>,
+    /// Fresh factorisations of the base.
+    pub refactorizations: usize,
+    /// Of those, the ones forced by a singular border.
+    pub singular_updates: usize,
+}
+
+/// Options of [`follow_schur_path`].
+#[derive(Debug, Clone)]
+pub struct SchurOptions {
+    /// The target load.
+    pub target: f64,
+    /// How far the path is followed.
+    pub follow: Follow,
+    /// The pivot cap.
+    pub max_pivots: usize,
+    /// The border's size that triggers a refactorisation of the base.
+    pub max_border: usize,
+    /// The rows' lexicographic priority (as [`crate::Settings::lexicographic_order`]);
+    /// `None` for `0, 1, …, n − 1`.
+    pub order: Option<Vec<usize>>,
+    /// Rows the formulation ties exactly (as [`crate::Settings::row_relations`]): a row alone
+    /// among its relation's basic rows is fixed by the others and never leaves.
+    pub relations: Vec<crate::RowRelation>,
+}
+
+/// The current basis: basic variables and their values.
+struct State {
+    n: usize,
+    basic: Vec<bool>,
+    /// Values of all variables (zero for non-basic), `x` then `z` then `p`.
+    val: Vec<f64>,
+}
+
+impl State {
+    fn x(&self) -> &[f64] {
+        &self.val[..self.n]
+    }
+    fn z(&self) -> &[f64] {
+        &self.val[self.n..2 * self.n]
+    }
+    fn p(&self) -> f64 {
+        self.val[2 * self.n]
+    }
+}
+
+/// Follows the path of `lcp` from `p = 0`.
+pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
+    let n = lcp.order();
+    let big_n = lcp.a.nrows();
+    let mut out = SchurPath {
+        status: PathStatus::NumericalFailure,
+        steps: Vec::new(),
+        breakpoints: Vec::new(),
+        at_target: None,
+        refactorizations: 0,
+        singular_updates: 0,
+    };
+    let mut singular_updates = 0;
+    let Ok(mut basis) = Bordered::slack(lcp) else {
+        return out;
+    };
+    let mut st = State {
+        n,
+        basic: (0..=2 * n).map(|v| v < n).collect(),
+        val: vec![0.0; 2 * n + 1],
+    };
+    values(lcp, &basis, &mut st);
+    let xscale = st.x().iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    if st.x().iter().any(|&v| v < -1e-12 * xscale) {
+        out.status = PathStatus::NoSolutionAtStart;
+        return out;
+    }
+    out.breakpoints.push(Breakpoint {
+        p: 0.0,
+        z: Vec::new(),
+    });
+    let mut entering = 2 * n;
+    let order: Vec<usize> = opts.order.clone().unwrap_or_else(|| (0..n).collect());
+    let mut relation_of = vec![usize::MAX; n];
+    for (r, rel) in opts.relations.iter().enumerate() {
+        for &(i, _) in &rel.terms {
+            relation_of[i] = r;
+        }
+    }
+    let alone = |st: &State, v: usize| -> bool {
+        v < n
+            && relation_of[v] != usize::MAX
+            && opts.relations[relation_of[v]]
+                .terms
+                .iter()
+                .filter(|&&(i, _)| st.basic[i])
+                .count()
+                == 1
+    };
+    let weight: Vec<f64> = (0..=2 * n)
+        .map(|v| {
+            if v < n {
+                1.0
+            } else if v < 2 * n {
+                basis.fix_scale(v) / 4.0
+            } else {
+                lcp.d0
+                    .iter()
+                    .chain(&lcp.da)
+                    .fold(0.0f64, |a, x| a.max(x.abs()))
+            }
+        })
+        .collect();
+    let mut rhs = vec![0.0; big_n + 2 * n + 1];
+    loop {
+        if out.steps.len() >= opts.max_pivots {
+            out.status = PathStatus::IterationLimit;
+            break;
+        }
+        // The direction: the entering variable at 1, every other non-basic at 0.
+        rhs.fill(0.0);
+        if let Some((at, entry)) = basis.fix_row(entering) {
+            rhs[at] = entry;
+        }
+        let dv = basis.solve(&rhs, |v| f64::from(v == entering));
+        let mut dir = dv[big_n..].to_vec();
+        let dp = dir[2 * n];
+        dir[entering] = 1.0;
+        // Round-off of each kind (`x`, `z`) against the largest rate of that kind, the
+        // entering variable's own among them; the driver's rate against the `x` rates it makes.
+        let kind = |v: usize| usize::from(v >= n) + usize::from(v >= 2 * n);
+        let mut big = [0.0f64; 3];
+        for v in (0..=2 * n).filter(|&v| st.basic[v] || v == entering) {
+            big[kind(v)] = big[kind(v)].max(dir[v].abs());
+        }
+        big[2] *= weight[2 * n];
+        let scale = |v: usize| dir[v].abs() * if v == 2 * n { weight[v] } else { 1.0 };
+        // The driver's rate, in the units of `x`, against the `x` rates and the entering
+        // column's own scale (a mechanism moves no force: its `x` rates are round-off).
+        let x_scale = big[0].max(weight[entering]);
+        let tol_of = |v: usize| 1e-9 * if v == 2 * n { x_scale } else { big[kind(v)] };
+        let tol = tol_of(2 * n);
+        let mut best = f64::INFINITY;
+        let mut cands: Vec<(usize, f64)> = Vec::new();
+        for (v, &rate) in dir.iter().enumerate() {
+            if !st.basic[v]
+                || v == entering
+                || rate >= 0.0
+                || scale(v) <= tol_of(v)
+                || alone(&st, v)
+            {
+                continue;
+            }
+            let ratio = st.val[v].max(0.0) / -rate;
+            cands.push((v, ratio));
+            best = best.min(ratio);
+        }
+        // The target on this segment.
+        let p0 = st.p();
+        if dp > 0.0 && p0 < opts.target && p0 + best * dp >= opts.target {
+            let theta = (opts.target - p0) / dp;
+            let at: Vec<f64> = (0..2 * n).map(|v| st.val[v] + theta * dir[v]).collect();
+            out.at_target = Some((at[..n].to_vec(), at[n..].to_vec()));
+            if opts.follow == Follow::ToTarget {
+                out.status = PathStatus::TargetReached;
+                break;
+            }
+        }
+        if cands.is_empty() {
+            out.status = if dp > 0.0 && scale(2 * n) > tol {
+                PathStatus::Ray
+            } else {
+                PathStatus::Mechanism
+            };
+            break;
+        }
+        let tied: Vec<usize> = cands
+            .iter()
+            .filter(|&&(_, r)| r <= best + 1e-9 * best.abs() + 1e-300)
+            .map(|&(v, _)| v)
+            .collect();
+        let leaving = if tied.len() == 1 {
+            tied[0]
+        } else {
+            lexicographic(&basis, &tied, &dir, big_n, &order)
+        };
+        let theta = cands.iter().find(|c| c.0 == leaving).map_or(best, |c| c.1);
+        if leaving == 2 * n {
+            out.status = PathStatus::ReturnedToZero;
+            break;
+        }
+        // Pivot.
+        let turning = dp < 0.0 && theta > 0.0;
+        st.basic[entering] = true;
+        st.basic[leaving] = false;
+        let updated = basis.pivot(entering, leaving);
+        if updated.is_err() {
+            singular_updates += 1;
+        }
+        if updated.is_err() || basis.border() > opts.max_border {
+            let nonbasic: Vec<bool> = st.basic.iter().map(|b| !b).collect();
+            if basis.refactor(&nonbasic).is_err() {
+                out.status = PathStatus::NumericalFailure;
+                break;
+            }
+        }
+        values(lcp, &basis, &mut st);
+        if st.val.iter().any(|v| !v.is_finite()) {
+            out.status = PathStatus::NumericalFailure;
+            break;
+        }
+        out.steps.push(Step {
+            index: out.steps.len() + 1,
+            p: st.p(),
+            entering: Var::from_col(entering, n),
+            leaving: Var::from_col(leaving, n),
+            turning,
+        });
+        out.breakpoints.push(Breakpoint {
+            p: st.p(),
+            z: st
+                .z()
+                .iter()
+                .enumerate()
+                .filter(|(_, &v)| v != 0.0)
+                .map(|(i, &v)| (i, v))
+                .collect(),
+        });
+        entering = if leaving < n {
+            leaving + n
+        } else {
+            leaving - n
+        };
+    }
+    out.refactorizations = basis.refactorizations;
+    out.singular_updates = singular_updates;
+    out
+}
+
+/// The basic values from the data.
+fn values(lcp: &SchurLcp, basis: &Bordered, st: &mut State) {
+    let n = st.n;
+    let big_n = lcp.a.nrows();
+    let mut r = vec![0.0; big_n + 2 * n + 1];
+    r[..big_n].copy_from_slice(&lcp.qa);
+    r[big_n..big_n + n].copy_from_slice(&lcp.q0);
+    let v = basis.solve(&r, |_| 0.0);
+    for i in 0..=2 * n {
+        st.val[i] = if st.basic[i] { v[big_n + i] } else { 0.0 };
+    }
+}
+
+/// The tied candidate that leaves by the lexicographic rule: the smallest row of
+/// `B⁻¹ / (−α)` over the tableau's rows in their natural order.
+fn lexicographic(
+    basis: &Bordered,
+    tied: &[usize],
+    dir: &[f64],
+    big_n: usize,
+    order: &[usize],
+) -> usize {
+    let rows: Vec<Vec<f64>> = tied
+        .iter()
+        .map(|&v| {
+            let r = basis.inverse_row(v);
+            let a = -dir[v];
+            order.iter().map(|&i| r[big_n + i] / a).collect()
+        })
+        .collect();
+    // Entries equal to round-off of the rows' own size are equal.
+    let norm = |r: &[f64]| r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let mut best = 0;
+    for k in 1..tied.len() {
+        let tol = 1e-9 * norm(&rows[k]).max(norm(&rows[best]));
+        for (&a, &b) in rows[k].iter().zip(&rows[best]) {
+            if (a - b).abs() <= tol {
+                continue;
+            }
+            if a < b {
+                best = k;
+            }
+            break;
+        }
+    }
+    tied[best]
+}
