@@ -5,10 +5,10 @@
 //! rows of `A y − B z − da·p = …`, the `n` rows of `x − D z + C y − d0·p = …`, one *fix row*
 //! per index `i` that holds one of `x_i`, `z_i` at a given value, and one *extra* fix row for
 //! the basis's one more non-basic variable (the driver at the start, then the second of the
-//! missing pair). The fix rows' patterns hold every variable they may fix (the extra row's
-//! all of them), so that every base has one pattern and one symbolic factorisation serves all;
-//! a base is a basis of the path, so it is as regular as the path's bases are. A basis differs
-//! from the base in
+//! missing pair). A base is a basis of the path, so it is as regular as the path's bases are.
+//! Each fix row holds one entry, so a base is as sparse as its equations: it is factorised by
+//! faer's simplicial (left-looking, partial pivoting) LU in one column order computed once
+//! (COLAMD on the union of the bases' patterns). A basis differs from the base in
 //!
 //! * *freed* fix rows: the base fixes a variable that is now basic — the row gets a border
 //!   column (an unknown that absorbs it);
@@ -20,10 +20,15 @@
 //! basis; Bisschop and Meeraus 1977). A pivot costs a few sparse solves and a dense `S` of the
 //! border's size; the base is refactorised (numerically only) when the border grows.
 
+use std::cell::RefCell;
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::solvers::SolveCore;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Conj, Mat, MatMut};
+use faer::perm::PermRef;
+use faer::sparse::linalg::colamd;
+use faer::sparse::linalg::lu::simplicial::{self, SimplicialLu};
+use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat, Triplet};
+use faer::{Conj, Mat, MatMut, Par};
 
 use super::SchurLcp;
 
@@ -36,21 +41,115 @@ struct Freed(usize);
 
 /// The base system, factorised.
 struct Base {
+    size: usize,
+    /// The entries that never change: the first two blocks of rows (with the driver's column).
+    equations: Vec<Triplet<usize, usize, f64>>,
     matrix: SparseColMat<usize, f64>,
-    symbolic: SymbolicLu<usize>,
-    lu: Lu<usize, f64>,
-    /// Position in `matrix`'s values of the `x_i` and `z_i` entries of fix row `i`.
-    fix_entries: Vec<[usize; 2]>,
-    /// Position in `matrix`'s values of each variable's entry in the extra row.
-    extra_entries: Vec<usize>,
+    lu: SimplicialLu<usize, f64>,
+    row_perm: Vec<usize>,
+    row_perm_inv: Vec<usize>,
+    col_perm: Vec<usize>,
+    col_perm_inv: Vec<usize>,
     /// The column each index's fix row holds (`x_i` as `i`, `z_i` as `n + i`).
     fixed: Vec<Col>,
     /// The column the extra row holds.
     extra: Col,
-    /// The entry of a fix row at its variable (`x` then `z`): four times the largest entry of
-    /// the variable's column, so that partial pivoting takes a fixed variable's pivot in its
-    /// fix row and not in the equations it appears in.
+    /// The entry of a fix row at its variable (`x`, `z`, then `p`): four times the largest
+    /// entry of the variable's column, so that partial pivoting takes a fixed variable's pivot
+    /// in its fix row and not in the equations it appears in.
     fix_scale: Vec<f64>,
+    scratch: RefCell<MemBuffer>,
+}
+
+impl Base {
+    /// The base of the slack basis (every `z` and the driver fixed), and the column order.
+    fn new(lcp: &SchurLcp) -> Result<Self, Singular> {
+        let n = lcp.order();
+        let big_n = lcp.a.nrows();
+        let size = big_n + 2 * n + 1;
+        let equations = equations(lcp);
+        // The order: COLAMD on the equations and every fix row with both of its variables.
+        let mut pattern: Vec<Pair<usize, usize>> =
+            equations.iter().map(|t| Pair::new(t.row, t.col)).collect();
+        for i in 0..n {
+            pattern.push(Pair::new(big_n + n + i, big_n + i));
+            pattern.push(Pair::new(big_n + n + i, big_n + n + i));
+        }
+        pattern.push(Pair::new(big_n + 2 * n, big_n + 2 * n));
+        let sym = SymbolicSparseColMat::try_new_from_indices(size, size, &pattern)
+            .map_err(|_| Singular)?
+            .0;
+        let (mut col_perm, mut col_perm_inv) = (vec![0usize; size], vec![0usize; size]);
+        let req = colamd::order_scratch::<usize>(size, size, sym.compute_nnz());
+        colamd::order(
+            &mut col_perm,
+            &mut col_perm_inv,
+            sym.as_ref(),
+            colamd::Control::default(),
+            MemStack::new(&mut MemBuffer::new(req)),
+        )
+        .map_err(|_| Singular)?;
+        let scratch = StackReq::any_of(&[
+            simplicial::factorize_simplicial_numeric_lu_scratch::<usize, f64>(size, size),
+            simplicial::solve_in_place_scratch::<usize, f64>(size, 1, Par::Seq),
+        ]);
+        let mut base = Self {
+            size,
+            equations,
+            matrix: SparseColMat::try_new_from_triplets(0, 0, &[]).map_err(|_| Singular)?,
+            lu: SimplicialLu::new(),
+            row_perm: vec![0; size],
+            row_perm_inv: vec![0; size],
+            col_perm,
+            col_perm_inv,
+            fixed: (n..2 * n).collect(),
+            extra: 2 * n,
+            fix_scale: fix_scales(lcp),
+            scratch: RefCell::new(MemBuffer::new(scratch)),
+        };
+        base.factor(big_n, n)?;
+        Ok(base)
+    }
+
+    /// Forms the base matrix of `fixed` and `extra` and factorises it.
+    fn factor(&mut self, big_n: usize, n: usize) -> Result<(), Singular> {
+        let mut t = self.equations.clone();
+        for (i, &f) in self.fixed.iter().enumerate() {
+            t.push(Triplet::new(big_n + n + i, big_n + f, self.fix_scale[f]));
+        }
+        t.push(Triplet::new(
+            big_n + 2 * n,
+            big_n + self.extra,
+            self.fix_scale[self.extra],
+        ));
+        self.matrix =
+            SparseColMat::try_new_from_triplets(self.size, self.size, &t).map_err(|_| Singular)?;
+        let col_perm = PermRef::new_checked(&self.col_perm, &self.col_perm_inv, self.size);
+        simplicial::factorize_simplicial_numeric_lu(
+            &mut self.row_perm,
+            &mut self.row_perm_inv,
+            &mut self.lu,
+            self.matrix.as_ref(),
+            col_perm,
+            MemStack::new(&mut self.scratch.borrow_mut()),
+        )
+        .map_err(|_| Singular)
+    }
+
+    fn solve(&self, r: &mut [f64], transpose: bool) {
+        let rows = PermRef::new_checked(&self.row_perm, &self.row_perm_inv, self.size);
+        let cols = PermRef::new_checked(&self.col_perm, &self.col_perm_inv, self.size);
+        let m = MatMut::from_column_major_slice_mut(r, self.size, 1);
+        let mut buf = self.scratch.borrow_mut();
+        let stack = MemStack::new(&mut buf);
+        if transpose {
+            self.lu
+                .solve_transpose_in_place_with_conj(rows, cols, Conj::No, m, Par::Seq, stack);
+        } else {
+            self.lu
+                .solve_in_place_with_conj(rows, cols, Conj::No, m, Par::Seq, stack);
+        }
+    }
 }
 
 /// The basis: the base and its border.
@@ -79,28 +178,10 @@ pub(crate) struct Singular;
 impl Bordered {
     /// The slack basis: every `z_i` and the driver fixed.
     pub fn slack(lcp: &SchurLcp) -> Result<Self, Singular> {
-        let n = lcp.order();
-        let big_n = lcp.a.nrows();
-        let fixed: Vec<Col> = (n..2 * n).collect();
-        let extra = 2 * n;
-        let fix_scale = fix_scales(lcp);
-        let (matrix, fix_entries, extra_entries) = base_matrix(lcp, &fixed, extra, &fix_scale);
-        let symbolic = SymbolicLu::try_new(matrix.symbolic()).map_err(|_| Singular)?;
-        let lu =
-            Lu::try_new_with_symbolic(symbolic.clone(), matrix.as_ref()).map_err(|_| Singular)?;
         let b = Self {
-            n,
-            big_n,
-            base: Base {
-                matrix,
-                symbolic,
-                lu,
-                fix_entries,
-                extra_entries,
-                fixed,
-                extra,
-                fix_scale,
-            },
+            n: lcp.order(),
+            big_n: lcp.a.nrows(),
+            base: Base::new(lcp)?,
             cols: Vec::new(),
             w: Vec::new(),
             rows: Vec::new(),
@@ -140,10 +221,7 @@ impl Bordered {
     pub fn fix_row(&self, v: Col) -> Option<(usize, f64)> {
         self.base_row(v)
             .filter(|&r| !self.cols.contains(&Freed(r)))
-            .map(|r| {
-                let scale = self.base.fix_scale[v] * if r == self.n { EXTRA } else { 1.0 };
-                (self.big_n + self.n + r, scale)
-            })
+            .map(|r| (self.big_n + self.n + r, self.base.fix_scale[v]))
     }
 
     /// The entry of `v`'s fix row at `v` (a right-hand side for `v` is multiplied by it).
@@ -157,13 +235,11 @@ impl Bordered {
     }
 
     fn solve_base(&self, r: &mut [f64]) {
-        let m = MatMut::from_column_major_slice_mut(r, r.len(), 1);
-        self.base.lu.solve_in_place_with_conj(Conj::No, m);
+        self.base.solve(r, false);
     }
 
     fn solve_base_transpose(&self, r: &mut [f64]) {
-        let m = MatMut::from_column_major_slice_mut(r, r.len(), 1);
-        self.base.lu.solve_transpose_in_place_with_conj(Conj::No, m);
+        self.base.solve(r, true);
     }
 
     /// The base row of a border column's single entry (`−1`).
@@ -274,23 +350,9 @@ impl Bordered {
             })
             .collect();
         self.refactorizations += 1;
-        {
-            let sc = &self.base.fix_scale;
-            let vals = self.base.matrix.val_mut();
-            for (i, &f) in fixed.iter().enumerate() {
-                let [ax, az] = self.base.fix_entries[i];
-                vals[ax] = if f == i { sc[i] } else { 0.0 };
-                vals[az] = if f == n + i { sc[n + i] } else { 0.0 };
-            }
-            for (v, &at) in self.base.extra_entries.iter().enumerate() {
-                vals[at] = if v == extra { sc[v] * EXTRA } else { 0.0 };
-            }
-        }
         self.base.fixed = fixed;
         self.base.extra = extra;
-        self.base.lu =
-            Lu::try_new_with_symbolic(self.base.symbolic.clone(), self.base.matrix.as_ref())
-                .map_err(|_| Singular)?;
+        self.base.factor(self.big_n, n)?;
         self.cols.clear();
         self.w.clear();
         self.rows.clear();
@@ -304,7 +366,7 @@ impl Bordered {
         let size = self.size();
         let b = Mat::<f64>::from_fn(size, 1, |i, _| 1.0 + (i % 7) as f64 / 7.0);
         let mut x = b.clone();
-        self.base.lu.solve_in_place_with_conj(Conj::No, x.as_mut());
+        self.solve_base(x.col_as_slice_mut(0));
         let r = &self.base.matrix * &x - &b;
         let (mut worst, mut finite) = (0.0f64, true);
         let a = &self.base.matrix;
@@ -318,7 +380,7 @@ impl Bordered {
             finite &= x[(i, 0)].is_finite();
             worst = worst.max(r[(i, 0)].abs() / (scale[i] + b[(i, 0)].abs()));
         }
-        if finite && worst < 1e-10 {
+        if finite && worst < 1e-8 {
             Ok(())
         } else {
             Err(Singular)
@@ -380,10 +442,6 @@ impl Bordered {
     }
 }
 
-/// The extra row's entry against its variable's fix scale: small, so that partial pivoting
-/// takes it last — its pattern holds every variable, and a pivot in it early fills the factor.
-const EXTRA: f64 = 1.0 / (1u64 << 30) as f64;
-
 /// The fix rows' entries (see [`Base::fix_scale`]).
 fn fix_scales(lcp: &SchurLcp) -> Vec<f64> {
     let n = lcp.order();
@@ -406,81 +464,32 @@ fn fix_scales(lcp: &SchurLcp) -> Vec<f64> {
         .collect()
 }
 
-/// The base matrix for the given fixes, and where each fix row's entries are.
-type BaseMatrix = (SparseColMat<usize, f64>, Vec<[usize; 2]>, Vec<usize>);
-
-fn base_matrix(lcp: &SchurLcp, fixed: &[Col], extra: Col, scale: &[f64]) -> BaseMatrix {
+/// The base's equations: `A y − B z − da·p` and `x − D z + C y − d0·p`.
+fn equations(lcp: &SchurLcp) -> Vec<Triplet<usize, usize, f64>> {
     let n = lcp.order();
     let big_n = lcp.a.nrows();
-    let size = big_n + 2 * n + 1;
     let mut t = Vec::new();
-    let push_all = |t: &mut Vec<Triplet<usize, usize, f64>>,
-                    m: &SparseColMat<usize, f64>,
-                    r0: usize,
-                    c0: usize,
-                    sign: f64| {
+    let mut push_all = |m: &SparseColMat<usize, f64>, r0: usize, c0: usize, sign: f64| {
         for j in 0..m.ncols() {
             let rows = m.row_idx_of_col_raw(j);
-            let vals = m.val_of_col(j);
-            for (&i, &v) in rows.iter().zip(vals) {
+            for (&i, &v) in rows.iter().zip(m.val_of_col(j)) {
                 t.push(Triplet::new(r0 + i, c0 + j, sign * v));
             }
         }
     };
-    push_all(&mut t, &lcp.a, 0, 0, 1.0);
-    push_all(&mut t, &lcp.b, 0, big_n + n, -1.0);
-    push_all(&mut t, &lcp.c, big_n, 0, 1.0);
-    push_all(&mut t, &lcp.d, big_n, big_n + n, -1.0);
+    push_all(&lcp.a, 0, 0, 1.0);
+    push_all(&lcp.b, 0, big_n + n, -1.0);
+    push_all(&lcp.c, big_n, 0, 1.0);
+    push_all(&lcp.d, big_n, big_n + n, -1.0);
     let pcol = big_n + 2 * n;
-    for (i, &v) in lcp.da.iter().enumerate() {
-        if v != 0.0 {
-            t.push(Triplet::new(i, pcol, -v));
-        }
+    for (i, &v) in lcp.da.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+        t.push(Triplet::new(i, pcol, -v));
     }
-    for (i, &v) in lcp.d0.iter().enumerate() {
-        if v != 0.0 {
-            t.push(Triplet::new(big_n + i, pcol, -v));
-        }
+    for (i, &v) in lcp.d0.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+        t.push(Triplet::new(big_n + i, pcol, -v));
     }
-    let extra_row = big_n + 2 * n;
     for i in 0..n {
         t.push(Triplet::new(big_n + i, big_n + i, 1.0));
-        let f = fixed[i];
-        let (sx, sz) = (scale[i], scale[n + i]);
-        t.push(Triplet::new(
-            big_n + n + i,
-            big_n + i,
-            if f == i { sx } else { 0.0 },
-        ));
-        t.push(Triplet::new(
-            big_n + n + i,
-            big_n + n + i,
-            if f == n + i { sz } else { 0.0 },
-        ));
     }
-    for (v, &sc) in scale.iter().enumerate() {
-        t.push(Triplet::new(
-            extra_row,
-            big_n + v,
-            if v == extra { sc * EXTRA } else { 0.0 },
-        ));
-    }
-    let matrix = SparseColMat::try_new_from_triplets(size, size, &t).expect("a valid pattern");
-    let mut fix_entries = vec![[usize::MAX; 2]; n];
-    let mut extra_entries = vec![usize::MAX; 2 * n + 1];
-    let col_ptr = matrix.col_ptr();
-    let row_idx = matrix.row_idx();
-    for v in 0..=2 * n {
-        let j = big_n + v;
-        let first = col_ptr[j];
-        for (k, &row) in row_idx[first..col_ptr[j + 1]].iter().enumerate() {
-            if v < 2 * n && row == big_n + n + v % n {
-                fix_entries[v % n][usize::from(v >= n)] = first + k;
-            }
-            if row == extra_row {
-                extra_entries[v] = first + k;
-            }
-        }
-    }
-    (matrix, fix_entries, extra_entries)
+    t
 }

@@ -13,12 +13,13 @@
 //! factorisation of the whole system (see `bordered`).
 //!
 //! What it does so far: the path from the slack basis (`q(0) ≥ 0`) with `p` as the driver, to
-//! the target or to the end; lexicographic ties in a given order of the rows; a row alone
-//! among its relation's basic rows never leaves; the basic values recomputed from the data at
-//! every pivot. What it does not do yet (the dense engine does): equilibration, the relations'
-//! own tie rule, a start that needs Lemke's method or a tightening, verification of the
-//! reported point, the sweep and the tableaux. Its base factor fills where the bearings slide
-//! (the state and the measurements: `docs/performance.md`, round 27).
+//! the target or to the end; lexicographic ties in a given order of the rows; the rows of a
+//! relation decided by it (a row alone among its relation's basic rows never leaves; two
+//! basic rows fall together and the relation says which leaves); each direction refined once
+//! against the data; the values formed afresh at each refactorisation. What it does not do
+//! yet (the dense engine does): a start by Lemke's method or a tightening, equilibration,
+//! verification of the reported point, the sweep and the tableaux. State and measurements:
+//! `docs/performance.md`, round 27.
 
 mod bordered;
 
@@ -193,12 +194,32 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
     });
     let mut entering = 2 * n;
     let order: Vec<usize> = opts.order.clone().unwrap_or_else(|| (0..n).collect());
+    let mut position = vec![0; n];
+    for (k, &i) in order.iter().enumerate() {
+        position[i] = k;
+    }
     let mut relation_of = vec![usize::MAX; n];
     for (r, rel) in opts.relations.iter().enumerate() {
         for &(i, _) in &rel.terms {
             relation_of[i] = r;
         }
     }
+    // The other basic row of `v`'s relation when it has exactly two.
+    let partner = |st: &State, v: usize| -> Option<usize> {
+        if v >= n || relation_of[v] == usize::MAX {
+            return None;
+        }
+        let rel = &opts.relations[relation_of[v]];
+        let basic: Vec<usize> = rel
+            .terms
+            .iter()
+            .map(|t| t.0)
+            .filter(|&i| st.basic[i])
+            .collect();
+        (basic.len() == 2)
+            .then(|| basic.into_iter().find(|&i| i != v))
+            .flatten()
+    };
     let alone = |st: &State, v: usize| -> bool {
         v < n
             && relation_of[v] != usize::MAX
@@ -234,7 +255,14 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         if let Some((at, entry)) = basis.fix_row(entering) {
             rhs[at] = entry;
         }
-        let dv = basis.solve(&rhs, |v| f64::from(v == entering));
+        let dv = refined(
+            lcp,
+            &basis,
+            &st.basic,
+            None,
+            Some(entering),
+            basis.solve(&rhs, |v| f64::from(v == entering)),
+        );
         let mut dir = dv[big_n..].to_vec();
         let dp = dir[2 * n];
         dir[entering] = 1.0;
@@ -249,8 +277,14 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         let scale = |v: usize| dir[v].abs() * if v == 2 * n { weight[v] } else { 1.0 };
         // The driver's rate, in the units of `x`, against the `x` rates and the entering
         // column's own scale (a mechanism moves no force: its `x` rates are round-off).
+        // An `x` rate is round-off below 1e-13 of the entering column's largest entry too:
+        // in a mechanism every `x` rate is round-off, and 1e-9 of the largest would take one.
         let x_scale = big[0].max(weight[entering]);
-        let tol_of = |v: usize| 1e-9 * if v == 2 * n { x_scale } else { big[kind(v)] };
+        let tol_of = |v: usize| match kind(v) {
+            0 => (1e-9 * big[0]).max(1e-13 * weight[entering]),
+            1 => 1e-9 * big[1],
+            _ => 1e-9 * x_scale,
+        };
         let tol = tol_of(2 * n);
         let mut best = f64::INFINITY;
         let mut cands: Vec<(usize, f64)> = Vec::new();
@@ -286,11 +320,30 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             };
             break;
         }
-        let tied: Vec<usize> = cands
+        let mut tied: Vec<usize> = cands
             .iter()
             .filter(|&&(_, r)| r <= best + 1e-9 * best.abs() + 1e-300)
             .map(|&(v, _)| v)
             .collect();
+        // Two basic rows of a relation whose other rows are non-basic fall together: the
+        // relation ties them exactly, their computed ratios only to round-off.
+        for k in 0..tied.len() {
+            if let Some(b) = partner(&st, tied[k]) {
+                if !tied.contains(&b) && cands.iter().any(|c| c.0 == b) {
+                    tied.push(b);
+                }
+            }
+        }
+        if tied.len() > 1 {
+            decide_related(
+                &mut tied,
+                &st,
+                &dir,
+                &relation_of,
+                &opts.relations,
+                &position,
+            );
+        }
         let leaving = if tied.len() == 1 {
             tied[0]
         } else {
@@ -305,6 +358,14 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         let turning = dp < 0.0 && theta > 0.0;
         st.basic[entering] = true;
         st.basic[leaving] = false;
+        // The values move along the segment; they are formed afresh from the data (and
+        // refined) at every refactorisation.
+        for (v, val) in st.val.iter_mut().enumerate() {
+            if st.basic[v] {
+                *val += theta * dir[v];
+            }
+        }
+        st.val[leaving] = 0.0;
         let updated = basis.pivot(entering, leaving);
         if updated.is_err() {
             singular_updates += 1;
@@ -315,8 +376,8 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
                 out.status = PathStatus::NumericalFailure;
                 break;
             }
+            values(lcp, &basis, &mut st);
         }
-        values(lcp, &basis, &mut st);
         if st.val.iter().any(|v| !v.is_finite()) {
             out.status = PathStatus::NumericalFailure;
             break;
@@ -349,6 +410,57 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
     out
 }
 
+/// Ties between two rows of one relation whose other rows are non-basic, decided from the
+/// relation: along the segment `λ_a x_a + λ_b x_b = Σ λ_i ε_i` (the rows' lexicographic
+/// perturbations), and the rates obey `λ_a α_a = −λ_b α_b`, so the ratios differ by
+/// `Σ λ_i ε_i / (λ_a α_a)`, whose sign is that of the relation's first row in the order. The
+/// row with the larger ratio is dropped from the tie; computed ratios differ only by round-off.
+fn decide_related(
+    tied: &mut Vec<usize>,
+    st: &State,
+    dir: &[f64],
+    relation_of: &[usize],
+    relations: &[crate::RowRelation],
+    position: &[usize],
+) {
+    let n = st.n;
+    let mut k = 0;
+    while k < tied.len() {
+        let a = tied[k];
+        let partner = (a < n && relation_of[a] != usize::MAX)
+            .then(|| {
+                let rel = &relations[relation_of[a]];
+                let basic: Vec<usize> = rel
+                    .terms
+                    .iter()
+                    .map(|&(i, _)| i)
+                    .filter(|&i| st.basic[i])
+                    .collect();
+                (basic.len() == 2)
+                    .then(|| basic.into_iter().find(|&i| i != a))
+                    .flatten()
+                    .filter(|b| tied.contains(b))
+                    .map(|b| (b, rel))
+            })
+            .flatten();
+        if let Some((b, rel)) = partner {
+            let lambda = |i: usize| rel.terms.iter().find(|t| t.0 == i).map_or(0.0, |t| t.1);
+            let first = rel
+                .terms
+                .iter()
+                .min_by_key(|t| position[t.0])
+                .map_or(0.0, |t| t.1);
+            // r_a − r_b has the sign of first / (λ_a α_a), α = −dir.
+            let diff = first / (lambda(a) * -dir[a]);
+            let drop = if diff > 0.0 { a } else { b };
+            tied.retain(|&v| v != drop);
+            k = 0;
+            continue;
+        }
+        k += 1;
+    }
+}
+
 /// The basic values from the data.
 fn values(lcp: &SchurLcp, basis: &Bordered, st: &mut State) {
     let n = st.n;
@@ -356,10 +468,79 @@ fn values(lcp: &SchurLcp, basis: &Bordered, st: &mut State) {
     let mut r = vec![0.0; big_n + 2 * n + 1];
     r[..big_n].copy_from_slice(&lcp.qa);
     r[big_n..big_n + n].copy_from_slice(&lcp.q0);
-    let v = basis.solve(&r, |_| 0.0);
+    let v = refined(
+        lcp,
+        basis,
+        &st.basic,
+        Some((&lcp.qa, &lcp.q0)),
+        None,
+        basis.solve(&r, |_| 0.0),
+    );
     for i in 0..=2 * n {
         st.val[i] = if st.basic[i] { v[big_n + i] } else { 0.0 };
     }
+}
+
+/// One step of iterative refinement of a solution `v` of the basis system whose equations'
+/// right-hand side is `(qa, q0)` (`None` for zero), whose non-basic variables are zero but
+/// `unit` (one): the residual of the two blocks of equations formed from the data, solved
+/// for the correction. The bordered solve's round-off grows with the border and the mixed
+/// sizes of forces and displacements; one step brings it back to the data's.
+fn refined(
+    lcp: &SchurLcp,
+    basis: &Bordered,
+    basic: &[bool],
+    rhs: Option<(&[f64], &[f64])>,
+    unit: Option<usize>,
+    mut v: Vec<f64>,
+) -> Vec<f64> {
+    let n = lcp.order();
+    let big_n = lcp.a.nrows();
+    for (k, val) in v[big_n..].iter_mut().enumerate() {
+        if !basic[k] {
+            *val = f64::from(Some(k) == unit);
+        }
+    }
+    let mut res = vec![0.0; big_n + 2 * n + 1];
+    if let Some((qa, q0)) = rhs {
+        res[..big_n].copy_from_slice(qa);
+        res[big_n..big_n + n].copy_from_slice(q0);
+    }
+    let (y, rest) = v.split_at(big_n);
+    let (x, rest) = rest.split_at(n);
+    let (z, p) = rest.split_at(n);
+    let p = p[0];
+    let sub = |out: &mut [f64], m: &SparseColMat<usize, f64>, u: &[f64], sign: f64| {
+        for (j, &uj) in u.iter().enumerate() {
+            if uj != 0.0 {
+                for (&i, &a) in m.row_idx_of_col_raw(j).iter().zip(m.val_of_col(j)) {
+                    out[i] -= sign * a * uj;
+                }
+            }
+        }
+    };
+    {
+        let (r1, r2) = res.split_at_mut(big_n);
+        sub(r1, &lcp.a, y, 1.0);
+        sub(r1, &lcp.b, z, -1.0);
+        for (r, d) in r1.iter_mut().zip(&lcp.da) {
+            *r += d * p;
+        }
+        let r2 = &mut r2[..n];
+        for (r, xi) in r2.iter_mut().zip(x) {
+            *r -= xi;
+        }
+        sub(r2, &lcp.d, z, -1.0);
+        sub(r2, &lcp.c, y, 1.0);
+        for (r, d) in r2.iter_mut().zip(&lcp.d0) {
+            *r += d * p;
+        }
+    }
+    let dv = basis.solve(&res, |_| 0.0);
+    for (a, b) in v.iter_mut().zip(&dv) {
+        *a += b;
+    }
+    v
 }
 
 /// The tied candidate that leaves by the lexicographic rule: the smallest row of
