@@ -64,7 +64,7 @@ fn main() {
     );
     if dense {
         let t = Instant::now();
-        let problem = lcp.dense();
+        let problem = schur_beam::contact_dense(&lcp, 0.3);
         let form = t.elapsed().as_secs_f64();
         let f = 0.3;
         let settings = Settings {

@@ -36,9 +36,12 @@ fn the_700_bearing_beam_is_traced_to_its_ray() {
             s.steps.len()
         );
     };
-    // The failure was beyond p ≈ 5134, after 2151 steps: the path now goes past it.
+    // The failure was at p ≈ 5134 after 2151 steps. Since the engine takes the starts of slip
+    // whose rates it used to read as round-off of the column (`docs/performance.md`, round
+    // 27), the path is another: it ends in a ray from p ≈ 1178.7 after 2150 steps, whose
+    // solution beyond the last event is checked below from the zone's data.
     assert!(
-        p_from > 5000.0 && s.steps.len() > 2150,
+        p_from > 1000.0 && s.steps.len() > 2140,
         "{} steps to {p_from}",
         s.steps.len()
     );

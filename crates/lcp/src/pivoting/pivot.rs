@@ -60,6 +60,11 @@ const NEAR_TIE: f64 = 1e-7;
 /// largest is accurate only to `10⁻⁶` of itself.
 const UNSURE_TIE: f64 = 1e-4;
 
+/// A rate of an `x` below the column's pivot tolerance that may still be a rate: above this
+/// fraction of the column's largest `x` rate (see [`Pivoter::suspects`]), to be judged against
+/// its own terms. The starts of slip the column's tolerance hid had 1.5e-5 of it.
+const X_RATE: f64 = 1e-9;
+
 /// Relative kernel residual above which the basis is refactorised at once.
 const DRIFT: f64 = 1e-9;
 
@@ -674,7 +679,89 @@ impl<'a> Pivoter<'a> {
                 step = self.ratio_test(&alpha);
             }
         }
+        // Rows of `x` whose rate is below the column's pivot tolerance but not below that of
+        // the `x` rates, and that would block before the chosen row: rates of `z` can exceed
+        // those of `x` by many orders, and against the whole column a pair's start of slip
+        // read as round-off (the path passed it and carried a friction force 22 337 N beyond
+        // its limit for a while on a 600-bearing beam, `docs/performance.md` round 27). Each is
+        // taken where its rate exceeds round-off of the terms that formed it, as a ray's rows
+        // are judged ([`Pivoter::check_ray`]); a block on a soft spring has `x` rates of
+        // round-off above 1e-7 of its largest.
+        if let Some((_, theta)) = step {
+            let suspects = self.suspects(&alpha, theta);
+            if !suspects.is_empty() {
+                let real = self.beyond_round_off(entering, &alpha, suspects);
+                if !real.is_empty() {
+                    let mut cand = self.positive_slots(&alpha);
+                    cand.extend(real);
+                    step = self.ratio_test_over(&alpha, cand);
+                }
+            }
+        }
         Ok((alpha, step))
+    }
+
+    /// The slots (of `x`) among `slots` whose rate in `alpha` exceeds round-off of the terms
+    /// that formed it by [`crate::ACCEPT_RESIDUAL`]: [`Pivoter::check_ray`]'s judgement, for
+    /// these rows only (`O(k²)` for the kernel's terms, `O(n)` a row).
+    fn beyond_round_off(&self, entering: usize, alpha: &[f64], slots: Vec<usize>) -> Vec<usize> {
+        let n = self.cols.n;
+        let kt = self.basis.kernel_terms(&self.cols, entering);
+        let size: Vec<f64> = self
+            .basis
+            .slot_var
+            .iter()
+            .enumerate()
+            .map(|(s, &c)| alpha[s].abs() + self.basis.kernel_pos(c).map_or(0.0, |a| kt[a]))
+            .collect();
+        let floor = ROUNDOFF * max_abs(alpha);
+        slots
+            .into_iter()
+            .filter(|&slot| {
+                let c = self.basis.slot_var[slot];
+                let a = alpha[slot];
+                if c >= n || a.abs() <= floor {
+                    return false;
+                }
+                let mut t = self.cols.entry(c, entering).abs();
+                for (s, &col) in self.basis.slot_var.iter().enumerate() {
+                    if size[s] == 0.0 {
+                        continue;
+                    }
+                    if col < n {
+                        if col == c {
+                            t += size[s];
+                        }
+                    } else {
+                        t += self.cols.entry(c, col).abs() * size[s];
+                    }
+                }
+                t > 0.0 && a / t > crate::ACCEPT_RESIDUAL
+            })
+            .collect()
+    }
+
+    /// Slots of `x` that decrease at a rate below the column's pivot tolerance but above
+    /// [`X_RATE`] of the column's largest `x` rate, and reach zero before `theta` from a value
+    /// above round-off (a row at zero with a rate that small is a degenerate row's round-off:
+    /// an open pair's friction row, which its relation pins).
+    fn suspects(&self, alpha: &[f64], theta: f64) -> Vec<usize> {
+        let n = self.cols.n;
+        let zero = self.zero_value();
+        let thr = self.tol.pivot * max_abs(alpha);
+        let x_max = (0..alpha.len())
+            .filter(|&i| self.basis.slot_var[i] < n)
+            .fold(0.0f64, |a, i| a.max(alpha[i].abs()));
+        let x_thr = X_RATE * x_max;
+        (0..alpha.len())
+            .filter(|&i| {
+                self.basis.slot_var[i] < n
+                    && alpha[i] > x_thr
+                    && alpha[i] <= thr
+                    && self.beta[i] > zero
+                    && self.beta[i] / alpha[i] < theta
+            })
+            .collect()
     }
 
     /// `α += B⁻¹(A_e − B α)`: one step of refinement from the data (`O(n·k)`).

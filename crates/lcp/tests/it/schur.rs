@@ -8,7 +8,7 @@ use unilateral_lcp::{
 fn compare(m: usize, data: &BeamData) {
     let lcp = beam_schur(m, data);
     lcp.check().unwrap();
-    let dense = lcp.dense();
+    let dense = crate::schur_beam::contact_dense(&lcp, data.friction);
     let opts = PathOptions {
         target: 0.8,
         follow: Follow::ToEnd,
@@ -97,4 +97,98 @@ fn schur_engine_follows_the_dense_engines_path_in_kn_and_mm() {
         ..BeamData::default()
     };
     compare(40, &data);
+}
+
+/// On the 600-bearing beam the dense engine passed a pair's start of slip (the rate of its
+/// `x_t+`, −3.9e3 against `z` rates many orders larger, read as round-off of the column): its
+/// breakpoint after step 1710 had that `x_t+` at −22 337 N, found by this engine and checked
+/// by a solve of the formed basis. Now the two engines take the same pivots, and every basic
+/// variable at that breakpoint of the dense path is non-negative by an independent solve.
+#[test]
+fn dense_engine_takes_the_start_of_slip_it_passed_on_a_600_bearing_beam() {
+    use faer::linalg::solvers::Solve;
+    let m = 600;
+    let data = BeamData::default();
+    let lcp = beam_schur(m, &data);
+    let dense = crate::schur_beam::contact_dense(&lcp, data.friction);
+    let n = 3 * m;
+    let order: Vec<usize> = (m..3 * m).chain(0..m).collect();
+    let relations: Vec<RowRelation> = (0..m)
+        .map(|i| RowRelation {
+            terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * data.friction)],
+        })
+        .collect();
+    let settings = Settings {
+        lexicographic_order: Some(order.clone()),
+        row_relations: relations.clone(),
+        ..Settings::default()
+    };
+    let opts = PathOptions {
+        target: 1.0,
+        follow: Follow::ToEnd,
+        tightening: None,
+    };
+    let want = PathSolver::new(dense.clone(), opts, settings)
+        .unwrap()
+        .follow();
+    let got = follow_schur_path(
+        &lcp,
+        &SchurOptions {
+            target: 1.0,
+            follow: Follow::ToEnd,
+            max_pivots: 100 * m,
+            max_border: 40,
+            order: Some(order),
+            relations,
+        },
+    );
+    assert_eq!(want.steps.len(), got.steps.len());
+    for (w, g) in want.steps.iter().zip(&got.steps) {
+        assert_eq!(
+            (w.entering, w.leaving),
+            (g.entering, g.leaving),
+            "step {}",
+            w.index
+        );
+    }
+    // The dense path's basis after step 1710, solved afresh on the formed problem.
+    let col = |v: unilateral_lcp::Var| match v {
+        unilateral_lcp::Var::X(i) => i,
+        unilateral_lcp::Var::Z(i) => n + i,
+        unilateral_lcp::Var::Driver => 2 * n,
+    };
+    let mut basic: Vec<bool> = (0..=2 * n).map(|v| v < n).collect();
+    for s in &want.steps[..1710] {
+        basic[col(s.entering)] = true;
+        basic[col(s.leaving)] = false;
+    }
+    let vars: Vec<usize> = (0..=2 * n).filter(|&v| basic[v]).collect();
+    let a = faer::Mat::<f64>::from_fn(n, n, |i, c| {
+        let v = vars[c];
+        if v < n {
+            f64::from(v == i)
+        } else if v < 2 * n {
+            -dense.m[(i, v - n)]
+        } else {
+            -dense.d[i]
+        }
+    });
+    let rhs = faer::Mat::<f64>::from_fn(n, 1, |i, _| dense.q0[i]);
+    let sol = a.partial_piv_lu().solve(&rhs);
+    let xs: Vec<(usize, f64)> = vars
+        .iter()
+        .enumerate()
+        .filter(|(_, &v)| v < n)
+        .map(|(c, &v)| (v, sol[(c, 0)]))
+        .collect();
+    let scale = xs.iter().fold(0.0f64, |s, &(_, x)| s.max(x.abs()));
+    let worst = xs
+        .iter()
+        .fold((0, 0.0f64), |w, &(v, x)| if x < w.1 { (v, x) } else { w });
+    assert!(
+        worst.1 >= -1e-6 * scale,
+        "x{} = {} at the breakpoint after step 1710 (largest {scale})",
+        worst.0 + 1,
+        worst.1
+    );
 }

@@ -190,3 +190,55 @@ pub fn beam_schur(m: usize, data: &BeamData) -> SchurLcp {
         da: bv[..ni].iter().map(|v| -v).collect(),
     }
 }
+
+/// The dense problem of `lcp` formed as the contact crate forms it from a contact zone: `R`
+/// and `R_F` read off the normal and `+` blocks of `M = D − C A⁻¹ B`, then
+/// `M = [Rnn, Rnt/2, −Rnt/2; F·Rnn ± Rtn, (F·Rnt ± Rtt)/2, …]` and `q`, `d` likewise
+/// (formulation.md §3), so that each pair's friction rows add up to `2f` times its normal row
+/// to round-off of those terms, as the engine's row relations expect.
+pub fn contact_dense(lcp: &SchurLcp, friction: f64) -> unilateral_lcp::ParametricLcp {
+    let p = lcp.dense();
+    let n = p.q0.len();
+    let m = n / 3;
+    let f = friction;
+    let rnn = |i: usize, j: usize| p.m[(i, j)];
+    let rnt = |i: usize, j: usize| 2.0 * p.m[(i, m + j)];
+    let rtn = |i: usize, j: usize| p.m[(m + i, j)] - f * rnn(i, j);
+    let rtt = |i: usize, j: usize| 2.0 * p.m[(m + i, m + j)] - f * rnt(i, j);
+    let mm = faer::Mat::<f64>::from_fn(n, n, |r, c| {
+        let (bi, i) = (r / m, r % m);
+        let (bj, j) = (c / m, c % m);
+        let (top, plus, minus) = match bj {
+            0 => (
+                rnn(i, j),
+                f * rnn(i, j) + rtn(i, j),
+                f * rnn(i, j) - rtn(i, j),
+            ),
+            1 => (
+                rnt(i, j) / 2.0,
+                (f * rnt(i, j) + rtt(i, j)) / 2.0,
+                (f * rnt(i, j) - rtt(i, j)) / 2.0,
+            ),
+            _ => (
+                -rnt(i, j) / 2.0,
+                -(f * rnt(i, j) + rtt(i, j)) / 2.0,
+                -(f * rnt(i, j) - rtt(i, j)) / 2.0,
+            ),
+        };
+        [top, plus, minus][bi]
+    });
+    let vector = |v: &[f64]| -> Vec<f64> {
+        let (vn, vt): (Vec<f64>, Vec<f64>) = (0..m).map(|i| (v[i], v[m + i] - f * v[i])).unzip();
+        (0..n)
+            .map(|r| {
+                let i = r % m;
+                [vn[i], f * vn[i] + vt[i], f * vn[i] - vt[i]][r / m]
+            })
+            .collect()
+    };
+    unilateral_lcp::ParametricLcp {
+        m: mm,
+        q0: vector(&p.q0),
+        d: vector(&p.d),
+    }
+}
