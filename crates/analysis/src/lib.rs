@@ -551,6 +551,23 @@ pub fn zone_of(c: &Condensed) -> ContactZone {
     )
 }
 
+/// The contact zone of a model as the bonded structure's sparse blocks
+/// ([`unilateral_contact::SparseZone`]): what the engine on sparse data
+/// ([`unilateral_lcp::SchurLcp`]) works on instead of the condensed matrix.
+pub fn sparse_zone_of(model: &Model) -> Result<unilateral_contact::SparseZone, FemError> {
+    let b = model.bonded_blocks()?;
+    let pairs = model.pairs();
+    Ok(unilateral_contact::SparseZone {
+        kii: b.kii,
+        kiz: b.kiz,
+        kzz: b.kzz,
+        constant: b.constant,
+        variable: b.variable,
+        friction: pairs.iter().map(|p| p.friction).collect(),
+        gap: pairs.iter().map(|p| p.gap).collect(),
+    })
+}
+
 /// [`zone_of`], the blocks moved out of `c` instead of copied ([`Condensed::take_blocks`]).
 fn zone_from(c: &mut Condensed) -> ContactZone {
     let blocks = c.take_blocks();

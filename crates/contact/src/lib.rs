@@ -25,6 +25,7 @@ mod lcp;
 mod settings;
 mod solution;
 mod solve;
+mod sparse_zone;
 mod units;
 mod zone;
 
@@ -40,5 +41,6 @@ pub use solution::{
     PairState,
 };
 pub use solve::{solve, solve_shared};
+pub use sparse_zone::SparseZone;
 pub use unilateral_lcp::Follow;
 pub use zone::{ContactLoad, ContactZone};

@@ -54,6 +54,7 @@
 )]
 
 mod assemble;
+mod blocks;
 mod condense;
 mod dofs;
 mod elements;
@@ -67,6 +68,7 @@ mod schur;
 mod stability;
 mod stress;
 
+pub use blocks::BondedBlocks;
 pub use condense::{
     check_memory, dense_condensation_bytes, machine_memory, CondensationStats, Condensed,
 };

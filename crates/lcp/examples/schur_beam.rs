@@ -16,7 +16,8 @@ mod schur_beam;
 
 use std::time::Instant;
 use unilateral_lcp::{
-    follow_schur_path, Follow, PathOptions, PathSolver, RowRelation, SchurOptions, Settings,
+    basic_after, first_different_step, follow_schur_path, Follow, PathOptions, PathSolver,
+    RowRelation, SchurOptions, Settings,
 };
 
 fn main() {
@@ -72,14 +73,24 @@ fn main() {
             row_relations: relations(m, f),
             ..Settings::default()
         };
+        let check_var: Option<usize> = std::env::var("CHECK_VAR").ok().and_then(|v| v.parse().ok());
         if let Ok(ks) = std::env::var("CHECK_STEPS") {
             for k in ks.split(',').filter_map(|k| k.parse::<usize>().ok()) {
+                let basic = basic_after(&path.steps, k, n);
+                let formed = problem.basis_solution(&basic).unwrap();
+                let sparse = lcp.basis_solution(&basic).unwrap();
                 println!(
                     "step {k}: schur p = {}, formed M (full pivoting) p = {}, dense LU of the sparse equations p = {}",
                     path.steps[k - 1].p,
-                    exact_p(&problem, &path.steps, k),
-                    augmented_p(&lcp, &path, k)
+                    formed[2 * n],
+                    sparse[2 * n]
                 );
+                if let Some(v) = check_var {
+                    println!(
+                        "  variable {v}: formed M {}, sparse equations {}",
+                        formed[v], sparse[v]
+                    );
+                }
             }
         }
         let popts = PathOptions {
@@ -93,25 +104,23 @@ fn main() {
         let d = t.elapsed().as_secs_f64();
         if let Ok(ks) = std::env::var("CHECK_DENSE_STEPS") {
             for k in ks.split(',').filter_map(|k| k.parse::<usize>().ok()) {
+                let formed = solver
+                    .problem()
+                    .basis_solution(&basic_after(&want.steps, k, n))
+                    .unwrap();
                 println!(
                     "dense step {k}: p = {}, formed M (full pivoting) p = {}",
                     want.steps[k - 1].p,
-                    exact_p(&solver.problem(), &want.steps, k)
+                    formed[2 * n]
                 );
+                if let Some(v) = check_var {
+                    println!("  variable {v}: formed M {}", formed[v]);
+                }
             }
         }
-        let same = want.steps.len() == path.steps.len()
-            && want
-                .steps
-                .iter()
-                .zip(&path.steps)
-                .all(|(a, b)| (a.entering, a.leaving) == (b.entering, b.leaving));
-        if let Some(k) = want
-            .steps
-            .iter()
-            .zip(&path.steps)
-            .position(|(a, b)| (a.entering, a.leaving) != (b.entering, b.leaving))
-        {
+        let diff = first_different_step(&want.steps, &path.steps);
+        let same = diff.is_none();
+        if let Some(k) = diff.filter(|&k| k < want.steps.len().min(path.steps.len())) {
             println!(
                 "first difference at step {}: dense {:?}, schur {:?}",
                 k + 1,
@@ -135,119 +144,4 @@ fn relations(m: usize, f: f64) -> Vec<RowRelation> {
             terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * f)],
         })
         .collect()
-}
-
-/// The load after step `k` of `path` from a full-pivoting solve of its basis on the formed problem.
-#[allow(dead_code)]
-fn exact_p(
-    problem: &unilateral_lcp::ParametricLcp,
-    steps: &[unilateral_lcp::Step],
-    k: usize,
-) -> f64 {
-    use faer::linalg::solvers::Solve;
-    use unilateral_lcp::Var;
-    let n = problem.q0.len();
-    let col = |v: Var| match v {
-        Var::X(i) => i,
-        Var::Z(i) => n + i,
-        Var::Driver => 2 * n,
-    };
-    let mut basic: Vec<bool> = (0..=2 * n).map(|v| v < n).collect();
-    for s in &steps[..k] {
-        basic[col(s.entering)] = true;
-        basic[col(s.leaving)] = false;
-    }
-    let vars: Vec<usize> = (0..=2 * n).filter(|&v| basic[v]).collect();
-    let a = faer::Mat::<f64>::from_fn(n, n, |i, c| {
-        let v = vars[c];
-        if v < n {
-            f64::from(v == i)
-        } else if v < 2 * n {
-            -problem.m[(i, v - n)]
-        } else {
-            -problem.d[i]
-        }
-    });
-    let rhs = faer::Mat::<f64>::from_fn(n, 1, |i, _| problem.q0[i]);
-    let sol = a.full_piv_lu().solve(&rhs);
-    if let Ok(v) = std::env::var("CHECK_VAR") {
-        let v: usize = v.parse().unwrap();
-        if let Some(c) = vars.iter().position(|&u| u == v) {
-            println!(
-                "  variable {v} after step {k}: {} (formed M, full pivoting)",
-                sol[(c, 0)]
-            );
-        }
-    }
-    sol[(vars.iter().position(|&v| v == 2 * n).unwrap(), 0)]
-}
-
-/// The load after step `k` from a dense LU of the basis's equations on the sparse data
-/// (`y` and the basic variables: no formed `M`).
-#[allow(dead_code)]
-fn augmented_p(lcp: &unilateral_lcp::SchurLcp, path: &unilateral_lcp::SchurPath, k: usize) -> f64 {
-    use faer::linalg::solvers::Solve;
-    use unilateral_lcp::Var;
-    let n = lcp.order();
-    let big_n = lcp.a.nrows();
-    let col = |v: Var| match v {
-        Var::X(i) => i,
-        Var::Z(i) => n + i,
-        Var::Driver => 2 * n,
-    };
-    let mut basic: Vec<bool> = (0..=2 * n).map(|v| v < n).collect();
-    for s in &path.steps[..k] {
-        basic[col(s.entering)] = true;
-        basic[col(s.leaving)] = false;
-    }
-    let vars: Vec<usize> = (0..=2 * n).filter(|&v| basic[v]).collect();
-    let size = big_n + n;
-    let mut a = faer::Mat::<f64>::zeros(size, size);
-    let mut put = |m: &faer::sparse::SparseColMat<usize, f64>,
-                   r0: usize,
-                   cmap: &dyn Fn(usize) -> Option<usize>,
-                   sign: f64| {
-        for j in 0..m.ncols() {
-            if let Some(c) = cmap(j) {
-                for (&i, &v) in m.row_idx_of_col_raw(j).iter().zip(m.val_of_col(j)) {
-                    a[(r0 + i, c)] += sign * v;
-                }
-            }
-        }
-    };
-    let pos = |v: usize| vars.iter().position(|&u| u == v).map(|c| big_n + c);
-    put(&lcp.a, 0, &|j| Some(j), 1.0);
-    put(&lcp.b, 0, &|j| pos(n + j), -1.0);
-    put(&lcp.c, big_n, &|j| Some(j), 1.0);
-    put(&lcp.d, big_n, &|j| pos(n + j), -1.0);
-    for i in 0..n {
-        if let Some(c) = pos(i) {
-            a[(big_n + i, c)] += 1.0;
-        }
-    }
-    let pc = pos(2 * n).unwrap();
-    for i in 0..big_n {
-        a[(i, pc)] -= lcp.da[i];
-    }
-    for i in 0..n {
-        a[(big_n + i, pc)] -= lcp.d0[i];
-    }
-    let rhs = faer::Mat::<f64>::from_fn(size, 1, |i, _| {
-        if i < big_n {
-            lcp.qa[i]
-        } else {
-            lcp.q0[i - big_n]
-        }
-    });
-    let sol = a.partial_piv_lu().solve(&rhs);
-    if let Ok(v) = std::env::var("CHECK_VAR") {
-        let v: usize = v.parse().unwrap();
-        if let Some(c) = pos(v) {
-            println!(
-                "  variable {v} after step {k}: {} (dense LU of the sparse equations)",
-                sol[(c, 0)]
-            );
-        }
-    }
-    sol[(pc, 0)]
 }

@@ -62,8 +62,8 @@ pub use evolution::{
 };
 pub use lemke::solve_lcp;
 pub use path::{
-    BasisVerdict, Breakpoint, Follow, LoadPath, MechanismMode, PathOptions, PathPoint, PathStatus,
-    Step, Tightening, Unreported,
+    basic_after, first_different_step, BasisVerdict, Breakpoint, Follow, LoadPath, MechanismMode,
+    PathOptions, PathPoint, PathStatus, Step, Tightening, Unreported,
 };
 pub use problem::{Lcp, ParametricLcp};
 pub use progress::{Phase, Progress, Snapshot};

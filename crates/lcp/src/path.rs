@@ -118,6 +118,31 @@ pub struct Step {
     pub turning: bool,
 }
 
+/// The basic variables (`x_i` as `i`, `z_i` as `n + i`, the driver `2n`) after the first `k`
+/// of `steps`, from the slack basis.
+pub fn basic_after(steps: &[Step], k: usize, n: usize) -> Vec<bool> {
+    let col = |v: Var| match v {
+        Var::X(i) => i,
+        Var::Z(i) => n + i,
+        Var::Driver => 2 * n,
+    };
+    let mut basic: Vec<bool> = (0..=2 * n).map(|v| v < n).collect();
+    for s in &steps[..k] {
+        basic[col(s.entering)] = true;
+        basic[col(s.leaving)] = false;
+    }
+    basic
+}
+
+/// The first step (0-based) at which two paths pivot differently, or the shorter one's length
+/// where one continues the other; `None` when they take the same pivots.
+pub fn first_different_step(a: &[Step], b: &[Step]) -> Option<usize> {
+    a.iter()
+        .zip(b)
+        .position(|(x, y)| (x.entering, x.leaving) != (y.entering, y.leaving))
+        .or((a.len() != b.len()).then(|| a.len().min(b.len())))
+}
+
 /// A solution on the path, free of any tightening, verified from the original data.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PathPoint {

@@ -25,6 +25,36 @@ pub struct ParametricLcp {
 }
 
 impl ParametricLcp {
+    /// The values of every variable (`x`, then `z`, then `p`; zero where non-basic) on the basis
+    /// whose basic variables are marked in `basic` (length `2n + 1`, `n` of them), from a dense
+    /// LU with full pivoting of its equations `x_B − M[:, z_B] z_B − d·p = q0`: an independent
+    /// check of a breakpoint (`O(n³)`). `None` when `basic` does not mark `n` variables.
+    pub fn basis_solution(&self, basic: &[bool]) -> Option<Vec<f64>> {
+        use faer::linalg::solvers::Solve;
+        let n = self.q0.len();
+        let vars: Vec<usize> = (0..=2 * n).filter(|&v| basic[v]).collect();
+        if vars.len() != n || basic.len() != 2 * n + 1 {
+            return None;
+        }
+        let a = Mat::<f64>::from_fn(n, n, |i, c| {
+            let v = vars[c];
+            if v < n {
+                f64::from(v == i)
+            } else if v < 2 * n {
+                -self.m[(i, v - n)]
+            } else {
+                -self.d[i]
+            }
+        });
+        let rhs = Mat::<f64>::from_fn(n, 1, |i, _| self.q0[i]);
+        let sol = a.full_piv_lu().solve(&rhs);
+        let mut out = vec![0.0; 2 * n + 1];
+        for (c, &v) in vars.iter().enumerate() {
+            out[v] = sol[(c, 0)];
+        }
+        Some(out)
+    }
+
     /// The right-hand side `q0 + p·d` at load `p`.
     pub fn q_at(&self, p: f64) -> Vec<f64> {
         self.q0

@@ -14,6 +14,7 @@ mod long_path;
 mod mindlin;
 mod related_rows;
 mod scale;
+mod sparse_zone;
 mod surface;
 mod timings;
 mod triangle_block;

@@ -104,6 +104,73 @@ impl SchurLcp {
     }
 }
 
+impl SchurLcp {
+    /// The values of every variable (`x`, then `z`, then `p`; zero where non-basic) on the
+    /// basis marked in `basic` (length `2n + 1`, `n` basic), from a dense LU of its equations
+    /// on the sparse data — `A y − B z_B − da·p = qa`, `x_B − D z_B + C y − d0·p = q0` — with
+    /// no `M` formed: an independent check of a breakpoint (`O((N + n)³)`). `None` when
+    /// `basic` does not mark `n` variables.
+    pub fn basis_solution(&self, basic: &[bool]) -> Option<Vec<f64>> {
+        use faer::linalg::solvers::Solve;
+        let n = self.order();
+        let big_n = self.a.nrows();
+        let vars: Vec<usize> = (0..=2 * n).filter(|&v| basic[v]).collect();
+        if vars.len() != n || basic.len() != 2 * n + 1 {
+            return None;
+        }
+        let mut pos = vec![None; 2 * n + 1];
+        for (c, &v) in vars.iter().enumerate() {
+            pos[v] = Some(big_n + c);
+        }
+        let size = big_n + n;
+        let mut a = Mat::<f64>::zeros(size, size);
+        let mut put = |m: &SparseColMat<usize, f64>,
+                       r0: usize,
+                       cmap: &dyn Fn(usize) -> Option<usize>,
+                       sign: f64| {
+            for j in 0..m.ncols() {
+                if let Some(c) = cmap(j) {
+                    for (&i, &v) in m.row_idx_of_col_raw(j).iter().zip(m.val_of_col(j)) {
+                        a[(r0 + i, c)] += sign * v;
+                    }
+                }
+            }
+        };
+        put(&self.a, 0, &|j| Some(j), 1.0);
+        put(&self.b, 0, &|j| pos[n + j], -1.0);
+        put(&self.c, big_n, &|j| Some(j), 1.0);
+        put(&self.d, big_n, &|j| pos[n + j], -1.0);
+        for (i, p) in pos.iter().enumerate().take(n) {
+            if let Some(c) = *p {
+                a[(big_n + i, c)] += 1.0;
+            }
+        }
+        if let Some(c) = pos[2 * n] {
+            for (i, v) in self.da.iter().enumerate() {
+                a[(i, c)] -= v;
+            }
+            for (i, v) in self.d0.iter().enumerate() {
+                a[(big_n + i, c)] -= v;
+            }
+        }
+        let rhs = Mat::<f64>::from_fn(size, 1, |i, _| {
+            if i < big_n {
+                self.qa[i]
+            } else {
+                self.q0[i - big_n]
+            }
+        });
+        let sol = a.partial_piv_lu().solve(&rhs);
+        let mut out = vec![0.0; 2 * n + 1];
+        for (v, p) in pos.iter().enumerate() {
+            if let Some(c) = *p {
+                out[v] = sol[(c, 0)];
+            }
+        }
+        Some(out)
+    }
+}
+
 /// How a Schur path ended and what it found.
 #[derive(Debug, Clone)]
 pub struct SchurPath {
@@ -183,6 +250,7 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         val: vec![0.0; 2 * n + 1],
     };
     values(lcp, &basis, &mut st);
+    let mut fresh = true;
     let xscale = st.x().iter().fold(0.0f64, |a, v| a.max(v.abs()));
     if st.x().iter().any(|&v| v < -1e-12 * xscale) {
         out.status = PathStatus::NoSolutionAtStart;
@@ -286,20 +354,31 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             _ => 1e-9 * x_scale,
         };
         let tol = tol_of(2 * n);
-        let mut best = f64::INFINITY;
-        let mut cands: Vec<(usize, f64)> = Vec::new();
-        for (v, &rate) in dir.iter().enumerate() {
-            if !st.basic[v]
-                || v == entering
-                || rate >= 0.0
-                || scale(v) <= tol_of(v)
-                || alone(&st, v)
-            {
-                continue;
+        let ratios = |st: &State| -> (f64, Vec<(usize, f64)>) {
+            let mut best = f64::INFINITY;
+            let mut cands: Vec<(usize, f64)> = Vec::new();
+            for (v, &rate) in dir.iter().enumerate() {
+                if !st.basic[v]
+                    || v == entering
+                    || rate >= 0.0
+                    || scale(v) <= tol_of(v)
+                    || alone(st, v)
+                {
+                    continue;
+                }
+                let ratio = st.val[v].max(0.0) / -rate;
+                cands.push((v, ratio));
+                best = best.min(ratio);
             }
-            let ratio = st.val[v].max(0.0) / -rate;
-            cands.push((v, ratio));
-            best = best.min(ratio);
+            (best, cands)
+        };
+        let (mut best, mut cands) = ratios(&st);
+        // Candidates within 1e-7 of the smallest ratio are judged on values formed afresh from
+        // the data (as the dense engine's near ties): the values moved along the segments
+        // since the last refactorisation drift.
+        if !fresh && cands.iter().filter(|c| c.1 <= best * (1.0 + 1e-7)).count() > 1 {
+            values(lcp, &basis, &mut st);
+            (best, cands) = ratios(&st);
         }
         // The target on this segment.
         let p0 = st.p();
@@ -366,6 +445,7 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             }
         }
         st.val[leaving] = 0.0;
+        fresh = false;
         let updated = basis.pivot(entering, leaving);
         if updated.is_err() {
             singular_updates += 1;
@@ -377,6 +457,7 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
                 break;
             }
             values(lcp, &basis, &mut st);
+            fresh = true;
         }
         if st.val.iter().any(|v| !v.is_finite()) {
             out.status = PathStatus::NumericalFailure;
