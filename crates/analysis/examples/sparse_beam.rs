@@ -62,6 +62,7 @@ fn main() {
             max_border: 40,
             order: Some(order.clone()),
             relations: relations.clone(),
+            progress: Default::default(),
         },
     );
     let s = t.elapsed().as_secs_f64();

@@ -230,6 +230,10 @@ pub struct ContactSolution {
     pub notes: Vec<String>,
     /// Pivots spent removing the tightening from the reported solution.
     pub tightening_pivots: usize,
+    /// The path was traced by the engine on the structure's sparse blocks
+    /// ([`crate::solve_sparse`]); the reported point is formed and verified from the zone all
+    /// the same.
+    pub traced_on_sparse_blocks: bool,
     /// The zone that was solved, in the user's units (shared with the caller by
     /// [`crate::solve_shared`]).
     pub(crate) zone: Arc<ContactZone>,

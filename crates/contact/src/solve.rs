@@ -65,6 +65,21 @@ pub fn solve_shared(
     zone: Arc<ContactZone>,
     settings: &SolveSettings,
 ) -> Result<ContactSolution, ContactError> {
+    solve_sparse(zone, None, settings)
+}
+
+/// [`solve_shared`], the path traced by the engine on sparse data
+/// ([`unilateral_lcp::follow_schur_path`]) on `sparse` — the same zone as the bonded
+/// structure's blocks — where it applies: no tightening and a start at the bonded state
+/// (`q(0) ≥ 0`). The dense solver then takes that path as its own
+/// ([`PathSolver::adopt`]): it forms and verifies the reported solution and answers every
+/// later question on it. Where the sparse engine does not apply or fails, the dense engine
+/// traces the path.
+pub fn solve_sparse(
+    zone: Arc<ContactZone>,
+    sparse: Option<&crate::SparseZone>,
+    settings: &SolveSettings,
+) -> Result<ContactSolution, ContactError> {
     zone.validate()?;
     settings.validate()?;
     // The LCP that is solved: normalised by powers of two (module `units`), so that neither the
@@ -105,8 +120,45 @@ pub fn solve_shared(
     // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
     // user's units, shown in tableaux and labels, is built only after the path, so that the
     // pivoting's kernel matrices never meet a second `n × n` matrix.
+    let schur_settings = sparse.map(|_| {
+        (
+            engine.lexicographic_order.clone(),
+            engine.row_relations.clone(),
+            engine.max_pivots.unwrap_or(20 * 3 * zone.pairs() + 100),
+            engine.progress.clone(),
+        )
+    });
     let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
-    let mut path = solver.follow();
+    let traced = match (sparse, schur_settings) {
+        (Some(sparse), Some((order, relations, max_pivots, progress)))
+            if settings.tightening == 0.0 && sparse.pairs() == zone.pairs() =>
+        {
+            let lcp = units.normalise_sparse(sparse).lcp();
+            let schur = unilateral_lcp::follow_schur_path(
+                &lcp,
+                &unilateral_lcp::SchurOptions {
+                    target: settings.target,
+                    follow: settings.follow,
+                    max_pivots,
+                    max_border: 40,
+                    order,
+                    relations,
+                    progress,
+                },
+            );
+            // Taken where it ends as the dense engine's usual paths do and its reported
+            // solution verifies from the dense data; a mechanism, a return to zero, a pivot cap
+            // or an unverified point is traced again by the dense engine, which verifies its
+            // rays and mechanisms from the data.
+            matches!(schur.status, PathStatus::TargetReached | PathStatus::Ray)
+                .then(|| solver.adopt(schur))
+                .flatten()
+                .filter(|p| p.solution.is_some())
+        }
+        _ => None,
+    };
+    let traced_on_sparse_blocks = traced.is_some();
+    let mut path = traced.unwrap_or_else(|| solver.follow());
     let m = zone.pairs();
     let names = zone.pair_names.clone();
     // Which pairs are open, followed along the path, to read friction events of open pairs.
@@ -296,6 +348,7 @@ pub fn solve_shared(
         residual: None,
         notes,
         tightening_pivots: 0,
+        traced_on_sparse_blocks,
         zone,
         lcp: OnceLock::new(),
         m_big: OnceLock::new(),

@@ -101,6 +101,25 @@ impl Units {
         ldexp(k, self.stiffness)
     }
 
+    /// The sparse zone in the same normalised units as [`Units::normalise`]'s zone: the
+    /// stiffness blocks by the stiffness scale, the loads by the force scale, the gaps by the
+    /// displacement scale (so that `R` and `R_F` formed from it are the normalised zone's).
+    pub fn normalise_sparse(&self, zone: &crate::SparseZone) -> crate::SparseZone {
+        let mut z = zone.clone();
+        for k in [&mut z.kii, &mut z.kiz, &mut z.kzz] {
+            k.val_mut()
+                .iter_mut()
+                .for_each(|v| *v = ldexp(*v, -self.stiffness));
+        }
+        for v in z.constant.iter_mut().chain(z.variable.iter_mut()).flatten() {
+            *v = self.normalised_force(*v);
+        }
+        z.gap
+            .iter_mut()
+            .for_each(|g| *g = ldexp(*g, -self.displacement()));
+        z
+    }
+
     /// The normalised zone. Diagonal entries of `Rnn` and `Rtt` that lie below zero only by
     /// round-off of the zone's scale (see [`roundoff_of_zero`]) are set to zero.
     pub fn normalise(&self, zone: &ContactZone) -> ContactZone {

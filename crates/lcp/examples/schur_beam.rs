@@ -50,6 +50,7 @@ fn main() {
         max_border: 40,
         order: Some(order.clone()),
         relations: relations(m, 0.3),
+        progress: Default::default(),
     };
     let t = Instant::now();
     let path = follow_schur_path(&lcp, &opts);

@@ -251,6 +251,103 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     path
 }
 
+/// A path traced by the engine on sparse data ([`crate::SchurPath`]) as this solver's
+/// [`LoadPath`]: the same pivots from the slack basis, the solution reported where
+/// [`follow`] reports it, formed and verified from this solver's data. `None` when this
+/// solver's start is not the slack basis (a tightening, or `q0` not `≥ 0`: the sparse engine
+/// starts only there) or the pivots name variables of another order.
+pub(crate) fn adopt(solver: &PathSolver, schur: crate::SchurPath) -> Option<LoadPath> {
+    let (options, n) = (solver.options(), solver.order());
+    if solver.c0 != 0.0 {
+        return None;
+    }
+    let h = solver.q_traced();
+    let hmax = max_abs(&h).max(f64::MIN_POSITIVE);
+    if h.iter().any(|&v| v < -1e-13 * hmax) {
+        return None;
+    }
+    let col = |v: Var| match v {
+        Var::X(i) => i,
+        Var::Z(i) => n + i,
+        Var::Driver => 2 * n,
+    };
+    let in_range = |v: Var| matches!(v, Var::Driver) || col(v) < 2 * n;
+    if schur
+        .steps
+        .iter()
+        .any(|s| !in_range(s.entering) || !in_range(s.leaving))
+    {
+        return None;
+    }
+    let kseg = schur.steps.len();
+    let p_end = schur.breakpoints.last().map_or(0.0, |b| b.p);
+    let records = schur
+        .steps
+        .iter()
+        .map(|s| (col(s.entering), col(s.leaving)))
+        .collect();
+    let p_max = schur.breakpoints.iter().fold(0.0f64, |a, b| a.max(b.p));
+    let mut path = LoadPath {
+        status: schur.status,
+        steps: schur.steps,
+        breakpoints: schur.breakpoints,
+        p_max,
+        p_limit: None,
+        mechanism: None,
+        last_entering: schur.last_entering.map(|c| Var::from_col(c, n)),
+        solution: None,
+        start_pivots: 0,
+        refactorizations: schur.refactorizations,
+        artificial_mechanism: None,
+        unreported: None,
+        start_slots: (0..n).collect(),
+        records,
+        target_segment: schur.target_segment,
+    };
+    let crossed = schur.target_segment;
+    let report = match schur.status {
+        PathStatus::TargetReached => {
+            path.p_max = path.p_max.max(options.target);
+            Some((kseg, options.target))
+        }
+        PathStatus::Ray => match crossed {
+            Some(j) => Some((j, options.target)),
+            None => Some((kseg, options.target.max(p_end))),
+        },
+        PathStatus::Mechanism => {
+            path.p_limit = Some(p_end);
+            if let (Some(e), Some((dx, dz))) = (schur.last_entering, &schur.mechanism_rates) {
+                let norm = max_abs(dz).max(f64::MIN_POSITIVE);
+                path.mechanism = Some(MechanismMode {
+                    entering: Var::from_col(e, n),
+                    dz: dz.iter().map(|v| v / norm).collect(),
+                    dx: dx.iter().map(|v| v / norm).collect(),
+                });
+            }
+            match crossed {
+                Some(j) => Some((j, options.target)),
+                None => path.last_segment_containing(p_end).map(|j| (j, p_end)),
+            }
+        }
+        PathStatus::ReturnedToZero => match crossed {
+            Some(j) => Some((j, options.target)),
+            None => path.last_segment_containing(0.0).map(|j| (j, 0.0)),
+        },
+        PathStatus::IterationLimit => match crossed {
+            Some(j) => Some((j, options.target)),
+            None => path.last_segment_containing(p_end).map(|j| (j, p_end)),
+        },
+        PathStatus::NoSolutionAtStart | PathStatus::NumericalFailure => None,
+    };
+    if let Some((seg, p)) = report {
+        match solution_on_segment(solver, &path, seg, p) {
+            Ok(pt) => path.solution = Some(pt),
+            Err(why) => path.unreported = Some(why),
+        }
+    }
+    Some(path)
+}
+
 /// The complementary basis of the problem at `p = 0`, `x = h + M z` (`h = q0 + c·e`), and the
 /// pivots spent finding it.
 ///

@@ -183,6 +183,16 @@ impl PathSolver {
         follow(self)
     }
 
+    /// A path traced by the engine on sparse data ([`crate::follow_schur_path`]) on the same
+    /// problem, taken as this solver's [`LoadPath`]: its pivots from the slack basis, and the
+    /// solution reported where [`PathSolver::follow`] would report it, formed and verified from
+    /// this solver's data; every method that reads a path then answers on it. `None` when this
+    /// solver's start is not the slack basis (a tightening, or `q0` not `≥ 0`), where the
+    /// sparse engine does not start.
+    pub fn adopt(&self, schur: crate::SchurPath) -> Option<LoadPath> {
+        crate::parametric::adopt(self, schur)
+    }
+
     /// The solution without tightening at any `p` on a path this solver followed (for example
     /// a load below the target, or a load on the ray's half-line beyond the last event);
     /// `Ok(None)` when `p` is not on the traced path.

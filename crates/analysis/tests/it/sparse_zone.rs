@@ -121,6 +121,7 @@ fn the_schur_engine_on_the_sparse_zone_follows_the_dense_path() {
             max_border: 40,
             order: Some(lcp.lexicographic_order.clone()),
             relations,
+            progress: Default::default(),
         },
     );
     assert_eq!(got.status, want.status);
@@ -134,6 +135,41 @@ fn the_schur_engine_on_the_sparse_zone_follows_the_dense_path() {
             w.index,
             g.p,
             w.p
+        );
+    }
+}
+
+/// From `SPARSE_PAIRS` pairs an analysis traces the path on the sparse blocks: on the
+/// 400-bearing beam it reports what the dense engine reports on the condensed zone (the same
+/// steps, the same states and forces at the target), faster.
+#[test]
+fn an_analysis_of_many_pairs_traces_on_the_sparse_blocks_what_the_dense_engine_traces() {
+    use std::sync::Arc;
+    use unilateral_analysis::{analyze, SPARSE_PAIRS};
+    use unilateral_contact::SolveSettings;
+    let m = SPARSE_PAIRS;
+    let model = bearing_beam(m);
+    let settings = SolveSettings::default();
+    let sparse = analyze(&model, &settings).unwrap();
+    let dense = unilateral_contact::solve_shared(Arc::clone(&sparse.zone), &settings).unwrap();
+    let s = &sparse.solution;
+    assert!(s.traced_on_sparse_blocks && !dense.traced_on_sparse_blocks);
+    assert_eq!(s.outcome, dense.outcome);
+    assert_eq!(s.steps.len(), dense.steps.len());
+    for (a, b) in s.steps.iter().zip(&dense.steps) {
+        assert_eq!(
+            (&a.entering, &a.leaving),
+            (&b.entering, &b.leaving),
+            "step {}",
+            a.index
+        );
+    }
+    let fmax = dense.pairs.iter().fold(0.0f64, |a, r| a.max(r.x_n.abs()));
+    for (a, b) in s.pairs.iter().zip(&dense.pairs) {
+        assert_eq!(a.state, b.state, "{}", a.name);
+        assert!(
+            (a.x_n - b.x_n).abs() <= 1e-8 * fmax && (a.x_t - b.x_t).abs() <= 1e-8 * fmax,
+            "{a:?} against {b:?}"
         );
     }
 }

@@ -183,6 +183,15 @@ pub struct SchurPath {
     pub breakpoints: Vec<Breakpoint>,
     /// `(x, z)` at the target when the path reached it.
     pub at_target: Option<(Vec<f64>, Vec<f64>)>,
+    /// The number of steps before the load first reached the target (the target lies on the
+    /// segment after that many pivots), if it did.
+    pub target_segment: Option<usize>,
+    /// The variable entering on the last segment (for a ray or a mechanism: the one that
+    /// grows without bound), as a column (`x_i` is `i`, `z_i` is `n + i`, the driver `2n`).
+    pub last_entering: Option<usize>,
+    /// On a mechanism, the rates of `x` and of `z` along it (per unit of the entering
+    /// variable).
+    pub mechanism_rates: Option<(Vec<f64>, Vec<f64>)>,
     /// Fresh factorisations of the base.
     pub refactorizations: usize,
     /// Of those, the ones forced by a singular border.
@@ -206,6 +215,8 @@ pub struct SchurOptions {
     /// Rows the formulation ties exactly (as [`crate::Settings::row_relations`]): a row alone
     /// among its relation's basic rows is fixed by the others and never leaves.
     pub relations: Vec<crate::RowRelation>,
+    /// Where the path reports its steps (as [`crate::Settings::progress`]).
+    pub progress: crate::Progress,
 }
 
 /// The current basis: basic variables and their values.
@@ -239,6 +250,9 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         at_target: None,
         refactorizations: 0,
         singular_updates: 0,
+        target_segment: None,
+        last_entering: None,
+        mechanism_rates: None,
     };
     let mut singular_updates = 0;
     let Ok(mut basis) = Bordered::slack(lcp) else {
@@ -260,6 +274,7 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         p: 0.0,
         z: Vec::new(),
     });
+    opts.progress.phase(crate::Phase::Path);
     let mut entering = 2 * n;
     let order: Vec<usize> = opts.order.clone().unwrap_or_else(|| (0..n).collect());
     let mut position = vec![0; n];
@@ -380,21 +395,31 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             values(lcp, &basis, &mut st);
             (best, cands) = ratios(&st);
         }
-        // The target on this segment.
+        // The target on this segment: the driver's rate counts where it is above round-off,
+        // or where the step carries the load a real way (1e-6 of the target) — as the dense
+        // engine judges it; a mechanism's round-off rate times an unbounded step is no load.
         let p0 = st.p();
-        if dp > 0.0 && p0 < opts.target && p0 + best * dp >= opts.target {
+        let p_sure = scale(2 * n) > tol;
+        let carried = best.is_finite() && best * dp > 1e-6 * opts.target;
+        if dp > 0.0 && p0 < opts.target && p0 + best * dp >= opts.target && (p_sure || carried) {
             let theta = (opts.target - p0) / dp;
             let at: Vec<f64> = (0..2 * n).map(|v| st.val[v] + theta * dir[v]).collect();
-            out.at_target = Some((at[..n].to_vec(), at[n..].to_vec()));
+            if out.at_target.is_none() {
+                out.at_target = Some((at[..n].to_vec(), at[n..].to_vec()));
+                out.target_segment = Some(out.steps.len());
+            }
             if opts.follow == Follow::ToTarget {
+                out.last_entering = Some(entering);
                 out.status = PathStatus::TargetReached;
                 break;
             }
         }
         if cands.is_empty() {
-            out.status = if dp > 0.0 && scale(2 * n) > tol {
+            out.last_entering = Some(entering);
+            out.status = if dp > 0.0 && p_sure {
                 PathStatus::Ray
             } else {
+                out.mechanism_rates = Some((dir[..n].to_vec(), dir[n..2 * n].to_vec()));
                 PathStatus::Mechanism
             };
             break;
@@ -430,6 +455,7 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         };
         let theta = cands.iter().find(|c| c.0 == leaving).map_or(best, |c| c.1);
         if leaving == 2 * n {
+            out.last_entering = Some(entering);
             out.status = PathStatus::ReturnedToZero;
             break;
         }
@@ -463,6 +489,7 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             out.status = PathStatus::NumericalFailure;
             break;
         }
+        opts.progress.step(st.p());
         out.steps.push(Step {
             index: out.steps.len() + 1,
             p: st.p(),

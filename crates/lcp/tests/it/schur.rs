@@ -39,6 +39,7 @@ fn compare(m: usize, data: &BeamData) {
             max_border: 8,
             order: Some(order),
             relations,
+            progress: Default::default(),
         },
     );
     if let Some(k) = got
@@ -138,6 +139,7 @@ fn dense_engine_takes_the_start_of_slip_it_passed_on_a_600_bearing_beam() {
             max_border: 40,
             order: Some(order),
             relations,
+            progress: Default::default(),
         },
     );
     assert_eq!(first_different_step(&want.steps, &got.steps), None);
@@ -156,4 +158,83 @@ fn dense_engine_takes_the_start_of_slip_it_passed_on_a_600_bearing_beam() {
         worst.0 + 1,
         worst.1
     );
+}
+
+/// The sparse engine's path adopted by the dense solver is the dense solver's own: the same
+/// pivots, status and target segment, and the solutions it reports at the target and at
+/// another load, formed and verified from the dense data, agree with those of the path the
+/// dense solver followed itself — to the end and to the target.
+#[test]
+fn an_adopted_sparse_path_answers_as_the_dense_one() {
+    for (m, follow) in [
+        (12, Follow::ToEnd),
+        (60, Follow::ToEnd),
+        (150, Follow::ToTarget),
+    ] {
+        let data = BeamData::default();
+        let lcp = beam_schur(m, &data);
+        let dense = crate::schur_beam::contact_dense(&lcp, data.friction);
+        let order: Vec<usize> = (m..3 * m).chain(0..m).collect();
+        let relations: Vec<RowRelation> = (0..m)
+            .map(|i| RowRelation {
+                terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * data.friction)],
+            })
+            .collect();
+        let settings = Settings {
+            lexicographic_order: Some(order.clone()),
+            row_relations: relations.clone(),
+            ..Settings::default()
+        };
+        let target = 0.9;
+        let opts = PathOptions {
+            target,
+            follow,
+            tightening: None,
+        };
+        let solver = PathSolver::new(dense, opts, settings).unwrap();
+        let want = solver.follow();
+        let schur = follow_schur_path(
+            &lcp,
+            &SchurOptions {
+                target,
+                follow,
+                max_pivots: 100 * m,
+                max_border: 40,
+                order: Some(order),
+                relations,
+                progress: Default::default(),
+            },
+        );
+        let got = solver.adopt(schur).expect("a slack start");
+        assert_eq!(got.status, want.status, "m = {m}");
+        assert_eq!(
+            first_different_step(&got.steps, &want.steps),
+            None,
+            "m = {m}"
+        );
+        assert_eq!(got.target_segment, want.target_segment, "m = {m}");
+        let close = |a: &[f64], b: &[f64], what: &str| {
+            let scale = b.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+            for (x, y) in a.iter().zip(b) {
+                assert!(
+                    (x - y).abs() <= 1e-8 * scale,
+                    "m = {m}, {what}: {x} against {y}"
+                );
+            }
+        };
+        let (g, w) = (
+            got.solution.clone().expect("reported"),
+            want.solution.clone().expect("reported"),
+        );
+        assert_eq!(g.p, w.p);
+        assert!(g.residual.max() <= unilateral_lcp::ACCEPT_RESIDUAL);
+        close(&g.x, &w.x, "x at the target");
+        close(&g.z, &w.z, "z at the target");
+        let (g, w) = (
+            solver.solution_at(&got, 0.5 * target).unwrap().unwrap(),
+            solver.solution_at(&want, 0.5 * target).unwrap().unwrap(),
+        );
+        close(&g.x, &w.x, "x at half the target");
+        close(&g.z, &w.z, "z at half the target");
+    }
 }
