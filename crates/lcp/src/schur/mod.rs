@@ -1,5 +1,7 @@
-//! The parametric LCP whose matrix is a Schur complement of sparse data — an engine in the
-//! making (issue 11), not yet used by the contact crate.
+//! The parametric LCP whose matrix is a Schur complement of sparse data, and the engine that
+//! traces its path without forming the matrix (issue 11). The contact crate uses it for large
+//! structural models and hands the path to the dense solver ([`crate::PathSolver::adopt`]),
+//! which verifies what is reported.
 //!
 //! ```text
 //! x = q0 + p·d0 + D z − C y,   A y = qa + p·da + B z,   x ≥ 0, z ≥ 0, xᵀz = 0
@@ -16,10 +18,10 @@
 //! the target or to the end; lexicographic ties in a given order of the rows; the rows of a
 //! relation decided by it (a row alone among its relation's basic rows never leaves; two
 //! basic rows fall together and the relation says which leaves); each direction refined once
-//! against the data; the values formed afresh at each refactorisation. What it does not do
-//! yet (the dense engine does): a start by Lemke's method or a tightening, equilibration,
-//! verification of the reported point, the sweep and the tableaux. State and measurements:
-//! `docs/performance.md`, round 27.
+//! against the data; the values formed afresh at each refactorisation and at near ties. What
+//! it does not do (the dense engine does, and the callers fall back to it): a start by
+//! Lemke's method or a tightening, equilibration, the verification of rays and mechanisms
+//! from the data, the sweep and the tableaux. Measurements: `docs/performance.md`, round 27.
 
 mod bordered;
 
