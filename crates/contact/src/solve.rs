@@ -91,6 +91,9 @@ pub fn solve_sparse(
     // loads it carries, the constant ones and p times the variable ones).
     let data_force = crate::units::load_scales(&normalised_zone);
     let normalised = ContactLcp::build(&normalised_zone);
+    // Its four m × m blocks are not needed after the LCP is built: not held along the path
+    // (0.44·n² doubles of the peak at m = 2000, n = 3m).
+    drop(normalised_zone);
     let nm = &normalised.problem;
     for j in 0..nm.m.ncols() {
         for i in 0..nm.m.nrows() {
