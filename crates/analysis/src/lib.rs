@@ -347,10 +347,6 @@ pub struct Analysis {
     pub timings: Timings,
 }
 
-/// The number of pairs from which [`analyze`] traces the path on the structure's sparse
-/// blocks ([`sparse_zone_of`]).
-pub const SPARSE_PAIRS: usize = 400;
-
 /// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
 /// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
@@ -361,16 +357,8 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
     let started = Instant::now();
     // Shared with the solution, which keeps it: the zone is held once.
     let zone = Arc::new(zone);
-    // From this many pairs the path is traced by the engine on the structure's sparse blocks
-    // (the dense solver takes it as its own and verifies what it reports): on the beams of
-    // the whole-process benchmark the two take the same time at 300 pairs, and the sparse one
-    // 2.3× less at 1000, 3.6× at 2000 (`docs/performance.md`, round 27).
-    let sparse = (zone.pairs() >= SPARSE_PAIRS && settings.tightening == 0.0)
-        .then(|| sparse_zone_of(model).ok())
-        .flatten();
-    let solution = unilateral_contact::solve_sparse(Arc::clone(&zone), sparse.as_ref(), settings)
-        .map_err(contact_error)?;
-    drop(sparse);
+    let solution =
+        unilateral_contact::solve_shared(Arc::clone(&zone), settings).map_err(contact_error)?;
     let solve = started.elapsed();
     if solution.outcome == Outcome::NoSolutionAtStart {
         if let Some(e) = pulled_apart(&condensed, &zone) {

@@ -70,7 +70,8 @@ pub fn solve_shared(
 
 /// [`solve_shared`], the path traced by the engine on sparse data
 /// ([`unilateral_lcp::follow_schur_path`]) on `sparse` — the same zone as the bonded
-/// structure's blocks — where it applies: no tightening and a start at the bonded state
+/// structure's blocks — where it applies: no tightening, a path to the target (not to its
+/// end: the sparse engine's rays are not verified) and a start at the bonded state
 /// (`q(0) ≥ 0`). The dense solver then takes that path as its own
 /// ([`PathSolver::adopt`]): it forms and verifies the reported solution and answers every
 /// later question on it. Where the sparse engine does not apply or fails, the dense engine
@@ -127,14 +128,18 @@ pub fn solve_sparse(
         (
             engine.lexicographic_order.clone(),
             engine.row_relations.clone(),
-            engine.max_pivots.unwrap_or(20 * 3 * zone.pairs() + 100),
+            // A long path takes about 2n pivots; beyond 6n the sparse engine is more likely
+            // wandering in ill-conditioned ties than tracing, and the dense engine takes over.
+            engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
             engine.progress.clone(),
         )
     });
     let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
     let traced = match (sparse, schur_settings) {
         (Some(sparse), Some((order, relations, max_pivots, progress)))
-            if settings.tightening == 0.0 && sparse.pairs() == zone.pairs() =>
+            if settings.tightening == 0.0
+                && settings.follow == unilateral_lcp::Follow::ToTarget
+                && sparse.pairs() == zone.pairs() =>
         {
             let lcp = units.normalise_sparse(sparse).lcp();
             let schur = unilateral_lcp::follow_schur_path(
@@ -149,11 +154,11 @@ pub fn solve_sparse(
                     progress,
                 },
             );
-            // Taken where it ends as the dense engine's usual paths do and its reported
-            // solution verifies from the dense data; a mechanism, a return to zero, a pivot cap
-            // or an unverified point is traced again by the dense engine, which verifies its
-            // rays and mechanisms from the data.
-            matches!(schur.status, PathStatus::TargetReached | PathStatus::Ray)
+            // Only a path that reaches the target is taken (its point formed and verified from
+            // the dense data). The sparse engine's rays are not verified from the data, and on
+            // the benchmark's beams they were false: a point far along them (10⁶ times their
+            // start) was no solution, where the dense path went on to more events.
+            (schur.status == PathStatus::TargetReached)
                 .then(|| solver.adopt(schur))
                 .flatten()
                 .filter(|p| p.solution.is_some())

@@ -320,7 +320,6 @@ fn path_document(
         "tightening": sol.tightening,
         "events_depend_on_tightening": sol.tightening > 0.0,
         "tightening_pivots": sol.tightening_pivots,
-        "engine": if sol.traced_on_sparse_blocks { "sparse" } else { "dense" },
         "pivots": sol.steps.len(),
         "steps": steps,
         "pairs": pairs_json(&sol.pairs),

@@ -139,20 +139,23 @@ fn the_schur_engine_on_the_sparse_zone_follows_the_dense_path() {
     }
 }
 
-/// From `SPARSE_PAIRS` pairs an analysis traces the path on the sparse blocks: on the
-/// 400-bearing beam it reports what the dense engine reports on the condensed zone (the same
-/// steps, the same states and forces at the target), faster.
+/// `solve_sparse` traces the path to the target on the sparse blocks and the dense solver
+/// adopts it: on the 400-bearing beam it reports what the dense engine reports on the
+/// condensed zone (the same steps, the same states and forces at the target).
 #[test]
-fn an_analysis_of_many_pairs_traces_on_the_sparse_blocks_what_the_dense_engine_traces() {
+fn solve_sparse_reports_at_the_target_what_the_dense_engine_reports() {
     use std::sync::Arc;
-    use unilateral_analysis::{analyze, SPARSE_PAIRS};
     use unilateral_contact::SolveSettings;
-    let m = SPARSE_PAIRS;
+    let m = 400;
     let model = bearing_beam(m);
-    let settings = SolveSettings::default();
-    let sparse = analyze(&model, &settings).unwrap();
-    let dense = unilateral_contact::solve_shared(Arc::clone(&sparse.zone), &settings).unwrap();
-    let s = &sparse.solution;
+    let zone = Arc::new(zone_of(&model.condense().unwrap()));
+    let settings = SolveSettings {
+        follow: Follow::ToTarget,
+        ..SolveSettings::default()
+    };
+    let blocks = sparse_zone_of(&model).unwrap();
+    let s = unilateral_contact::solve_sparse(Arc::clone(&zone), Some(&blocks), &settings).unwrap();
+    let dense = unilateral_contact::solve_shared(zone, &settings).unwrap();
     assert!(s.traced_on_sparse_blocks && !dense.traced_on_sparse_blocks);
     assert_eq!(s.outcome, dense.outcome);
     assert_eq!(s.steps.len(), dense.steps.len());

@@ -277,6 +277,22 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         z: Vec::new(),
     });
     opts.progress.phase(crate::Phase::Path);
+    // Rows of C and D, for the round-off of a row's rate.
+    let ct = lcp
+        .c
+        .as_ref()
+        .transpose()
+        .to_col_major()
+        .expect("memory for Cᵀ");
+    let dt = lcp
+        .d
+        .as_ref()
+        .transpose()
+        .to_col_major()
+        .expect("memory for Dᵀ");
+    // Degenerate steps in a row (the load unchanged): a cycle the lexicographic rule did not
+    // prevent in floating point ends the path (the caller falls back to the dense engine).
+    let mut degenerate = 0usize;
     let mut entering = 2 * n;
     let order: Vec<usize> = opts.order.clone().unwrap_or_else(|| (0..n).collect());
     let mut position = vec![0; n];
@@ -390,6 +406,32 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             (best, cands)
         };
         let (mut best, mut cands) = ratios(&st);
+        // Rows of `x` decreasing at a rate below the tolerance that would block first (or at
+        // all, on a ray): taken where the rate exceeds round-off of the terms that formed it
+        // (`x_i = q0 + p·d0 + D z − C y`, row by row). A tolerance against the largest rates
+        // alone passed a start of slip and called the path a ray (a 500-bearing beam).
+        {
+            let doubtful: Vec<usize> = (0..n)
+                .filter(|&v| {
+                    st.basic[v]
+                        && v != entering
+                        && dir[v] < 0.0
+                        && scale(v) <= tol_of(v)
+                        && !alone(&st, v)
+                        && st.val[v] > 0.0
+                        && st.val[v] / -dir[v] < best
+                })
+                .collect();
+            for v in doubtful {
+                let terms =
+                    row_terms(&dt, &ct, v, &dv[..big_n], &dir[n..2 * n]) + (lcp.d0[v] * dp).abs();
+                if -dir[v] > 1e-9 * terms {
+                    let ratio = st.val[v] / -dir[v];
+                    cands.push((v, ratio));
+                    best = best.min(ratio);
+                }
+            }
+        }
         // Candidates within 1e-7 of the smallest ratio are judged on values formed afresh from
         // the data (as the dense engine's near ties): the values moved along the segments
         // since the last refactorisation drift.
@@ -491,6 +533,16 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             out.status = PathStatus::NumericalFailure;
             break;
         }
+        let p_before = out.steps.last().map_or(0.0, |s| s.p);
+        if (st.p() - p_before).abs() <= 1e-12 * st.p().abs().max(p_before.abs()) {
+            degenerate += 1;
+            if degenerate > n {
+                out.status = PathStatus::NumericalFailure;
+                break;
+            }
+        } else {
+            degenerate = 0;
+        }
         opts.progress.step(st.p());
         out.steps.push(Step {
             index: out.steps.len() + 1,
@@ -569,6 +621,24 @@ fn decide_related(
         }
         k += 1;
     }
+}
+
+/// `Σ_j |D_ij| |dz_j| + Σ_k |C_ik| |dy_k|`: the size of the terms that form row `i`'s rate.
+fn row_terms(
+    dt: &SparseColMat<usize, f64>,
+    ct: &SparseColMat<usize, f64>,
+    i: usize,
+    dy: &[f64],
+    dz: &[f64],
+) -> f64 {
+    let dot = |m: &SparseColMat<usize, f64>, u: &[f64]| -> f64 {
+        m.row_idx_of_col_raw(i)
+            .iter()
+            .zip(m.val_of_col(i))
+            .map(|(&j, &a)| (a * u[j]).abs())
+            .sum()
+    };
+    dot(dt, dz) + dot(ct, dy)
 }
 
 /// The basic values from the data.
