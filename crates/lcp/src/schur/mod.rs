@@ -1,7 +1,7 @@
 //! The parametric LCP whose matrix is a Schur complement of sparse data, and the engine that
-//! traces its path without forming the matrix (issue 11). The contact crate uses it for large
-//! structural models and hands the path to the dense solver ([`crate::PathSolver::adopt`]),
-//! which verifies what is reported.
+//! traces its path without forming the matrix (issue 11). A path to the target can be handed
+//! to the dense solver ([`crate::PathSolver::adopt`]), which verifies what is reported; the
+//! CLI does not use it yet (its rays are not verified from the data).
 //!
 //! ```text
 //! x = q0 + p·d0 + D z − C y,   A y = qa + p·da + B z,   x ≥ 0, z ≥ 0, xᵀz = 0
