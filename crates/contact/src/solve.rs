@@ -121,9 +121,6 @@ pub fn solve_sparse(
         tightening: normalised.tightening(units.normalised_force(settings.tightening)),
     };
     let engine = engine_settings(&normalised, settings);
-    // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
-    // user's units, shown in tableaux and labels, is built only after the path, so that the
-    // pivoting's kernel matrices never meet a second `n × n` matrix.
     let schur_settings = sparse.map(|_| {
         (
             engine.lexicographic_order.clone(),
@@ -134,6 +131,9 @@ pub fn solve_sparse(
             engine.progress.clone(),
         )
     });
+    // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
+    // user's units, shown in tableaux and labels, is built only after the path, so that the
+    // pivoting's kernel matrices never meet a second `n × n` matrix.
     let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
     let traced = match (sparse, schur_settings) {
         (Some(sparse), Some((order, relations, max_pivots, progress)))
