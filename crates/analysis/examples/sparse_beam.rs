@@ -14,7 +14,7 @@ use unilateral_contact::ContactLcp;
 use unilateral_io::{read_problem, Problem};
 use unilateral_lcp::{
     basic_after, first_different_step, follow_schur_path, Follow, PathOptions, PathSolver,
-    RowRelation, SchurOptions, Settings,
+    SchurOptions, Settings,
 };
 use unilateral_oracle::fixtures::bearings::beam_model;
 
@@ -45,12 +45,7 @@ fn main() {
     let zone = sparse_zone_of(&model).unwrap();
     let lcp = zone.lcp();
     let blocks = t.elapsed().as_secs_f64();
-    let order: Vec<usize> = (m..n).chain(0..m).collect();
-    let relations: Vec<RowRelation> = (0..m)
-        .map(|i| RowRelation {
-            terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * zone.friction[i])],
-        })
-        .collect();
+    let (order, relations) = (zone.lexicographic_order(), zone.row_relations());
     let lcp_sparse = lcp.clone();
     let t = Instant::now();
     let got = follow_schur_path(

@@ -65,7 +65,7 @@ impl ContactLcp {
             });
         let (q0, d) = load_vectors(zone);
         let dir = tightening_direction(f);
-        let lexicographic_order = (m..n).chain(0..m).collect();
+        let lexicographic_order = lexicographic_order(m);
         Self {
             problem: ParametricLcp { m: mm, q0, d },
             tightening_direction: dir,
@@ -80,16 +80,7 @@ impl ContactLcp {
     /// the two friction parts add up to `2f` times the normal row. Given to the engine, they
     /// decide the tie of a slipping pair's normal row and opposite friction row from the data.
     pub fn row_relations(&self) -> Vec<unilateral_lcp::RowRelation> {
-        let m = self.pairs;
-        (0..m)
-            .map(|i| {
-                let mut terms = vec![(m + i, 1.0), (2 * m + i, 1.0)];
-                if self.friction[i] != 0.0 {
-                    terms.push((i, -2.0 * self.friction[i]));
-                }
-                unilateral_lcp::RowRelation { terms }
-            })
-            .collect()
+        friction_relations(&self.friction)
     }
 
     /// The tightening of amount `c` in this problem's direction (`None` for `c = 0`).
@@ -179,4 +170,24 @@ pub(crate) fn tightening_direction(friction: &[f64]) -> Vec<f64> {
         dir[2 * m + i] = f.max(1.0);
     }
     dir
+}
+
+/// The rows of `m` pairs in the formulation's lexicographic priority: tangential rows before
+/// normal rows (see [`ContactLcp::build`]).
+pub(crate) fn lexicographic_order(m: usize) -> Vec<usize> {
+    (m..3 * m).chain(0..m).collect()
+}
+
+/// Each pair's friction relation `x_t+ + x_t- − 2f·x_n` (see [`ContactLcp::row_relations`]).
+pub(crate) fn friction_relations(friction: &[f64]) -> Vec<unilateral_lcp::RowRelation> {
+    let m = friction.len();
+    (0..m)
+        .map(|i| {
+            let mut terms = vec![(m + i, 1.0), (2 * m + i, 1.0)];
+            if friction[i] != 0.0 {
+                terms.push((i, -2.0 * friction[i]));
+            }
+            unilateral_lcp::RowRelation { terms }
+        })
+        .collect()
 }

@@ -121,39 +121,32 @@ pub fn solve_sparse(
         tightening: normalised.tightening(units.normalised_force(settings.tightening)),
     };
     let engine = engine_settings(&normalised, settings);
-    let schur_settings = sparse.map(|_| {
-        (
-            engine.lexicographic_order.clone(),
-            engine.row_relations.clone(),
-            // A long path takes about 2n pivots; beyond 6n the sparse engine is more likely
-            // wandering in ill-conditioned ties than tracing, and the dense engine takes over.
-            engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
-            engine.progress.clone(),
-        )
-    });
+    // The sparse engine's options, with the engine's order, relations and progress; taken
+    // before the solver takes the settings.
+    let schur_options = unilateral_lcp::SchurOptions {
+        target: settings.target,
+        follow: settings.follow,
+        // A long path takes about 2n pivots; beyond 6n the sparse engine is more likely
+        // wandering in ill-conditioned ties than tracing, and the dense engine takes over.
+        max_pivots: engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
+        max_border: 40,
+        order: engine.lexicographic_order.clone(),
+        relations: engine.row_relations.clone(),
+        progress: engine.progress.clone(),
+    };
     // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
     // user's units, shown in tableaux and labels, is built only after the path, so that the
     // pivoting's kernel matrices never meet a second `n × n` matrix.
     let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
-    let traced = match (sparse, schur_settings) {
-        (Some(sparse), Some((order, relations, max_pivots, progress)))
-            if settings.tightening == 0.0
+    let traced = sparse
+        .filter(|sparse| {
+            settings.tightening == 0.0
                 && settings.follow == unilateral_lcp::Follow::ToTarget
-                && sparse.pairs() == zone.pairs() =>
-        {
+                && sparse.pairs() == zone.pairs()
+        })
+        .and_then(|sparse| {
             let lcp = units.normalise_sparse(sparse).lcp();
-            let schur = unilateral_lcp::follow_schur_path(
-                &lcp,
-                &unilateral_lcp::SchurOptions {
-                    target: settings.target,
-                    follow: settings.follow,
-                    max_pivots,
-                    max_border: 40,
-                    order,
-                    relations,
-                    progress,
-                },
-            );
+            let schur = unilateral_lcp::follow_schur_path(&lcp, &schur_options);
             // Only a path that reaches the target is taken (its point formed and verified from
             // the dense data). The sparse engine's rays are not verified from the data, and on
             // the benchmark's beams they were false: a point far along them (10⁶ times their
@@ -162,9 +155,7 @@ pub fn solve_sparse(
                 .then(|| solver.adopt(schur))
                 .flatten()
                 .filter(|p| p.solution.is_some())
-        }
-        _ => None,
-    };
+        });
     let traced_on_sparse_blocks = traced.is_some();
     let mut path = traced.unwrap_or_else(|| solver.follow());
     let m = zone.pairs();

@@ -31,6 +31,18 @@ impl SparseZone {
         self.friction.len()
     }
 
+    /// The rows' lexicographic priority of its LCP, as the dense LCP's
+    /// ([`crate::ContactLcp::lexicographic_order`]).
+    pub fn lexicographic_order(&self) -> Vec<usize> {
+        crate::lcp::lexicographic_order(self.pairs())
+    }
+
+    /// The friction relations of its LCP's rows, as the dense LCP's
+    /// ([`crate::ContactLcp::row_relations`]).
+    pub fn row_relations(&self) -> Vec<unilateral_lcp::RowRelation> {
+        crate::lcp::friction_relations(&self.friction)
+    }
+
     /// The LCP of formulation.md §3 with `M = T R U`, `q = T (R_c − R·[η; 0])`,
     /// `d = T R_v` (`T` stacks `[I, 0]`, `[F, I]`, `[F, −I]`; `U` maps `z` to the links'
     /// dislocations `[z_n; (z_t+ − z_t-)/2]`), as `x = q0 + p·d0 + D z − C y`,

@@ -17,7 +17,7 @@ mod schur_beam;
 use std::time::Instant;
 use unilateral_lcp::{
     basic_after, first_different_step, follow_schur_path, Follow, PathOptions, PathSolver,
-    RowRelation, SchurOptions, Settings,
+    SchurOptions, Settings,
 };
 
 fn main() {
@@ -42,14 +42,14 @@ fn main() {
     drop(lu);
     drop(a);
     println!("one dense LU of order {n}: {lu_s:.3} s");
-    let order: Vec<usize> = (m..3 * m).chain(0..m).collect();
+    let (order, relations) = schur_beam::contact_order_and_relations(m, 0.3);
     let opts = SchurOptions {
         target: 1.0,
         follow: Follow::ToEnd,
         max_pivots: 20 * n + 100,
         max_border: 40,
         order: Some(order.clone()),
-        relations: relations(m, 0.3),
+        relations: relations.clone(),
         progress: Default::default(),
     };
     let t = Instant::now();
@@ -68,10 +68,9 @@ fn main() {
         let t = Instant::now();
         let problem = schur_beam::contact_dense(&lcp, 0.3);
         let form = t.elapsed().as_secs_f64();
-        let f = 0.3;
         let settings = Settings {
             lexicographic_order: Some(order),
-            row_relations: relations(m, f),
+            row_relations: relations,
             ..Settings::default()
         };
         let check_var: Option<usize> = std::env::var("CHECK_VAR").ok().and_then(|v| v.parse().ok());
@@ -136,13 +135,4 @@ fn main() {
             d / lu_s
         );
     }
-}
-
-/// Each pair's friction relation `x_t+ + x_t- − 2f·x_n = 0`.
-fn relations(m: usize, f: f64) -> Vec<RowRelation> {
-    (0..m)
-        .map(|i| RowRelation {
-            terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * f)],
-        })
-        .collect()
 }

@@ -10,8 +10,8 @@ use unilateral_contact::ContactLcp;
 use unilateral_fem::Model;
 use unilateral_io::{read_problem, Problem};
 use unilateral_lcp::{
-    first_different_step, follow_schur_path, Follow, PathOptions, PathSolver, RowRelation,
-    SchurOptions, Settings,
+    first_different_step, follow_schur_path, Follow, PathOptions, PathSolver, SchurOptions,
+    Settings,
 };
 use unilateral_oracle::fixtures::bearings::beam_model;
 
@@ -94,11 +94,7 @@ fn the_schur_engine_on_the_sparse_zone_follows_the_dense_path() {
     let model = bearing_beam(m);
     let zone = zone_of(&model.condense().unwrap());
     let lcp = ContactLcp::build(&zone);
-    let relations: Vec<RowRelation> = (0..m)
-        .map(|i| RowRelation {
-            terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * lcp.friction[i])],
-        })
-        .collect();
+    let relations = lcp.row_relations();
     let settings = Settings {
         lexicographic_order: Some(lcp.lexicographic_order.clone()),
         row_relations: relations.clone(),

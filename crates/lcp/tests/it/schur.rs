@@ -1,9 +1,9 @@
 //! The Schur-complement engine against the dense engine on the same problems, formed densely.
 
-use crate::schur_beam::{beam_schur, BeamData};
+use crate::schur_beam::{beam_schur, contact_order_and_relations, BeamData};
 use unilateral_lcp::{
     basic_after, first_different_step, follow_schur_path, Follow, PathOptions, PathSolver,
-    RowRelation, SchurOptions, Settings,
+    SchurOptions, Settings,
 };
 
 fn compare(m: usize, data: &BeamData) {
@@ -16,18 +16,12 @@ fn compare(m: usize, data: &BeamData) {
         tightening: None,
     };
     // The contact crate's settings: tangential rows first, each pair's friction relation.
-    let order: Vec<usize> = (m..3 * m).chain(0..m).collect();
-    let f = data.friction;
+    let (order, relations) = contact_order_and_relations(m, data.friction);
     let settings = Settings {
         lexicographic_order: Some(order.clone()),
-        row_relations: (0..m)
-            .map(|i| RowRelation {
-                terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * f)],
-            })
-            .collect(),
+        row_relations: relations.clone(),
         ..Settings::default()
     };
-    let relations = settings.row_relations.clone();
     let solver = PathSolver::new(dense, opts, settings).unwrap();
     let want = solver.follow();
     let got = follow_schur_path(
@@ -111,12 +105,7 @@ fn dense_engine_takes_the_start_of_slip_it_passed_on_a_600_bearing_beam() {
     let lcp = beam_schur(m, &data);
     let dense = crate::schur_beam::contact_dense(&lcp, data.friction);
     let n = 3 * m;
-    let order: Vec<usize> = (m..3 * m).chain(0..m).collect();
-    let relations: Vec<RowRelation> = (0..m)
-        .map(|i| RowRelation {
-            terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * data.friction)],
-        })
-        .collect();
+    let (order, relations) = contact_order_and_relations(m, data.friction);
     let settings = Settings {
         lexicographic_order: Some(order.clone()),
         row_relations: relations.clone(),
@@ -174,12 +163,7 @@ fn an_adopted_sparse_path_answers_as_the_dense_one() {
         let data = BeamData::default();
         let lcp = beam_schur(m, &data);
         let dense = crate::schur_beam::contact_dense(&lcp, data.friction);
-        let order: Vec<usize> = (m..3 * m).chain(0..m).collect();
-        let relations: Vec<RowRelation> = (0..m)
-            .map(|i| RowRelation {
-                terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * data.friction)],
-            })
-            .collect();
+        let (order, relations) = contact_order_and_relations(m, data.friction);
         let settings = Settings {
             lexicographic_order: Some(order.clone()),
             row_relations: relations.clone(),

@@ -242,3 +242,17 @@ pub fn contact_dense(lcp: &SchurLcp, friction: f64) -> unilateral_lcp::Parametri
         d: vector(&p.d),
     }
 }
+
+/// The contact crate's lexicographic order (tangential rows first) and each pair's friction
+/// relation `x_t+ + x_t- − 2f·x_n = 0`, for `m` pairs of friction `f`.
+pub fn contact_order_and_relations(
+    m: usize,
+    f: f64,
+) -> (Vec<usize>, Vec<unilateral_lcp::RowRelation>) {
+    let relations = (0..m)
+        .map(|i| unilateral_lcp::RowRelation {
+            terms: vec![(m + i, 1.0), (2 * m + i, 1.0), (i, -2.0 * f)],
+        })
+        .collect();
+    ((m..3 * m).chain(0..m).collect(), relations)
+}
