@@ -70,12 +70,12 @@ pub fn solve_shared(
 
 /// [`solve_shared`], the path traced by the engine on sparse data
 /// ([`unilateral_lcp::follow_schur_path`]) on `sparse` — the same zone as the bonded
-/// structure's blocks — where it applies: no tightening, a path to the target (not to its
-/// end: the sparse engine's rays are not verified) and a start at the bonded state
-/// (`q(0) ≥ 0`). The dense solver then takes that path as its own
-/// ([`PathSolver::adopt`]): it forms and verifies the reported solution and answers every
-/// later question on it. Where the sparse engine does not apply or fails, the dense engine
-/// traces the path.
+/// structure's blocks — where it applies: no tightening and a start at the bonded state
+/// (`q(0) ≥ 0`). The dense solver judges the rates the sparse data cannot tell from
+/// round-off and takes that path as its own ([`PathSolver::follow_sparse`]): it forms and
+/// verifies the reported solution, and a ray's basis far along it, and answers every later
+/// question on it. Where the sparse engine does not apply, fails, or ends otherwise than at
+/// the target or in a verified ray, the dense engine traces the path.
 pub fn solve_sparse(
     zone: Arc<ContactZone>,
     sparse: Option<&crate::SparseZone>,
@@ -139,22 +139,12 @@ pub fn solve_sparse(
     // pivoting's kernel matrices never meet a second `n × n` matrix.
     let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
     let traced = sparse
-        .filter(|sparse| {
-            settings.tightening == 0.0
-                && settings.follow == unilateral_lcp::Follow::ToTarget
-                && sparse.pairs() == zone.pairs()
-        })
+        .filter(|sparse| settings.tightening == 0.0 && sparse.pairs() == zone.pairs())
         .and_then(|sparse| {
             let lcp = units.normalise_sparse(sparse).lcp();
-            let schur = unilateral_lcp::follow_schur_path(&lcp, &schur_options);
-            // Only a path that reaches the target is taken (its point formed and verified from
-            // the dense data). The sparse engine's rays are not verified from the data, and on
-            // the benchmark's beams they were false: a point far along them (10⁶ times their
-            // start) was no solution, where the dense path went on to more events.
-            (schur.status == PathStatus::TargetReached)
-                .then(|| solver.adopt(schur))
-                .flatten()
-                .filter(|p| p.solution.is_some())
+            // Taken where it reaches the target, or ends in a ray that verifies far along
+            // it, its doubtful rates judged on the dense data (`PathSolver::follow_sparse`).
+            solver.follow_sparse(&lcp, &schur_options)
         });
     let traced_on_sparse_blocks = traced.is_some();
     let mut path = traced.unwrap_or_else(|| solver.follow());

@@ -193,6 +193,54 @@ impl PathSolver {
         crate::parametric::adopt(self, schur)
     }
 
+    /// The engine on sparse data's path on `lcp` (the same problem as this solver's, of its
+    /// order), with the rates it cannot tell from round-off judged on this solver's `M`, as
+    /// that engine reports it: not adopted, nothing verified ([`PathSolver::follow_sparse`]
+    /// does both).
+    pub fn trace_sparse(
+        &self,
+        lcp: &crate::SchurLcp,
+        options: &crate::SchurOptions,
+    ) -> crate::SchurPath {
+        crate::schur::follow(lcp, options, Some(self))
+    }
+
+    /// The path traced by the engine on sparse data on `lcp` — the same problem as this
+    /// solver's, kept as the structure's sparse blocks — with the rates it cannot tell from
+    /// round-off judged on this solver's `M` (a start of slip whose rate is 10⁻¹⁴ of the
+    /// structure's displacements it forms it from, but clear on the condensed matrix), then
+    /// adopted ([`PathSolver::adopt`]). Taken only where it reaches the target or ends in a ray
+    /// whose reported point verifies and, for a ray, whose basis still solves the problem at
+    /// 10⁶ times the larger of its start and the target (a false ray ends there in a negative
+    /// variable). `None` otherwise: the caller traces with [`PathSolver::follow`].
+    pub fn follow_sparse(
+        &self,
+        lcp: &crate::SchurLcp,
+        options: &crate::SchurOptions,
+    ) -> Option<LoadPath> {
+        if lcp.order() != self.n {
+            return None;
+        }
+        let schur = self.trace_sparse(lcp, options);
+        if !matches!(
+            schur.status,
+            crate::PathStatus::TargetReached | crate::PathStatus::Ray
+        ) {
+            return None;
+        }
+        let path = self.adopt(schur)?;
+        path.solution.as_ref()?;
+        if path.status == crate::PathStatus::Ray {
+            let start = path.breakpoints.last().map_or(0.0, |b| b.p);
+            let far = 1e6 * start.max(self.options.target).max(f64::MIN_POSITIVE);
+            let point = crate::parametric::point_at(self, &path, far)?;
+            if point.fallback || point.tightening_pivots != 0 {
+                return None;
+            }
+        }
+        Some(path)
+    }
+
     /// The solution without tightening at any `p` on a path this solver followed (for example
     /// a load below the target, or a load on the ray's half-line beyond the last event);
     /// `Ok(None)` when `p` is not on the traced path.
@@ -330,5 +378,34 @@ impl crate::residual::ColumnSource for OriginalColumns<'_> {
     }
     fn column_into(&self, j: usize, rows: std::ops::Range<usize>, out: &mut [f64]) {
         self.0.original_column_into(j, rows, out);
+    }
+}
+
+impl crate::schur::DenseRates for PathSolver {
+    fn row(&self, i: usize, dz: &[f64], dp: f64) -> (f64, f64) {
+        let (mut rate, mut terms) = (0.0, 0.0);
+        for (j, &r) in dz.iter().enumerate().filter(|(_, r)| **r != 0.0) {
+            let t = self.prep.original_entry(i, j) * r;
+            rate += t;
+            terms += t.abs();
+        }
+        let t = self.d[i] * dp;
+        (rate + t, terms + t.abs())
+    }
+
+    fn rows(&self, dz: &[f64], dp: f64) -> (Vec<f64>, Vec<f64>) {
+        let n = self.n;
+        let mut rate: Vec<f64> = self.d.iter().map(|d| d * dp).collect();
+        let mut terms: Vec<f64> = rate.iter().map(|t| t.abs()).collect();
+        let mut col = vec![0.0; n];
+        for (j, &r) in dz.iter().enumerate().filter(|(_, r)| **r != 0.0) {
+            self.prep.original_column_into(j, 0..n, &mut col);
+            for ((a, b), &m) in rate.iter_mut().zip(terms.iter_mut()).zip(&col) {
+                let t = m * r;
+                *a += t;
+                *b += t.abs();
+            }
+        }
+        (rate, terms)
     }
 }

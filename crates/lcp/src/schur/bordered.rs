@@ -238,10 +238,6 @@ impl Bordered {
         self.base.solve(r, false);
     }
 
-    fn solve_base_transpose(&self, r: &mut [f64]) {
-        self.base.solve(r, true);
-    }
-
     /// The base row of a border column's single entry (`−1`).
     fn col_row(&self, c: Freed) -> usize {
         self.big_n + self.n + c.0
@@ -411,34 +407,6 @@ impl Bordered {
             }
         }
         t
-    }
-
-    /// Row `b` of the basis inverse: the sensitivities of basic variable `b` to the right-hand
-    /// side of the base's rows (the second block's rows are the tableau's rows).
-    pub fn inverse_row(&self, b: Col) -> Vec<f64> {
-        // [𝒜0ᵀ V; Uᵀ 0] [u; ν] = [e_b; 0]: Sᵀ ν = −Uᵀ 𝒜0⁻ᵀ e_b, u = 𝒜0⁻ᵀ (e_b − V ν).
-        let size = self.size();
-        let mut t = vec![0.0; size];
-        t[self.unknown(b)] = 1.0;
-        self.solve_base_transpose(&mut t);
-        let k = self.cols.len();
-        if k == 0 {
-            return t;
-        }
-        let mut rhs = Mat::<f64>::zeros(k, 1);
-        for (u, &c) in self.cols.iter().enumerate() {
-            // Sᵀ ν = b ⇔ (R S C)ᵀ (R⁻¹ ν) = C b; the column's entry is −1.
-            rhs[(u, 0)] = t[self.col_row(c)] * self.s_cols[u];
-        }
-        let st = self.s_lu.as_ref().expect("a factorised border");
-        st.solve_transpose_in_place_with_conj(Conj::No, rhs.as_mut());
-        let mut s2 = vec![0.0; size];
-        s2[self.unknown(b)] = 1.0;
-        for (g, &v) in self.rows.iter().enumerate() {
-            s2[self.unknown(v)] -= rhs[(g, 0)] * self.s_rows[g];
-        }
-        self.solve_base_transpose(&mut s2);
-        s2
     }
 }
 

@@ -1,7 +1,8 @@
 //! The parametric LCP whose matrix is a Schur complement of sparse data, and the engine that
 //! traces its path without forming the matrix (issue 11). A path to the target can be handed
-//! to the dense solver ([`crate::PathSolver::adopt`]), which verifies what is reported; the
-//! CLI does not use it yet (its rays are not verified from the data).
+//! to the dense solver ([`crate::PathSolver::adopt`], [`crate::PathSolver::follow_sparse`]),
+//! which verifies what is reported on the condensed data; the CLI does not use it yet (late
+//! on long paths the condensed data are the less accurate, `docs/engine.md`).
 //!
 //! ```text
 //! x = q0 + p·d0 + D z − C y,   A y = qa + p·da + B z,   x ≥ 0, z ≥ 0, xᵀz = 0
@@ -15,13 +16,16 @@
 //! factorisation of the whole system (see `bordered`).
 //!
 //! What it does so far: the path from the slack basis (`q(0) ≥ 0`) with `p` as the driver, to
-//! the target or to the end; lexicographic ties in a given order of the rows; the rows of a
-//! relation decided by it (a row alone among its relation's basic rows never leaves; two
-//! basic rows fall together and the relation says which leaves); each direction refined once
-//! against the data; the values formed afresh at each refactorisation and at near ties. What
-//! it does not do (the dense engine does, and the callers fall back to it): a start by
-//! Lemke's method or a tightening, equilibration, the verification of rays and mechanisms
-//! from the data, the sweep and the tableaux. Measurements: `docs/performance.md`, round 27.
+//! the target or to the end; lexicographic ties in a given order of the rows, computed a
+//! priority column at a time for the candidates still tied; the rows of a relation decided
+//! by it (a row alone among its relation's basic rows never leaves; two basic rows fall
+//! together and the relation says which leaves); each direction refined once against the
+//! data; the values formed afresh at each refactorisation and at near ties; with a dense
+//! solver at hand ([`crate::PathSolver::trace_sparse`]), the rates of `x` that the sparse
+//! data cannot tell from round-off judged on the dense `M`. What it does not do (the dense
+//! engine does, and the callers fall back to it): a start by Lemke's method or a
+//! tightening, equilibration, the verification of its points on the structure's equations,
+//! the sweep and the tableaux. Measurements: `docs/performance.md`, rounds 27 and 28.
 
 mod bordered;
 
@@ -107,13 +111,11 @@ impl SchurLcp {
 }
 
 impl SchurLcp {
-    /// The values of every variable (`x`, then `z`, then `p`; zero where non-basic) on the
-    /// basis marked in `basic` (length `2n + 1`, `n` basic), from a dense LU of its equations
-    /// on the sparse data — `A y − B z_B − da·p = qa`, `x_B − D z_B + C y − d0·p = q0` — with
-    /// no `M` formed: an independent check of a breakpoint (`O((N + n)³)`). `None` when
-    /// `basic` does not mark `n` variables.
-    pub fn basis_solution(&self, basic: &[bool]) -> Option<Vec<f64>> {
-        use faer::linalg::solvers::Solve;
+    /// The equations of [`SchurLcp::basis_solution`] formed densely: the matrix, the right-hand
+    /// side, and each variable's column among the unknowns (`None` where non-basic; the first
+    /// `N` unknowns are `y`).
+    #[allow(clippy::type_complexity)]
+    pub fn basis_system(&self, basic: &[bool]) -> Option<(Mat<f64>, Mat<f64>, Vec<Option<usize>>)> {
         let n = self.order();
         let big_n = self.a.nrows();
         let vars: Vec<usize> = (0..=2 * n).filter(|&v| basic[v]).collect();
@@ -162,8 +164,19 @@ impl SchurLcp {
                 self.q0[i - big_n]
             }
         });
+        Some((a, rhs, pos))
+    }
+
+    /// The values of every variable (`x`, then `z`, then `p`; zero where non-basic) on the
+    /// basis marked in `basic` (length `2n + 1`, `n` basic), from a dense LU of its equations
+    /// on the sparse data — `A y − B z_B − da·p = qa`, `x_B − D z_B + C y − d0·p = q0` — with
+    /// no `M` formed: an independent check of a breakpoint (`O((N + n)³)`). `None` when
+    /// `basic` does not mark `n` variables.
+    pub fn basis_solution(&self, basic: &[bool]) -> Option<Vec<f64>> {
+        use faer::linalg::solvers::Solve;
+        let (a, rhs, pos) = self.basis_system(basic)?;
         let sol = a.partial_piv_lu().solve(&rhs);
-        let mut out = vec![0.0; 2 * n + 1];
+        let mut out = vec![0.0; pos.len()];
         for (v, p) in pos.iter().enumerate() {
             if let Some(c) = *p {
                 out[v] = sol[(c, 0)];
@@ -241,8 +254,33 @@ impl State {
     }
 }
 
+/// The rates of rows of `x` formed from a dense copy of the same problem (`x = q + p·d + M z`
+/// with `M` formed): `rate = M_i·dz + d_i·dp` and the size of its terms
+/// `Σ_j |M_ij dz_j| + |d_i dp|`. The sparse engine forms a rate of `x` as
+/// `d0·dp + D dz − C dy`, whose terms are the structure's displacements (a beam's, under the
+/// whole load) and can exceed the rate by 10¹⁵: a real start of slip then looks like
+/// round-off. The condensed `M` carries that cancellation once, in its data, and a rate read
+/// from it is judged as the dense engine judges it ([`crate::PathSolver::follow_sparse`]).
+pub(crate) trait DenseRates {
+    /// Row `i`'s rate and the size of its terms.
+    fn row(&self, i: usize, dz: &[f64], dp: f64) -> (f64, f64);
+    /// Every row's rate and terms.
+    fn rows(&self, dz: &[f64], dp: f64) -> (Vec<f64>, Vec<f64>);
+}
+
 /// Follows the path of `lcp` from `p = 0`.
 pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
+    follow(lcp, opts, None)
+}
+
+/// [`follow_schur_path`], the rates of `x` that the sparse data cannot tell from round-off
+/// judged on `dense` where it is given (a row that decreases at a rate below the column's
+/// tolerance; every row where the path would end in a ray).
+pub(crate) fn follow(
+    lcp: &SchurLcp,
+    opts: &SchurOptions,
+    dense: Option<&dyn DenseRates>,
+) -> SchurPath {
     let n = lcp.order();
     let big_n = lcp.a.nrows();
     let mut out = SchurPath {
@@ -387,63 +425,136 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
             _ => 1e-9 * x_scale,
         };
         let tol = tol_of(2 * n);
-        let ratios = |st: &State| -> (f64, Vec<(usize, f64)>) {
-            let mut best = f64::INFINITY;
-            let mut cands: Vec<(usize, f64)> = Vec::new();
-            for (v, &rate) in dir.iter().enumerate() {
-                if !st.basic[v]
-                    || v == entering
-                    || rate >= 0.0
-                    || scale(v) <= tol_of(v)
-                    || alone(st, v)
-                {
-                    continue;
-                }
-                let ratio = st.val[v].max(0.0) / -rate;
-                cands.push((v, ratio));
-                best = best.min(ratio);
-            }
-            (best, cands)
-        };
-        let (mut best, mut cands) = ratios(&st);
-        // Rows of `x` decreasing at a rate below the tolerance that would block first (or at
-        // all, on a ray): taken where the rate exceeds round-off of the terms that formed it
-        // (`x_i = q0 + p·d0 + D z − C y`, row by row). A tolerance against the largest rates
-        // alone passed a start of slip and called the path a ray (a 500-bearing beam).
-        {
-            let doubtful: Vec<usize> = (0..n)
-                .filter(|&v| {
-                    st.basic[v]
-                        && v != entering
-                        && dir[v] < 0.0
-                        && scale(v) <= tol_of(v)
-                        && !alone(&st, v)
-                        && st.val[v] > 0.0
-                        && st.val[v] / -dir[v] < best
-                })
-                .collect();
-            for v in doubtful {
-                let terms =
-                    row_terms(&dt, &ct, v, &dv[..big_n], &dir[n..2 * n]) + (lcp.d0[v] * dp).abs();
-                if -dir[v] > 1e-9 * terms {
-                    let ratio = st.val[v] / -dir[v];
+        // Rows of `x` whose rates were judged apart from the column's tolerance (below).
+        let mut judged: Vec<(usize, f64)> = Vec::new();
+        // Rows of `x` above the column's tolerance whose rates the dense data call round-off.
+        let mut rejected: Vec<usize> = Vec::new();
+        let ratios =
+            |st: &State, judged: &[(usize, f64)], rejected: &[usize]| -> (f64, Vec<(usize, f64)>) {
+                let mut best = f64::INFINITY;
+                let mut cands: Vec<(usize, f64)> = Vec::new();
+                for (v, &rate) in dir.iter().enumerate() {
+                    if !st.basic[v]
+                        || v == entering
+                        || rate >= 0.0
+                        || scale(v) <= tol_of(v)
+                        || alone(st, v)
+                        || rejected.contains(&v)
+                        || judged.iter().any(|j| j.0 == v)
+                    {
+                        continue;
+                    }
+                    let ratio = st.val[v].max(0.0) / -rate;
                     cands.push((v, ratio));
                     best = best.min(ratio);
                 }
+                for &(v, rate) in judged {
+                    let ratio = st.val[v].max(0.0) / -rate;
+                    cands.push((v, ratio));
+                    best = best.min(ratio);
+                }
+                (best, cands)
+            };
+        let (mut best, mut cands) = ratios(&st, &judged, &rejected);
+        // Rows of `x` decreasing at a rate below the tolerance that would block first (or at
+        // all, on a ray): taken where the rate exceeds round-off of the terms that formed it
+        // (`x_i = q0 + p·d0 + D z − C y`, row by row; or on the dense data where it is given).
+        // A tolerance against the largest rates alone passed a start of slip and called the
+        // path a ray (a 500-bearing beam).
+        let doubtful: Vec<usize> = (0..n)
+            .filter(|&v| {
+                st.basic[v]
+                    && v != entering
+                    && dir[v] < 0.0
+                    && scale(v) <= tol_of(v)
+                    && !alone(&st, v)
+                    && st.val[v] > 0.0
+                    && st.val[v] / -dir[v] < best
+            })
+            .collect();
+        for v in doubtful {
+            let (rate, terms) = match dense {
+                Some(dense) => dense.row(v, &dir[n..2 * n], dp),
+                None => (
+                    dir[v],
+                    row_terms(&dt, &ct, v, &dv[..big_n], &dir[n..2 * n]) + (lcp.d0[v] * dp).abs(),
+                ),
+            };
+            if rate < 0.0 && -rate > crate::ACCEPT_RESIDUAL * terms {
+                judged.push((v, rate));
             }
+        }
+        if !judged.is_empty() {
+            (best, cands) = ratios(&st, &judged, &rejected);
         }
         // Candidates within 1e-7 of the smallest ratio are judged on values formed afresh from
         // the data (as the dense engine's near ties): the values moved along the segments
         // since the last refactorisation drift.
         if !fresh && cands.iter().filter(|c| c.1 <= best * (1.0 + 1e-7)).count() > 1 {
             values(lcp, &basis, &mut st);
-            (best, cands) = ratios(&st);
+            (best, cands) = ratios(&st, &judged, &rejected);
+        }
+        // The rows of `x` that would block first, at a rate within 1e-9 of the terms that
+        // formed it on the sparse data, are judged on the dense data where it is given: a
+        // friction row of a pair whose rows are all at round-off (an open pair's, 1e-3 against
+        // terms of 1e11) "decreasing" at 1e-4 is no event (the dense engine does not take it).
+        if let Some(dense) = dense {
+            loop {
+                let mut changed = false;
+                let first: Vec<usize> = cands
+                    .iter()
+                    .filter(|c| c.0 < n && c.1 <= best * (1.0 + 1e-7))
+                    .map(|c| c.0)
+                    .filter(|v| !judged.iter().any(|j| j.0 == *v))
+                    .collect();
+                for v in first {
+                    let terms = row_terms(&dt, &ct, v, &dv[..big_n], &dir[n..2 * n])
+                        + (lcp.d0[v] * dp).abs();
+                    if -dir[v] <= crate::ACCEPT_RESIDUAL * terms {
+                        let (rate, terms) = dense.row(v, &dir[n..2 * n], dp);
+                        if rate < 0.0 && -rate > crate::ACCEPT_RESIDUAL * terms {
+                            judged.push((v, rate));
+                        } else {
+                            rejected.push(v);
+                        }
+                        changed = true;
+                    }
+                }
+                if !changed {
+                    break;
+                }
+                (best, cands) = ratios(&st, &judged, &rejected);
+            }
+        }
+        // Where nothing blocks (a ray, or a mechanism) every row of `x` is judged on the dense
+        // data: a rate the sparse data computed as round-off, or as rising, can be a real
+        // decrease there (the 500-bearing beam's "ray from p = 627" had a start of slip at
+        // p ≈ 6e5).
+        if let (true, Some(dense)) = (cands.is_empty(), dense) {
+            let (rates, terms) = dense.rows(&dir[n..2 * n], dp);
+            for v in 0..n {
+                if st.basic[v]
+                    && v != entering
+                    && !alone(&st, v)
+                    && rates[v] < 0.0
+                    && -rates[v] > crate::ACCEPT_RESIDUAL * terms[v]
+                {
+                    judged.push((v, rates[v]));
+                }
+            }
+        }
+        if cands.is_empty() && !judged.is_empty() {
+            (best, cands) = ratios(&st, &judged, &rejected);
+        }
+        let p_sure = scale(2 * n) > tol;
+        // The judged rows move at their judged rates (their ratios, ties and values).
+        for &(v, rate) in &judged {
+            dir[v] = rate;
         }
         // The target on this segment: the driver's rate counts where it is above round-off,
         // or where the step carries the load a real way (1e-6 of the target) — as the dense
         // engine judges it; a mechanism's round-off rate times an unbounded step is no load.
         let p0 = st.p();
-        let p_sure = scale(2 * n) > tol;
         let carried = best.is_finite() && best * dp > 1e-6 * opts.target;
         if dp > 0.0 && p0 < opts.target && p0 + best * dp >= opts.target && (p_sure || carried) {
             let theta = (opts.target - p0) / dp;
@@ -495,7 +606,7 @@ pub fn follow_schur_path(lcp: &SchurLcp, opts: &SchurOptions) -> SchurPath {
         let leaving = if tied.len() == 1 {
             tied[0]
         } else {
-            lexicographic(&basis, &tied, &dir, big_n, &order)
+            lexicographic(&basis, &st.basic, &tied, &dir, big_n, &order)
         };
         let theta = cands.iter().find(|c| c.0 == leaving).map_or(best, |c| c.1);
         if leaving == 2 * n {
@@ -724,36 +835,59 @@ fn refined(
 }
 
 /// The tied candidate that leaves by the lexicographic rule: the smallest row of
-/// `B⁻¹ / (−α)` over the tableau's rows in their natural order.
+/// `B⁻¹ / (−α)` over the tableau's rows in their priority order. The rows are never formed:
+/// the entries are computed one priority column at a time for the candidates still tied —
+/// a unit column where the row's `x` is basic (it appears in its own equation alone), else
+/// one solve of the basis — so a tie costs a few solves, where a row of `B⁻¹` a candidate
+/// cost two whole solves (a 500-bearing beam's degenerate stretch: 47 s of ties for a path
+/// the dense engine traced in 0.2 s).
 fn lexicographic(
     basis: &Bordered,
+    basic: &[bool],
     tied: &[usize],
     dir: &[f64],
     big_n: usize,
     order: &[usize],
 ) -> usize {
-    let rows: Vec<Vec<f64>> = tied
-        .iter()
-        .map(|&v| {
-            let r = basis.inverse_row(v);
-            let a = -dir[v];
-            order.iter().map(|&i| r[big_n + i] / a).collect()
-        })
-        .collect();
-    // Entries equal to round-off of the rows' own size are equal.
-    let norm = |r: &[f64]| r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    let mut best = 0;
-    for k in 1..tied.len() {
-        let tol = 1e-9 * norm(&rows[k]).max(norm(&rows[best]));
-        for (&a, &b) in rows[k].iter().zip(&rows[best]) {
-            if (a - b).abs() <= tol {
-                continue;
-            }
-            if a < b {
-                best = k;
-            }
+    let n = order.len();
+    let mut alive: Vec<usize> = tied.to_vec();
+    let mut rhs = vec![0.0; big_n + 2 * n + 1];
+    for &i in order {
+        // (entry / (−α), its round-off) for each candidate still tied.
+        let vals: Vec<(f64, f64)> = if basic[i] {
+            alive
+                .iter()
+                .map(|&v| (if v == i { 1.0 / -dir[v] } else { 0.0 }, 0.0))
+                .collect()
+        } else {
+            rhs.fill(0.0);
+            rhs[big_n + i] = 1.0;
+            let t = basis.solve(&rhs, |_| 0.0);
+            // Round-off against the column's largest entry of `x` and `z`.
+            let scale = t[big_n..big_n + 2 * n]
+                .iter()
+                .fold(0.0f64, |a, v| a.max(v.abs()));
+            alive
+                .iter()
+                .map(|&v| {
+                    let a = -dir[v];
+                    (t[basis.unknown(v)] / a, 1e-9 * scale / a.abs())
+                })
+                .collect()
+        };
+        if vals.iter().all(|&(v, t)| v.abs() <= t) {
+            continue;
+        }
+        let (best, tb) =
+            vals.iter().copied().fold(
+                (f64::INFINITY, 0.0),
+                |acc, (v, t)| if v < acc.0 { (v, t) } else { acc },
+            );
+        let mut keep = vals.iter().map(|&(v, t)| (v - best).abs() <= t.max(tb));
+        alive.retain(|_| keep.next().unwrap_or(false));
+        if alive.len() == 1 {
             break;
         }
     }
-    tied[best]
+    alive[0]
 }

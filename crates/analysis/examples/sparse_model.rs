@@ -1,0 +1,317 @@
+//! A structural model's path traced by the dense engine and by the engine on sparse data
+//! (its doubtful rates judged on the dense data), compared pivot by pivot:
+//!
+//! ```text
+//! cargo run --release -p unilateral-analysis --example sparse_model -- MODEL.toml|beam:M [TARGET]
+//! ```
+
+use std::time::Instant;
+
+use unilateral_analysis::{sparse_zone_of, zone_of};
+use unilateral_contact::ContactLcp;
+use unilateral_io::{read_problem, Problem};
+use unilateral_lcp::{
+    basic_after, first_different_step, Follow, PathOptions, PathSolver, SchurOptions, Settings,
+};
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let path = args.get(1).expect("a model file");
+    // `beam:M`: the whole-process benchmark's beam on M bearings.
+    let dir = tempfile::tempdir().unwrap();
+    let path = match path.strip_prefix("beam:") {
+        Some(m) => {
+            let file = dir.path().join("beam.toml");
+            let model = unilateral_oracle::fixtures::bearings::beam_model(m.parse().unwrap());
+            std::fs::write(&file, model).unwrap();
+            file.to_string_lossy().into_owned()
+        }
+        None => path.clone(),
+    };
+    let target: Option<f64> = args.get(2).and_then(|s| s.parse().ok());
+    let Problem::Structural(p) = read_problem(std::path::Path::new(&path)).unwrap() else {
+        panic!("a structural model")
+    };
+    let model = p.model;
+    let sparse = sparse_zone_of(&model).unwrap();
+    let lcp = sparse.lcp();
+    let n = lcp.order();
+    let (order, relations) = (sparse.lexicographic_order(), sparse.row_relations());
+    let zone = zone_of(&model.condense().unwrap());
+    let dense = ContactLcp::build(&zone);
+    let settings = Settings {
+        lexicographic_order: Some(order.clone()),
+        row_relations: relations.clone(),
+        ..Settings::default()
+    };
+    let (follow, target) = match target {
+        Some(t) => (Follow::ToTarget, t),
+        None => (Follow::ToEnd, 1.0),
+    };
+    let opts = PathOptions {
+        target,
+        follow,
+        tightening: None,
+    };
+    let problem = dense.problem.clone();
+    if std::env::var("CHECK_M").is_ok() {
+        let other = lcp.dense();
+        let (mut zeroed, mut maxrel, mut maxabs_rel_row) = (0usize, 0.0f64, 0.0f64);
+        for i in 0..n {
+            let row = (0..n).fold(0.0f64, |a, j| a.max(problem.m[(i, j)].abs()));
+            for j in 0..n {
+                let (a, b) = (problem.m[(i, j)], other.m[(i, j)]);
+                if a == 0.0 && b != 0.0 {
+                    zeroed += 1;
+                    maxabs_rel_row = maxabs_rel_row.max(b.abs() / row);
+                }
+                if b != 0.0 {
+                    maxrel = maxrel.max((a - b).abs() / row);
+                }
+            }
+        }
+        let dq = (0..n).fold(0.0f64, |a, i| {
+            a.max(
+                (problem.q0[i] - other.q0[i]).abs()
+                    / problem.q0.iter().fold(0.0f64, |s, v| s.max(v.abs())),
+            )
+        });
+        let dd = (0..n).fold(0.0f64, |a, i| {
+            a.max(
+                (problem.d[i] - other.d[i]).abs()
+                    / problem.d.iter().fold(0.0f64, |s, v| s.max(v.abs())),
+            )
+        });
+        println!("condensed M against M by a dense LU of A: {zeroed} entries zero in the condensed one (largest {maxabs_rel_row:e} of its row), largest difference {maxrel:e} of the row; q0 {dq:e}, d {dd:e}");
+    }
+    let solver = PathSolver::new(dense.problem, opts, settings).unwrap();
+    let t = Instant::now();
+    let want = solver.follow();
+    let td = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let options = SchurOptions {
+        target,
+        follow,
+        max_pivots: 20 * n + 100,
+        max_border: 40,
+        order: Some(order),
+        relations,
+        progress: Default::default(),
+    };
+    let got = solver.trace_sparse(&lcp, &options);
+    let ts = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let taken = std::env::var("FOLLOW_SPARSE")
+        .is_ok()
+        .then(|| solver.follow_sparse(&lcp, &options))
+        .flatten();
+    println!(
+        "taken by follow_sparse: {:?} ({:.3} s)",
+        taken.map(|p| (p.status, p.steps.len(), p.solution.map(|s| s.p))),
+        t.elapsed().as_secs_f64()
+    );
+    println!(
+        "dense {:?} {} steps {td:.3} s; sparse {:?} {} steps {ts:.3} s, {} refactorisations",
+        want.status,
+        want.steps.len(),
+        got.status,
+        got.steps.len(),
+        got.refactorizations
+    );
+    let col = |v: unilateral_lcp::Var| match v {
+        unilateral_lcp::Var::X(i) => i,
+        unilateral_lcp::Var::Z(i) => n + i,
+        unilateral_lcp::Var::Driver => 2 * n,
+    };
+    let want_schur = (
+        want.status,
+        &want.steps,
+        want.last_entering.map_or(2 * n, col),
+    );
+    let got_schur = (got.status, &got.steps, got.last_entering.unwrap_or(2 * n));
+    for (name, path) in [("dense", &want_schur), ("sparse", &got_schur)] {
+        if path.0 != unilateral_lcp::PathStatus::Ray || std::env::var("CHECK_RAY").is_err() {
+            continue;
+        }
+        let steps = path.1;
+        let k = steps.len();
+        let mut basic = basic_after(steps, k, n);
+        let e = path.2;
+        basic[2 * n] = false;
+        basic[e] = true;
+        let p_end = steps.last().unwrap().p;
+        for far in [p_end * 1.0001, p_end * 10.0, p_end * 1e6] {
+            let shifted = unilateral_lcp::ParametricLcp {
+                m: problem.m.clone(),
+                q0: problem
+                    .q0
+                    .iter()
+                    .zip(&problem.d)
+                    .map(|(q, d)| q + far * d)
+                    .collect(),
+                d: problem.d.clone(),
+            };
+            let sol = shifted.basis_solution(&basic).unwrap();
+            let (v, x, scale) = most_negative(&sol, n);
+            println!("{name} ray's basis at p = {far:e}: most negative {v} = {x:e} (largest of its kind {scale:e})");
+            if std::env::var("CHECK_RAY_SPARSE").is_ok() {
+                let mut sh = lcp.clone();
+                for (q, d) in sh.q0.iter_mut().zip(&lcp.d0) {
+                    *q += far * d;
+                }
+                for (q, d) in sh.qa.iter_mut().zip(&lcp.da) {
+                    *q += far * d;
+                }
+                let sol = sh.basis_solution(&basic).unwrap();
+                let (v, x, scale) = most_negative(&sol, n);
+                println!("  on the sparse equations: most negative {v} = {x:e} (largest of its kind {scale:e})");
+                if let Ok(file) = std::env::var("EXPORT_RAY") {
+                    let (a, rhs, pos) = sh.basis_system(&basic).unwrap();
+                    let size = a.nrows();
+                    let mut bytes = (size as u64).to_le_bytes().to_vec();
+                    for j in 0..size {
+                        for i in 0..size {
+                            bytes.extend(a[(i, j)].to_le_bytes());
+                        }
+                    }
+                    for i in 0..size {
+                        bytes.extend(rhs[(i, 0)].to_le_bytes());
+                    }
+                    // Each variable's column (u64::MAX where non-basic).
+                    for p in &pos {
+                        bytes.extend((p.map_or(u64::MAX, |c| c as u64)).to_le_bytes());
+                    }
+                    std::fs::write(format!("{file}.{name}.{far:e}"), bytes).unwrap();
+                }
+            }
+        }
+    }
+    {
+        let k = first_different_step(&want.steps, &got.steps)
+            .unwrap_or(want.steps.len().min(got.steps.len()));
+        let mut first = None;
+        for j in 0..k {
+            let (a, b) = (want.steps[j].p, got.steps[j].p);
+            if (a - b).abs() > 1e-6 * a.abs().max(b.abs()) && first.is_none() {
+                first = Some(j);
+            }
+        }
+        if let Some(j) = first {
+            println!(
+                "breakpoint loads first differ by more than 1e-6 at step {}: dense {} sparse {}",
+                j + 1,
+                want.steps[j].p,
+                got.steps[j].p
+            );
+            for i in j.saturating_sub(3)..(j + 2).min(k) {
+                println!(
+                    "   step {}: dense {:?} sparse p {}",
+                    i + 1,
+                    want.steps[i],
+                    got.steps[i].p
+                );
+            }
+            if std::env::var("CHECK_P").is_ok() {
+                for step in [j + 1, k] {
+                    let basic = basic_after(&want.steps, step, n);
+                    let pd = problem.basis_solution(&basic).unwrap()[2 * n];
+                    let ps = lcp.basis_solution(&basic).unwrap()[2 * n];
+                    let pl = lcp.dense().basis_solution(&basic).unwrap()[2 * n];
+                    println!("   after step {step}: p by a dense LU of the condensed data {pd}, of the sparse equations {ps}, of M formed by a dense LU of A {pl}");
+                    if let Ok(file) = std::env::var("EXPORT") {
+                        // The sparse equations of that basis, for a check in higher precision:
+                        // size, the matrix by columns, the right-hand side, p's column.
+                        let (a, rhs, pos) = lcp.basis_system(&basic).unwrap();
+                        let size = a.nrows();
+                        let mut bytes = (size as u64).to_le_bytes().to_vec();
+                        for j in 0..size {
+                            for i in 0..size {
+                                bytes.extend(a[(i, j)].to_le_bytes());
+                            }
+                        }
+                        for i in 0..size {
+                            bytes.extend(rhs[(i, 0)].to_le_bytes());
+                        }
+                        bytes.extend((pos[2 * n].unwrap() as u64).to_le_bytes());
+                        std::fs::write(format!("{file}.{step}"), bytes).unwrap();
+                        let (m, q0, d) = (&problem.m, &problem.q0, &problem.d);
+                        let mut bytes = (n as u64).to_le_bytes().to_vec();
+                        for j in 0..n {
+                            for i in 0..n {
+                                bytes.extend(m[(i, j)].to_le_bytes());
+                            }
+                        }
+                        for v in q0.iter().chain(d) {
+                            bytes.extend(v.to_le_bytes());
+                        }
+                        for b in &basic {
+                            bytes.push(u8::from(*b));
+                        }
+                        std::fs::write(format!("{file}.{step}.dense"), bytes).unwrap();
+                    }
+                }
+            }
+        }
+    }
+    let adopted = solver.adopt(got.clone());
+    for (name, path) in [("dense", Some(&want)), ("sparse", adopted.as_ref())] {
+        let Some(path) = path else { continue };
+        if path.status != unilateral_lcp::PathStatus::Ray {
+            continue;
+        }
+        let start = path.breakpoints.last().map_or(0.0, |b| b.p);
+        for far in [start * 1.0001, start * 10.0, start * 1e6] {
+            let pt = solver.solution_at(path, far).unwrap();
+            println!(
+                "{name}: the solver's point at {far:e}: {:?}",
+                pt.map(|p| (p.fallback, p.tightening_pivots, p.residual))
+            );
+        }
+    }
+    if let Some(k) = first_different_step(&want.steps, &got.steps) {
+        println!("first difference at step {}", k + 1);
+        for j in k.saturating_sub(1)..(k + 3) {
+            for (name, steps) in [("dense", &want.steps), ("sparse", &got.steps)] {
+                if j < steps.len() {
+                    println!("  {name} {:?}", steps[j]);
+                }
+            }
+        }
+        for j in [k, k + 1, k + 2] {
+            for (name, steps) in [("dense", &want.steps), ("sparse", &got.steps)] {
+                if (1..=steps.len()).contains(&j) {
+                    let basic = basic_after(steps, j, n);
+                    let sol = problem.basis_solution(&basic).unwrap();
+                    let (mut worst, mut at) = (0.0f64, 0);
+                    let xs = sol[..n].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                    let zs = sol[n..2 * n].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                    for (v, &x) in sol[..2 * n].iter().enumerate() {
+                        let r = x / if v < n { xs } else { zs };
+                        if r < worst {
+                            worst = r;
+                            at = v;
+                        }
+                    }
+                    println!(
+                        "  {name} after step {j}: most negative {at} at {worst:e} of its kind"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The most negative of `x` and `z` against the largest of its kind.
+fn most_negative(sol: &[f64], n: usize) -> (usize, f64, f64) {
+    let xs = sol[..n].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let zs = sol[n..2 * n].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let (mut worst, mut at) = (0.0f64, 0);
+    for (v, &x) in sol[..2 * n].iter().enumerate() {
+        let r = x / if v < n { xs } else { zs };
+        if r < worst {
+            worst = r;
+            at = v;
+        }
+    }
+    (at, sol[at], if at < n { xs } else { zs })
+}
