@@ -416,11 +416,12 @@ fn abs_quadratic_forms(k: &SparseColMat<usize, f64>, x: &Mat<f64>) -> Vec<f64> {
 ///   (a Schur complement of the positive semidefinite stiffness), and a positive
 ///   semidefinite matrix with `R_jj = 0` has `R_ij = 0` for every `i` (`R_ij² ≤ R_ii R_jj`).
 ///   This is what keeps a determinate support's row exactly zero.
-/// * *Other off-diagonal entries* are zeroed when `|R_ij| ≤ τ·√(m0_i m0_j)`: since
-///   `m0 ≤ mag`, every such entry was zeroed by the old rule (`|R_ij| ≤ τ·√(mag_i mag_j)`);
-///   the old rule's further zeros off the diagonal, entries of round-off size of their
-///   terms, are kept as computed (they are the genuine far-field coupling of two links or
-///   its round-off, at most `τ·√(mag_i mag_j)`).
+/// * *Other off-diagonal entries* are kept as computed. Until round 28 those below
+///   `τ·√(m0_i m0_j)` were zeroed as round-off; they are the genuine far-field coupling of
+///   two links (or its round-off), and late on a long path the bases are ill-conditioned
+///   enough to need them: on a 600-bearing beam the zeroed `R` put the load after step 1404
+///   at 136.54 where the structure's own equations, solved in double-double arithmetic,
+///   give 136.688 (136.684 with them kept; the analysis crate's `sparse_zone.rs`).
 /// * *`R_F`* (`R_F,j = K_zI,j x_b − b_z,j`, `x_b` solved in full): zero when `|R_F,j| ≤
 ///   τ·mag_F,j`, `mag_F,j = |b_z,j| + Σ_a |K_zI,ja x_b,a| + |x_j|ᵀ|K_II||x_b|` as before;
 ///   the last term lies in `[0, √(ŵ ξ_j² · Σ_a w_a x_b,a²)]` (the weighted bound of
@@ -654,19 +655,14 @@ fn condense_full(
         }
     }
     let asymmetry = symmetrize(&mut r);
-    // round-off to zero: for a symmetric positive semidefinite K the terms of R_ij are
-    // bounded by √(mag_i·mag_j) (Cauchy–Schwarz in the energy product)
-    let tau = ROUND_OFF;
-    let mut zeroed = 0;
-    for j in 0..nz {
-        for i in 0..nz {
-            let v = r[(i, j)];
-            if v != 0.0 && v.abs() <= tau * (mag[i] * mag[j]).sqrt() {
-                r[(i, j)] = 0.0;
-                zeroed += 1;
-            }
-        }
-    }
+    // Round-off to zero: a diagonal entry against the magnitude of its terms, and with it its
+    // row and column (positive semidefinite). Entries off the diagonal are kept as computed
+    // (see `condense`: a far-field coupling of that size is what an ill-conditioned basis
+    // late on a long path needs).
+    let zero_diag: Vec<bool> = (0..nz)
+        .map(|j| r[(j, j)] == 0.0 || r[(j, j)].abs() <= ROUND_OFF * mag[j])
+        .collect();
+    let mut zeroed = zero_rows_of_zero_diagonals(&mut r, &zero_diag);
     zeroed += zero_load_round_off(&mut rf, &rf_mag);
     Condensation {
         r,
@@ -675,6 +671,22 @@ fn condense_full(
         zeroed,
         exact_columns: if has_solver { nz } else { 0 },
     }
+}
+
+/// Sets the rows and columns of `r` whose diagonal is marked zero to zero; returns how many
+/// entries it changed.
+fn zero_rows_of_zero_diagonals(r: &mut Mat<f64>, zero_diag: &[bool]) -> usize {
+    let nz = r.nrows();
+    let mut zeroed = 0;
+    for j in 0..nz {
+        for i in 0..nz {
+            if r[(i, j)] != 0.0 && (zero_diag[i] || zero_diag[j]) {
+                r[(i, j)] = 0.0;
+                zeroed += 1;
+            }
+        }
+    }
+    zeroed
 }
 
 /// Sets the entries of `R_F` below [`ROUND_OFF`] of their magnitudes to zero; returns how
@@ -974,23 +986,9 @@ fn condense_forward(
         }
     }
 
-    // apply: zeroed diagonals with their rows and columns, the rest on the forward magnitudes
+    // apply: zeroed diagonals with their rows and columns
     let zero_diag: Vec<bool> = diag_dec.iter().map(|d| *d == Decision::Zero).collect();
-    let tau = ROUND_OFF;
-    let mut zeroed = 0;
-    for j in 0..nz {
-        for i in 0..nz {
-            let v = r[(i, j)];
-            if v != 0.0
-                && (zero_diag[i]
-                    || zero_diag[j]
-                    || (i != j && v.abs() <= tau * (m0[i] * m0[j]).sqrt()))
-            {
-                r[(i, j)] = 0.0;
-                zeroed += 1;
-            }
-        }
-    }
+    let mut zeroed = zero_rows_of_zero_diagonals(&mut r, &zero_diag);
     for g in 0..2 {
         for j in 0..nz {
             if rf_dec[j][g] == Decision::Zero && rf[g][j] != 0.0 {

@@ -10,10 +10,10 @@ use unilateral_contact::ContactLcp;
 use unilateral_fem::Model;
 use unilateral_io::{read_problem, Problem};
 use unilateral_lcp::{
-    first_different_step, follow_schur_path, Follow, PathOptions, PathSolver, SchurOptions,
-    Settings,
+    basic_after, first_different_step, follow_schur_path, Follow, PathOptions, PathSolver,
+    PathStatus, SchurLcp, SchurOptions, Settings,
 };
-use unilateral_oracle::fixtures::bearings::beam_model;
+use unilateral_oracle::fixtures::bearings::{beam_model, beam_model_with, Bearings};
 
 fn model_of(path: &Path) -> Model {
     match read_problem(path).unwrap() {
@@ -23,10 +23,49 @@ fn model_of(path: &Path) -> Model {
 }
 
 fn bearing_beam(m: usize) -> Model {
+    model_of_text(&beam_model(m))
+}
+
+fn model_of_text(text: &str) -> Model {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("beam.toml");
-    std::fs::write(&path, beam_model(m)).unwrap();
+    std::fs::write(&path, text).unwrap();
     model_of(&path)
+}
+
+/// The dense solver of a model's condensed zone (its LCP in the model's units, the contact
+/// crate's order and relations) and the LCP of its sparse blocks with the options of the
+/// engine on sparse data.
+fn both_engines(
+    model: &Model,
+    follow: Follow,
+    target: f64,
+) -> (PathSolver, SchurLcp, SchurOptions) {
+    let zone = zone_of(&model.condense().unwrap());
+    let lcp = ContactLcp::build(&zone);
+    let relations = lcp.row_relations();
+    let settings = Settings {
+        lexicographic_order: Some(lcp.lexicographic_order.clone()),
+        row_relations: relations.clone(),
+        ..Settings::default()
+    };
+    let n = lcp.problem.q0.len();
+    let options = SchurOptions {
+        target,
+        follow,
+        max_pivots: 20 * n,
+        max_border: 40,
+        order: Some(lcp.lexicographic_order.clone()),
+        relations,
+        progress: Default::default(),
+    };
+    let opts = PathOptions {
+        target,
+        follow,
+        tightening: None,
+    };
+    let solver = PathSolver::new(lcp.problem, opts, settings).unwrap();
+    (solver, sparse_zone_of(model).unwrap().lcp(), options)
 }
 
 fn test_model(name: &str) -> Model {
@@ -171,4 +210,124 @@ fn solve_sparse_reports_at_the_target_what_the_dense_engine_reports() {
             "{a:?} against {b:?}"
         );
     }
+}
+
+/// A beam of a reviewer's sweep (500 bearings in kN and mm, stiff vertical springs, ten times
+/// the loads, no sideways load) on which the engine on sparse data went astray: its rows of an
+/// open pair's friction, at round-off (1e-3 against terms of 1e11) and "decreasing" at 1e-4,
+/// left as events; after 6258 pivots it "returned to zero", 47 s of lexicographic ties (each
+/// candidate a row of the basis inverse), where the dense engine ends in a ray after 849
+/// pivots. With the rates it cannot tell from round-off judged on the dense data
+/// (`PathSolver::trace_sparse`) and the ties computed a column at a time, it takes the dense
+/// engine's pivots to the same ray, and `follow_sparse` takes the path: its ray's basis still
+/// solves the problem 10⁶ times beyond its start.
+#[test]
+fn judged_sparse_engine_takes_the_dense_pivots_on_a_beam_where_it_went_astray() {
+    let model = model_of_text(&beam_model_with(&Bearings {
+        m: 500,
+        friction: 0.3,
+        springs: [1e10, 2e6],
+        load_scale: 10.0,
+        sideways: 0.0,
+        kn_mm: true,
+    }));
+    let (solver, lcp, options) = both_engines(&model, Follow::ToEnd, 1.0);
+    let want = solver.follow();
+    let got = solver.trace_sparse(&lcp, &options);
+    assert_eq!(want.status, PathStatus::Ray);
+    assert_eq!(got.status, PathStatus::Ray);
+    assert_eq!(want.steps.len(), 849);
+    assert_eq!(first_different_step(&got.steps, &want.steps), None);
+    assert_eq!(got.steps.len(), want.steps.len());
+    let taken = solver
+        .follow_sparse(&lcp, &options)
+        .expect("a verified ray");
+    assert_eq!(taken.status, PathStatus::Ray);
+}
+
+/// The solution of a dense system refined with residuals in double-double arithmetic (each
+/// product split exactly by a fused multiply-add, the sums by Knuth's two-sum), the unknowns
+/// kept as unevaluated sums of two doubles: the system's exact solution to far below the
+/// round-off of a working-precision solve, an independent reference for an ill-conditioned
+/// basis.
+fn refined_solution(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> Vec<f64> {
+    use faer::linalg::solvers::Solve;
+    let size = a.nrows();
+    let lu = a.partial_piv_lu();
+    let first = lu.solve(b);
+    let mut hi: Vec<f64> = (0..size).map(|i| first[(i, 0)]).collect();
+    let mut lo = vec![0.0; size];
+    let two_sum = |x: f64, y: f64| {
+        let s = x + y;
+        let v = s - x;
+        (s, (x - (s - v)) + (y - v))
+    };
+    for _ in 0..4 {
+        let mut r = faer::Mat::<f64>::zeros(size, 1);
+        for i in 0..size {
+            // b_i − Σ a_ij (hi_j + lo_j), in double-double.
+            let (mut s, mut e) = (b[(i, 0)], 0.0);
+            for j in 0..size {
+                let aij = a[(i, j)];
+                if aij == 0.0 {
+                    continue;
+                }
+                let p = -aij * hi[j];
+                let pe = (-aij).mul_add(hi[j], -p);
+                let (t, te) = two_sum(s, p);
+                s = t;
+                e += te + pe - aij * lo[j];
+            }
+            r[(i, 0)] = s + e;
+        }
+        let dx = lu.solve(&r);
+        for i in 0..size {
+            let (t, te) = two_sum(hi[i], dx[(i, 0)]);
+            let (h, l) = two_sum(t, te + lo[i]);
+            hi[i] = h;
+            lo[i] = l;
+        }
+    }
+    hi
+}
+
+/// On a beam of a reviewer's sweep (600 bearings, soft horizontal springs, friction 0.1), the
+/// breakpoints late on the path are those of ill-conditioned bases (the condensed basis
+/// matrix's condition number is 8e10). The load after step 1404, from an independent solve of
+/// that basis's equations on the structure's sparse blocks refined in double-double
+/// arithmetic, is the reference: the engine on sparse data traces it to 1e-6, and the same
+/// basis on the condensed zone (the dense engine's data) gives it to 1e-4 — where the
+/// condensation that zeroed the far-field couplings below 8 round-offs of their terms gave
+/// 136.54 for 136.688 (1.1e-3; `docs/fem-performance.md`).
+#[test]
+fn sparse_engine_breakpoints_solve_the_structures_own_equations_late_on_a_long_path() {
+    let model = model_of_text(&beam_model_with(&Bearings {
+        m: 600,
+        friction: 0.1,
+        springs: [1e8, 1e5],
+        load_scale: 0.3,
+        sideways: 1000.0,
+        kn_mm: false,
+    }));
+    let (solver, lcp, options) = both_engines(&model, Follow::ToTarget, 200.0);
+    let got = solver.trace_sparse(&lcp, &options);
+    assert_eq!(got.status, PathStatus::TargetReached);
+    let k = 1404;
+    assert!(got.steps.len() >= k, "{} steps", got.steps.len());
+    let n = lcp.order();
+    let basic = basic_after(&got.steps, k, n);
+    let (a, b, pos) = lcp.basis_system(&basic).unwrap();
+    let reference = refined_solution(&a, &b)[pos[2 * n].unwrap()];
+    let traced = got.steps[k - 1].p;
+    assert!(
+        (traced - reference).abs() <= 1e-6 * reference,
+        "step {k}: traced {traced}, the structure's equations {reference}"
+    );
+    // The same basis on the condensed zone (a full-pivoting solve of what the dense engine
+    // traces): 3.5e-5 away, from the condensation's own round-off.
+    let condensed = solver.problem().basis_solution(&basic).unwrap()[2 * n];
+    assert!(
+        (condensed - reference).abs() <= 1e-4 * reference,
+        "step {k}: condensed {condensed}, the structure's equations {reference}"
+    );
 }
