@@ -482,6 +482,26 @@ pub(crate) fn solution_on_segment(
     seg: usize,
     p: f64,
 ) -> Result<PathPoint, Unreported> {
+    let path_basis = match basis_point_on_segment(solver, path, seg, p) {
+        Ok(point) => return Ok(point),
+        Err(verdict) => verdict,
+    };
+    fresh_solution(solver, p).map_err(|fresh| Unreported {
+        p,
+        path_basis,
+        fresh,
+    })
+}
+
+/// The solution at `p` from segment `seg`'s basis alone (evaluated from the data, the
+/// tightening removed, verified), without the fresh standard solve of
+/// [`solution_on_segment`]: whether that basis solves the problem there.
+pub(crate) fn basis_point_on_segment(
+    solver: &PathSolver,
+    path: &LoadPath,
+    seg: usize,
+    p: f64,
+) -> Result<PathPoint, BasisVerdict> {
     let (prep, settings) = (&solver.prep, solver.settings());
     let (c0, cov) = (solver.c0, &solver.cov[..]);
     let n = prep.n;
@@ -502,28 +522,24 @@ pub(crate) fn solution_on_segment(
     } else {
         Err(BasisVerdict::Singular)
     };
-    let path_basis = match evaluated {
+    match evaluated {
         Ok((x, z, pivots)) => {
             let residual = solver.residual(p, &x, &z);
             if residual.accepts(&x, &z) {
-                return Ok(PathPoint {
+                Ok(PathPoint {
                     p,
                     x,
                     z,
                     residual,
                     tightening_pivots: pivots,
                     fallback: false,
-                });
+                })
+            } else {
+                Err(BasisVerdict::Unverified { residual })
             }
-            BasisVerdict::Unverified { residual }
         }
-        Err(verdict) => verdict,
-    };
-    fresh_solution(solver, p).map_err(|fresh| Unreported {
-        p,
-        path_basis,
-        fresh,
-    })
+        Err(verdict) => Err(verdict),
+    }
 }
 
 /// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified; else how

@@ -233,8 +233,11 @@ impl PathSolver {
         if path.status == crate::PathStatus::Ray {
             let start = path.breakpoints.last().map_or(0.0, |b| b.p);
             let far = 1e6 * start.max(self.options.target).max(f64::MIN_POSITIVE);
-            let point = crate::parametric::point_at(self, &path, far)?;
-            if point.fallback || point.tightening_pivots != 0 {
+            // The ray's own basis (not a fresh solve there, which at 6000 rows takes minutes).
+            let point =
+                crate::parametric::basis_point_on_segment(self, &path, path.records.len(), far)
+                    .ok()?;
+            if point.tightening_pivots != 0 {
                 return None;
             }
         }
