@@ -1,9 +1,18 @@
 //! A structural model's path traced by the dense engine and by the engine on sparse data
-//! (its doubtful rates judged on the dense data), compared pivot by pivot:
+//! (its doubtful rates judged on the dense data), compared pivot by pivot; `beam:M` is the
+//! whole-process benchmark's beam on `M` bearings, a `TARGET` traces to it instead of to the
+//! end:
 //!
 //! ```text
 //! cargo run --release -p unilateral-analysis --example sparse_model -- MODEL.toml|beam:M [TARGET]
 //! ```
+//!
+//! Diagnostics, each by an environment variable: `CHECK_P` — where the breakpoint loads first
+//! part by more than 1e-6, that basis's load on the condensed zone, on the structure's
+//! equations (refined) and on an `M` formed by a dense LU of `K_II`; `CHECK_M` — the condensed
+//! `M` against that `M` entry by entry; `CHECK_RAY` (with `CHECK_RAY_SPARSE`) — each ray's
+//! basis at its start, 10 and 10⁶ times beyond, on the condensed zone (and on the structure's
+//! equations); `FOLLOW_SPARSE` — what `PathSolver::follow_sparse` makes of the path.
 
 use std::time::Instant;
 
@@ -165,24 +174,6 @@ fn main() {
                 let sol = sh.basis_solution(&basic).unwrap();
                 let (v, x, scale) = most_negative(&sol, n);
                 println!("  on the sparse equations: most negative {v} = {x:e} (largest of its kind {scale:e})");
-                if let Ok(file) = std::env::var("EXPORT_RAY") {
-                    let (a, rhs, pos) = sh.basis_system(&basic).unwrap();
-                    let size = a.nrows();
-                    let mut bytes = (size as u64).to_le_bytes().to_vec();
-                    for j in 0..size {
-                        for i in 0..size {
-                            bytes.extend(a[(i, j)].to_le_bytes());
-                        }
-                    }
-                    for i in 0..size {
-                        bytes.extend(rhs[(i, 0)].to_le_bytes());
-                    }
-                    // Each variable's column (u64::MAX where non-basic).
-                    for p in &pos {
-                        bytes.extend((p.map_or(u64::MAX, |c| c as u64)).to_le_bytes());
-                    }
-                    std::fs::write(format!("{file}.{name}.{far:e}"), bytes).unwrap();
-                }
             }
         }
     }
@@ -218,37 +209,6 @@ fn main() {
                     let ps = lcp.basis_solution(&basic).unwrap()[2 * n];
                     let pl = lcp.dense().basis_solution(&basic).unwrap()[2 * n];
                     println!("   after step {step}: p by a dense LU of the condensed data {pd}, of the sparse equations {ps}, of M formed by a dense LU of A {pl}");
-                    if let Ok(file) = std::env::var("EXPORT") {
-                        // The sparse equations of that basis, for a check in higher precision:
-                        // size, the matrix by columns, the right-hand side, p's column.
-                        let (a, rhs, pos) = lcp.basis_system(&basic).unwrap();
-                        let size = a.nrows();
-                        let mut bytes = (size as u64).to_le_bytes().to_vec();
-                        for j in 0..size {
-                            for i in 0..size {
-                                bytes.extend(a[(i, j)].to_le_bytes());
-                            }
-                        }
-                        for i in 0..size {
-                            bytes.extend(rhs[(i, 0)].to_le_bytes());
-                        }
-                        bytes.extend((pos[2 * n].unwrap() as u64).to_le_bytes());
-                        std::fs::write(format!("{file}.{step}"), bytes).unwrap();
-                        let (m, q0, d) = (&problem.m, &problem.q0, &problem.d);
-                        let mut bytes = (n as u64).to_le_bytes().to_vec();
-                        for j in 0..n {
-                            for i in 0..n {
-                                bytes.extend(m[(i, j)].to_le_bytes());
-                            }
-                        }
-                        for v in q0.iter().chain(d) {
-                            bytes.extend(v.to_le_bytes());
-                        }
-                        for b in &basic {
-                            bytes.push(u8::from(*b));
-                        }
-                        std::fs::write(format!("{file}.{step}.dense"), bytes).unwrap();
-                    }
                 }
             }
         }

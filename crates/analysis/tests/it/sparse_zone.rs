@@ -245,52 +245,6 @@ fn judged_sparse_engine_takes_the_dense_pivots_on_a_beam_where_it_went_astray() 
     assert_eq!(taken.status, PathStatus::Ray);
 }
 
-/// The solution of a dense system refined with residuals in double-double arithmetic (each
-/// product split exactly by a fused multiply-add, the sums by Knuth's two-sum), the unknowns
-/// kept as unevaluated sums of two doubles: the system's exact solution to far below the
-/// round-off of a working-precision solve, an independent reference for an ill-conditioned
-/// basis.
-fn refined_solution(a: &faer::Mat<f64>, b: &faer::Mat<f64>) -> Vec<f64> {
-    use faer::linalg::solvers::Solve;
-    let size = a.nrows();
-    let lu = a.partial_piv_lu();
-    let first = lu.solve(b);
-    let mut hi: Vec<f64> = (0..size).map(|i| first[(i, 0)]).collect();
-    let mut lo = vec![0.0; size];
-    let two_sum = |x: f64, y: f64| {
-        let s = x + y;
-        let v = s - x;
-        (s, (x - (s - v)) + (y - v))
-    };
-    for _ in 0..4 {
-        let mut r = faer::Mat::<f64>::zeros(size, 1);
-        for i in 0..size {
-            // b_i − Σ a_ij (hi_j + lo_j), in double-double.
-            let (mut s, mut e) = (b[(i, 0)], 0.0);
-            for j in 0..size {
-                let aij = a[(i, j)];
-                if aij == 0.0 {
-                    continue;
-                }
-                let p = -aij * hi[j];
-                let pe = (-aij).mul_add(hi[j], -p);
-                let (t, te) = two_sum(s, p);
-                s = t;
-                e += te + pe - aij * lo[j];
-            }
-            r[(i, 0)] = s + e;
-        }
-        let dx = lu.solve(&r);
-        for i in 0..size {
-            let (t, te) = two_sum(hi[i], dx[(i, 0)]);
-            let (h, l) = two_sum(t, te + lo[i]);
-            hi[i] = h;
-            lo[i] = l;
-        }
-    }
-    hi
-}
-
 /// On a beam of a reviewer's sweep (600 bearings, soft horizontal springs, friction 0.1), the
 /// breakpoints late on the path are those of ill-conditioned bases (the condensed basis
 /// matrix's condition number is 8e10). The load after step 1404, from an independent solve of
@@ -316,8 +270,7 @@ fn sparse_engine_breakpoints_solve_the_structures_own_equations_late_on_a_long_p
     assert!(got.steps.len() >= k, "{} steps", got.steps.len());
     let n = lcp.order();
     let basic = basic_after(&got.steps, k, n);
-    let (a, b, pos) = lcp.basis_system(&basic).unwrap();
-    let reference = refined_solution(&a, &b)[pos[2 * n].unwrap()];
+    let reference = lcp.basis_solution(&basic).unwrap()[2 * n];
     let traced = got.steps[k - 1].p;
     assert!(
         (traced - reference).abs() <= 1e-6 * reference,

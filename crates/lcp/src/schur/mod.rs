@@ -170,20 +170,67 @@ impl SchurLcp {
     /// The values of every variable (`x`, then `z`, then `p`; zero where non-basic) on the
     /// basis marked in `basic` (length `2n + 1`, `n` basic), from a dense LU of its equations
     /// on the sparse data — `A y − B z_B − da·p = qa`, `x_B − D z_B + C y − d0·p = q0` — with
-    /// no `M` formed: an independent check of a breakpoint (`O((N + n)³)`). `None` when
-    /// `basic` does not mark `n` variables.
+    /// no `M` formed, refined with residuals in double-double arithmetic: an independent check
+    /// of a breakpoint (`O((N + n)³)`) to far below the round-off of a working-precision
+    /// solve, which late on a long path (a basis's condition number of 1e10 and more) is what
+    /// tells the two engines' data apart (`docs/engine.md`). `None` when `basic` does not
+    /// mark `n` variables.
     pub fn basis_solution(&self, basic: &[bool]) -> Option<Vec<f64>> {
-        use faer::linalg::solvers::Solve;
         let (a, rhs, pos) = self.basis_system(basic)?;
-        let sol = a.partial_piv_lu().solve(&rhs);
+        let sol = refined_dense_solution(&a, &rhs);
         let mut out = vec![0.0; pos.len()];
         for (v, p) in pos.iter().enumerate() {
             if let Some(c) = *p {
-                out[v] = sol[(c, 0)];
+                out[v] = sol[c];
             }
         }
         Some(out)
     }
+}
+
+/// The solution of the dense system `a x = b` refined with residuals in double-double
+/// arithmetic (each product split exactly by a fused multiply-add, the sums by Knuth's
+/// two-sum), the unknowns kept as unevaluated sums of two doubles through four rounds and
+/// rounded at the end.
+fn refined_dense_solution(a: &Mat<f64>, b: &Mat<f64>) -> Vec<f64> {
+    use faer::linalg::solvers::Solve;
+    let size = a.nrows();
+    let lu = a.partial_piv_lu();
+    let first = lu.solve(b);
+    let mut hi: Vec<f64> = (0..size).map(|i| first[(i, 0)]).collect();
+    let mut lo = vec![0.0; size];
+    let two_sum = |x: f64, y: f64| {
+        let s = x + y;
+        let v = s - x;
+        (s, (x - (s - v)) + (y - v))
+    };
+    let mut r = Mat::<f64>::zeros(size, 1);
+    for _ in 0..4 {
+        for i in 0..size {
+            // b_i − Σ a_ij (hi_j + lo_j), in double-double.
+            let (mut s, mut e) = (b[(i, 0)], 0.0);
+            for j in 0..size {
+                let aij = a[(i, j)];
+                if aij == 0.0 {
+                    continue;
+                }
+                let p = -aij * hi[j];
+                let pe = (-aij).mul_add(hi[j], -p);
+                let (t, te) = two_sum(s, p);
+                s = t;
+                e += te + pe - aij * lo[j];
+            }
+            r[(i, 0)] = s + e;
+        }
+        let dx = lu.solve(&r);
+        for i in 0..size {
+            let (t, te) = two_sum(hi[i], dx[(i, 0)]);
+            let (h, l) = two_sum(t, te + lo[i]);
+            hi[i] = h;
+            lo[i] = l;
+        }
+    }
+    hi.iter().zip(&lo).map(|(h, l)| h + l).collect()
 }
 
 /// How a Schur path ended and what it found.
