@@ -12,7 +12,8 @@
 //! equations (refined) and on an `M` formed by a dense LU of `K_II`; `CHECK_M` — the condensed
 //! `M` against that `M` entry by entry; `CHECK_RAY` (with `CHECK_RAY_SPARSE`) — each ray's
 //! basis at its start, 10 and 10⁶ times beyond, on the condensed zone (and on the structure's
-//! equations); `FOLLOW_SPARSE` — what `PathSolver::follow_sparse` makes of the path.
+//! equations); `FOLLOW_SPARSE` — what `PathSolver::follow_sparse` makes of the path;
+//! `PRINT_STEPS=A..B` — both engines' steps `A` to `B − 1`.
 
 use std::time::Instant;
 
@@ -210,6 +211,15 @@ fn main() {
                     let pl = lcp.dense().basis_solution(&basic).unwrap()[2 * n];
                     println!("   after step {step}: p by a dense LU of the condensed data {pd}, of the sparse equations {ps}, of M formed by a dense LU of A {pl}");
                 }
+            }
+        }
+    }
+    if let Ok(range) = std::env::var("PRINT_STEPS") {
+        let (a, b) = range.split_once("..").unwrap();
+        let (a, b): (usize, usize) = (a.parse().unwrap(), b.parse().unwrap());
+        for (name, steps) in [("dense", &want.steps), ("sparse", &got.steps)] {
+            for st in steps.iter().filter(|st| (a..b).contains(&st.index)) {
+                println!("{name} {:?}", st);
             }
         }
     }

@@ -309,34 +309,19 @@ fn the_path_satisfies_the_contact_conditions_of_the_hand_zone() {
     }
 }
 
-/// A beam on 600 bearings whose variable load pushes it sideways (10 kN/m, friction 0.1, stiff
-/// springs): once friction can no longer hold it, every bearing slips and the beam slides as
-/// a rigid body — by hand, at `p* = f·V_c / (H − f·V_v)` with the dead load `V_c` = 10 kN/m,
-/// the variable load's mean `V_v` = 15 kN/m (down) and `H` = 10 kN/m sideways: 2/17. Until
-/// round 28 the condensation zeroed `R`'s far-field couplings below 8 round-offs of their
-/// terms, and the path went past `p*` to p = 508 and was refused as not resolvable in double
-/// precision (a reviewer's sweep); now it ends in the mechanism at 2/17 with every pair
-/// slipping the same way.
-#[test]
-fn a_beam_pushed_sideways_slides_at_the_limit_load_by_hand() {
+/// The limit load and whether every pair slips in the `+` direction, for a beam on bearings
+/// pushed sideways (its sliding mechanism), traced to `target`.
+fn sliding(b: &unilateral_oracle::fixtures::bearings::Bearings, target: f64) -> (f64, bool) {
     use unilateral_contact::{Outcome, PairState, SolveSettings};
-    use unilateral_oracle::fixtures::bearings::{beam_model_with, Bearings};
+    use unilateral_oracle::fixtures::bearings::beam_model_with;
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("beam.toml");
-    let text = beam_model_with(&Bearings {
-        m: 600,
-        friction: 0.1,
-        springs: [1e8, 1e8],
-        load_scale: 1.0,
-        sideways: 1e4,
-        kn_mm: false,
-    });
-    std::fs::write(&path, text).unwrap();
+    std::fs::write(&path, beam_model_with(b)).unwrap();
     let Problem::Structural(p) = read_problem(&path).unwrap() else {
         panic!("a structural model")
     };
     let settings = SolveSettings {
-        target: 30.0,
+        target,
         ..SolveSettings::default()
     };
     let a = analyze(&p.model, &settings).unwrap();
@@ -346,15 +331,49 @@ fn a_beam_pushed_sideways_slides_at_the_limit_load_by_hand() {
             a.solution.outcome
         )
     };
-    let by_hand = 0.1 * 1e4 / (1e4 - 0.1 * 1.5e4);
+    assert_eq!(a.solution.pairs.len(), b.m);
+    let slipping = a
+        .solution
+        .pairs
+        .iter()
+        .all(|r| r.state == PairState::SlipPlus);
+    (p_limit, slipping)
+}
+
+/// The sliding limit of the beam by hand: friction `f` against the sideways load `H`, the
+/// dead load `V_c` and the variable load's mean `V_v` (down), per unit length: `p* = f·V_c /
+/// (H − f·V_v)`, with the fixture's loads (10 kN/m dead, 40 kN/m down to 10 kN/m up) scaled.
+fn sliding_limit_by_hand(b: &unilateral_oracle::fixtures::bearings::Bearings) -> f64 {
+    let (vc, vv, h) = (
+        1e4 * b.load_scale,
+        1.5e4 * b.load_scale,
+        b.sideways * b.load_scale,
+    );
+    b.friction * vc / (h - b.friction * vv)
+}
+
+/// A beam on 600 bearings whose variable load pushes it sideways (10 kN/m, friction 0.1, stiff
+/// springs): once friction can no longer hold it, every bearing slips and the beam slides as
+/// a rigid body — by hand, at `p* = f·V_c / (H − f·V_v)` = 2/17. Until round 28 the
+/// condensation zeroed `R`'s far-field couplings below 8 round-offs of their terms, and the
+/// path went past `p*` to p = 508 and was refused as not resolvable in double precision (a
+/// reviewer's sweep); now it ends in the mechanism at 2/17 with every pair slipping.
+#[test]
+fn a_beam_pushed_sideways_slides_at_the_limit_load_by_hand() {
+    let b = unilateral_oracle::fixtures::bearings::Bearings {
+        m: 600,
+        friction: 0.1,
+        springs: [1e8, 1e8],
+        load_scale: 1.0,
+        sideways: 1e4,
+        kn_mm: false,
+    };
+    let by_hand = sliding_limit_by_hand(&b);
+    assert!((by_hand - 2.0 / 17.0).abs() < 1e-15);
+    let (p_limit, slipping) = sliding(&b, 30.0);
     assert!(
         (p_limit - by_hand).abs() <= 1e-9 * by_hand,
         "{p_limit} against {by_hand}"
     );
-    assert_eq!(a.solution.pairs.len(), 600);
-    assert!(a
-        .solution
-        .pairs
-        .iter()
-        .all(|r| r.state == PairState::SlipPlus));
+    assert!(slipping);
 }
