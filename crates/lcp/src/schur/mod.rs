@@ -508,6 +508,10 @@ pub(crate) fn follow(
         // (`x_i = q0 + p·d0 + D z − C y`, row by row; or on the dense data where it is given).
         // A tolerance against the largest rates alone passed a start of slip and called the
         // path a ray (a 500-bearing beam).
+        // The size of the terms that form row `v`'s rate on the sparse data.
+        let sparse_terms = |v: usize| {
+            row_terms(&dt, &ct, v, &dv[..big_n], &dir[n..2 * n]) + (lcp.d0[v] * dp).abs()
+        };
         let doubtful: Vec<usize> = (0..n)
             .filter(|&v| {
                 st.basic[v]
@@ -522,10 +526,7 @@ pub(crate) fn follow(
         for v in doubtful {
             let (rate, terms) = match dense {
                 Some(dense) => dense.row(v, &dir[n..2 * n], dp),
-                None => (
-                    dir[v],
-                    row_terms(&dt, &ct, v, &dv[..big_n], &dir[n..2 * n]) + (lcp.d0[v] * dp).abs(),
-                ),
+                None => (dir[v], sparse_terms(v)),
             };
             if rate < 0.0 && -rate > crate::ACCEPT_RESIDUAL * terms {
                 judged.push((v, rate));
@@ -555,9 +556,7 @@ pub(crate) fn follow(
                     .filter(|v| !judged.iter().any(|j| j.0 == *v))
                     .collect();
                 for v in first {
-                    let terms = row_terms(&dt, &ct, v, &dv[..big_n], &dir[n..2 * n])
-                        + (lcp.d0[v] * dp).abs();
-                    if -dir[v] <= crate::ACCEPT_RESIDUAL * terms {
+                    if -dir[v] <= crate::ACCEPT_RESIDUAL * sparse_terms(v) {
                         let (rate, terms) = dense.row(v, &dir[n..2 * n], dp);
                         if rate < 0.0 && -rate > crate::ACCEPT_RESIDUAL * terms {
                             judged.push((v, rate));
