@@ -121,9 +121,10 @@ fn main() {
         t.elapsed().as_secs_f64()
     );
     println!(
-        "dense {:?} {} steps {td:.3} s; sparse {:?} {} steps {ts:.3} s, {} refactorisations",
+        "dense {:?} {} steps (limit load {:?}) {td:.3} s; sparse {:?} {} steps {ts:.3} s, {} refactorisations",
         want.status,
         want.steps.len(),
+        want.p_limit,
         got.status,
         got.steps.len(),
         got.refactorizations
