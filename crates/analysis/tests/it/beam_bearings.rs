@@ -313,18 +313,12 @@ fn the_path_satisfies_the_contact_conditions_of_the_hand_zone() {
 /// pushed sideways (its sliding mechanism), traced to `target`.
 fn sliding(b: &unilateral_oracle::fixtures::bearings::Bearings, target: f64) -> (f64, bool) {
     use unilateral_contact::{Outcome, PairState, SolveSettings};
-    use unilateral_oracle::fixtures::bearings::beam_model_with;
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("beam.toml");
-    std::fs::write(&path, beam_model_with(b)).unwrap();
-    let Problem::Structural(p) = read_problem(&path).unwrap() else {
-        panic!("a structural model")
-    };
+    let model = crate::bearings_model(b);
     let settings = SolveSettings {
         target,
         ..SolveSettings::default()
     };
-    let a = analyze(&p.model, &settings).unwrap();
+    let a = analyze(&model, &settings).unwrap();
     let Outcome::Mechanism { p_limit, .. } = a.solution.outcome else {
         panic!(
             "expected the sliding mechanism, got {:?}",

@@ -19,3 +19,21 @@ mod surface;
 mod timings;
 mod triangle_block;
 mod zone_rows;
+
+/// The structural model of a beam on bearings of the oracle's fixture, read from its model
+/// file's text as a user's file is read.
+pub(crate) fn bearings_model(
+    b: &unilateral_oracle::fixtures::bearings::Bearings,
+) -> unilateral_fem::Model {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("beam.toml");
+    std::fs::write(
+        &path,
+        unilateral_oracle::fixtures::bearings::beam_model_with(b),
+    )
+    .unwrap();
+    match unilateral_io::read_problem(&path).unwrap() {
+        unilateral_io::Problem::Structural(p) => p.model,
+        unilateral_io::Problem::ContactZone(_) => panic!("a structural model"),
+    }
+}

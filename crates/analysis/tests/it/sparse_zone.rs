@@ -13,7 +13,7 @@ use unilateral_lcp::{
     basic_after, first_different_step, follow_schur_path, Follow, PathOptions, PathSolver,
     PathStatus, SchurLcp, SchurOptions, Settings,
 };
-use unilateral_oracle::fixtures::bearings::{beam_model, beam_model_with, Bearings};
+use unilateral_oracle::fixtures::bearings::Bearings;
 
 fn model_of(path: &Path) -> Model {
     match read_problem(path).unwrap() {
@@ -23,14 +23,7 @@ fn model_of(path: &Path) -> Model {
 }
 
 fn bearing_beam(m: usize) -> Model {
-    model_of_text(&beam_model(m))
-}
-
-fn model_of_text(text: &str) -> Model {
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("beam.toml");
-    std::fs::write(&path, text).unwrap();
-    model_of(&path)
+    crate::bearings_model(&Bearings::new(m))
 }
 
 /// The dense solver of a model's condensed zone (its LCP in the model's units, the contact
@@ -129,36 +122,9 @@ fn the_sparse_zones_lcp_is_the_condensed_zones() {
 
 #[test]
 fn the_schur_engine_on_the_sparse_zone_follows_the_dense_path() {
-    let m = 200;
-    let model = bearing_beam(m);
-    let zone = zone_of(&model.condense().unwrap());
-    let lcp = ContactLcp::build(&zone);
-    let relations = lcp.row_relations();
-    let settings = Settings {
-        lexicographic_order: Some(lcp.lexicographic_order.clone()),
-        row_relations: relations.clone(),
-        ..Settings::default()
-    };
-    let opts = PathOptions {
-        target: 1.0,
-        follow: Follow::ToEnd,
-        tightening: None,
-    };
-    let want = PathSolver::new(lcp.problem.clone(), opts, settings)
-        .unwrap()
-        .follow();
-    let got = follow_schur_path(
-        &sparse_zone_of(&model).unwrap().lcp(),
-        &SchurOptions {
-            target: 1.0,
-            follow: Follow::ToEnd,
-            max_pivots: 20 * 3 * m,
-            max_border: 40,
-            order: Some(lcp.lexicographic_order.clone()),
-            relations,
-            progress: Default::default(),
-        },
-    );
+    let (solver, lcp, options) = both_engines(&bearing_beam(200), Follow::ToEnd, 1.0);
+    let want = solver.follow();
+    let got = follow_schur_path(&lcp, &options);
     assert_eq!(got.status, want.status);
     assert_eq!(first_different_step(&got.steps, &want.steps), None);
     for (g, w) in got.steps.iter().zip(&want.steps) {
@@ -223,14 +189,14 @@ fn solve_sparse_reports_at_the_target_what_the_dense_engine_reports() {
 /// solves the problem 10⁶ times beyond its start.
 #[test]
 fn judged_sparse_engine_takes_the_dense_pivots_on_a_beam_where_it_went_astray() {
-    let model = model_of_text(&beam_model_with(&Bearings {
+    let model = crate::bearings_model(&Bearings {
         m: 500,
         friction: 0.3,
         springs: [1e10, 2e6],
         load_scale: 10.0,
         sideways: 0.0,
         kn_mm: true,
-    }));
+    });
     let (solver, lcp, options) = both_engines(&model, Follow::ToEnd, 1.0);
     let want = solver.follow();
     let got = solver.trace_sparse(&lcp, &options);
@@ -255,14 +221,14 @@ fn judged_sparse_engine_takes_the_dense_pivots_on_a_beam_where_it_went_astray() 
 /// 136.54 for 136.688 (1.1e-3; `docs/fem-performance.md`).
 #[test]
 fn sparse_engine_breakpoints_solve_the_structures_own_equations_late_on_a_long_path() {
-    let model = model_of_text(&beam_model_with(&Bearings {
+    let model = crate::bearings_model(&Bearings {
         m: 600,
         friction: 0.1,
         springs: [1e8, 1e5],
         load_scale: 0.3,
         sideways: 1000.0,
         kn_mm: false,
-    }));
+    });
     let (solver, lcp, options) = both_engines(&model, Follow::ToTarget, 200.0);
     let got = solver.trace_sparse(&lcp, &options);
     assert_eq!(got.status, PathStatus::TargetReached);
