@@ -121,19 +121,6 @@ pub fn solve_sparse(
         tightening: normalised.tightening(units.normalised_force(settings.tightening)),
     };
     let engine = engine_settings(&normalised, settings);
-    // The sparse engine's options, with the engine's order, relations and progress; taken
-    // before the solver takes the settings.
-    let schur_options = unilateral_lcp::SchurOptions {
-        target: settings.target,
-        follow: settings.follow,
-        // A long path takes about 2n pivots; beyond 6n the sparse engine is more likely
-        // wandering in ill-conditioned ties than tracing, and the dense engine takes over.
-        max_pivots: engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
-        max_border: 40,
-        order: engine.lexicographic_order.clone(),
-        relations: engine.row_relations.clone(),
-        progress: engine.progress.clone(),
-    };
     // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
     // user's units, shown in tableaux and labels, is built only after the path, so that the
     // pivoting's kernel matrices never meet a second `n × n` matrix.
@@ -142,6 +129,20 @@ pub fn solve_sparse(
         .filter(|sparse| settings.tightening == 0.0 && sparse.pairs() == zone.pairs())
         .and_then(|sparse| {
             let lcp = units.normalise_sparse(sparse).lcp();
+            // The sparse engine's options: the solver's order, relations and progress.
+            let engine = solver.settings();
+            let schur_options = unilateral_lcp::SchurOptions {
+                target: settings.target,
+                follow: settings.follow,
+                // A long path takes about 2n pivots; beyond 6n the sparse engine is more
+                // likely wandering in ill-conditioned ties than tracing, and the dense engine
+                // takes over.
+                max_pivots: engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
+                max_border: 40,
+                order: engine.lexicographic_order.clone(),
+                relations: engine.row_relations.clone(),
+                progress: engine.progress.clone(),
+            };
             // Taken where it reaches the target, or ends in a ray that verifies far along
             // it, its doubtful rates judged on the dense data (`PathSolver::follow_sparse`).
             solver.follow_sparse(&lcp, &schur_options)

@@ -701,18 +701,27 @@ impl<'a> Pivoter<'a> {
         Ok((alpha, step))
     }
 
+    /// [`Basis::kernel_terms`] of the entering column by slot (zero for a slack slot): the
+    /// size of the sums that formed each basic variable's rate.
+    fn slot_kernel_terms(&self, entering: usize) -> Vec<f64> {
+        let kt = self.basis.kernel_terms(&self.cols, entering);
+        self.basis
+            .slot_var
+            .iter()
+            .map(|&c| self.basis.kernel_pos(c).map_or(0.0, |a| kt[a]))
+            .collect()
+    }
+
     /// The slots (of `x`) among `slots` whose rate in `alpha` exceeds round-off of the terms
     /// that formed it by [`crate::ACCEPT_RESIDUAL`]: [`Pivoter::check_ray`]'s judgement, for
     /// these rows only (`O(k²)` for the kernel's terms, `O(n)` a row).
     fn beyond_round_off(&self, entering: usize, alpha: &[f64], slots: Vec<usize>) -> Vec<usize> {
         let n = self.cols.n;
-        let kt = self.basis.kernel_terms(&self.cols, entering);
         let size: Vec<f64> = self
-            .basis
-            .slot_var
+            .slot_kernel_terms(entering)
             .iter()
-            .enumerate()
-            .map(|(s, &c)| alpha[s].abs() + self.basis.kernel_pos(c).map_or(0.0, |a| kt[a]))
+            .zip(alpha)
+            .map(|(tau, a)| a.abs() + tau)
             .collect();
         let floor = ROUNDOFF * max_abs(alpha);
         slots
@@ -886,13 +895,7 @@ impl<'a> Pivoter<'a> {
     /// variable decreases by more than round-off of the terms that formed its rate.
     fn check_ray(&self, entering: usize, alpha: &[f64]) -> (RayCheck, Vec<usize>) {
         let n = self.cols.n;
-        let kt = self.basis.kernel_terms(&self.cols, entering);
-        let tau: Vec<f64> = self
-            .basis
-            .slot_var
-            .iter()
-            .map(|&c| self.basis.kernel_pos(c).map_or(0.0, |a| kt[a]))
-            .collect();
+        let tau = self.slot_kernel_terms(entering);
         let (r, t) = self.direction_residual(entering, alpha, &tau);
         let rel = |v: f64, s: f64| {
             if v == 0.0 {
