@@ -357,8 +357,14 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
     let started = Instant::now();
     // Shared with the solution, which keeps it: the zone is held once.
     let zone = Arc::new(zone);
-    let solution =
-        unilateral_contact::solve_shared(Arc::clone(&zone), settings).map_err(contact_error)?;
+    // The structure's own blocks judge the load rates the condensed data cannot tell from
+    // round-off (a path without a tightening only).
+    let sparse = (settings.tightening == 0.0)
+        .then(|| sparse_zone_of(model).ok())
+        .flatten();
+    let solution = unilateral_contact::solve_judged(Arc::clone(&zone), sparse.as_ref(), settings)
+        .map_err(contact_error)?;
+    drop(sparse);
     let solve = started.elapsed();
     if solution.outcome == Outcome::NoSolutionAtStart {
         if let Some(e) = pulled_apart(&condensed, &zone) {

@@ -40,7 +40,7 @@ pub use solution::{
     number_text, pair_results, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult,
     PairState,
 };
-pub use solve::{solve, solve_shared, solve_sparse};
+pub use solve::{solve, solve_judged, solve_shared, solve_sparse};
 pub use sparse_zone::SparseZone;
 pub use unilateral_lcp::Follow;
 pub use zone::{ContactLoad, ContactZone};

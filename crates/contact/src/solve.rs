@@ -81,6 +81,30 @@ pub fn solve_sparse(
     sparse: Option<&crate::SparseZone>,
     settings: &SolveSettings,
 ) -> Result<ContactSolution, ContactError> {
+    solve_with(zone, sparse, true, settings)
+}
+
+/// [`solve_shared`] with the structure's sparse blocks at hand (`sparse`: the same zone as the
+/// bonded structure's blocks): the dense engine traces the path and, without a tightening,
+/// judges on those blocks the load rates the condensed data cannot tell from round-off
+/// ([`unilateral_lcp::PathSolver::judged_on`]) — a beam sliding on its bearings at constant
+/// load is a mechanism there, where the condensed data give the load a rate of their
+/// round-off.
+pub fn solve_judged(
+    zone: Arc<ContactZone>,
+    sparse: Option<&crate::SparseZone>,
+    settings: &SolveSettings,
+) -> Result<ContactSolution, ContactError> {
+    solve_with(zone, sparse, false, settings)
+}
+
+/// [`solve_sparse`] (`trace_sparse`) or [`solve_judged`].
+fn solve_with(
+    zone: Arc<ContactZone>,
+    sparse: Option<&crate::SparseZone>,
+    trace_sparse: bool,
+    settings: &SolveSettings,
+) -> Result<ContactSolution, ContactError> {
     zone.validate()?;
     settings.validate()?;
     // The LCP that is solved: normalised by powers of two (module `units`), so that neither the
@@ -124,29 +148,33 @@ pub fn solve_sparse(
     // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
     // user's units, shown in tableaux and labels, is built only after the path, so that the
     // pivoting's kernel matrices never meet a second `n × n` matrix.
-    let solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
-    let traced = sparse
+    let mut solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
+    // The structure's blocks in the solver's units, where they apply (no tightening).
+    let sparse_lcp = sparse
         .filter(|sparse| settings.tightening == 0.0 && sparse.pairs() == zone.pairs())
-        .and_then(|sparse| {
-            let lcp = units.normalise_sparse(sparse).lcp();
-            // The sparse engine's options: the solver's order, relations and progress.
-            let engine = solver.settings();
-            let schur_options = unilateral_lcp::SchurOptions {
-                target: settings.target,
-                follow: settings.follow,
-                // A long path takes about 2n pivots; beyond 6n the sparse engine is more
-                // likely wandering in ill-conditioned ties than tracing, and the dense engine
-                // takes over.
-                max_pivots: engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
-                max_border: 40,
-                order: engine.lexicographic_order.clone(),
-                relations: engine.row_relations.clone(),
-                progress: engine.progress.clone(),
-            };
-            // Taken where it reaches the target, or ends in a ray that verifies far along
-            // it, its doubtful rates judged on the dense data (`PathSolver::follow_sparse`).
-            solver.follow_sparse(&lcp, &schur_options)
-        });
+        .map(|sparse| units.normalise_sparse(sparse).lcp());
+    if let Some(lcp) = &sparse_lcp {
+        solver.judged_on(Arc::new(unilateral_lcp::StructureJudge::new(lcp.clone())));
+    }
+    let traced = sparse_lcp.filter(|_| trace_sparse).and_then(|lcp| {
+        // The sparse engine's options: the solver's order, relations and progress.
+        let engine = solver.settings();
+        let schur_options = unilateral_lcp::SchurOptions {
+            target: settings.target,
+            follow: settings.follow,
+            // A long path takes about 2n pivots; beyond 6n the sparse engine is more
+            // likely wandering in ill-conditioned ties than tracing, and the dense engine
+            // takes over.
+            max_pivots: engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
+            max_border: 40,
+            order: engine.lexicographic_order.clone(),
+            relations: engine.row_relations.clone(),
+            progress: engine.progress.clone(),
+        };
+        // Taken where it reaches the target, or ends in a ray that verifies far along
+        // it, its doubtful rates judged on the dense data (`PathSolver::follow_sparse`).
+        solver.follow_sparse(&lcp, &schur_options)
+    });
     let traced_on_sparse_blocks = traced.is_some();
     let mut path = traced.unwrap_or_else(|| solver.follow());
     let m = zone.pairs();

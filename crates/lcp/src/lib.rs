@@ -68,7 +68,7 @@ pub use path::{
 pub use problem::{Lcp, ParametricLcp};
 pub use progress::{Phase, Progress, Snapshot};
 pub use residual::Residual;
-pub use schur::{follow_schur_path, SchurLcp, SchurOptions, SchurPath};
+pub use schur::{follow_schur_path, SchurLcp, SchurOptions, SchurPath, StructureJudge};
 pub use settings::{RowRelation, Settings, ACCEPT_RESIDUAL};
 pub use solution::{LcpPoint, LcpSolution, LcpStatus, Strategy};
 pub use solver::{follow_path, solution_at, tableaux, PathSolver};

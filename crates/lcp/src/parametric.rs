@@ -105,6 +105,16 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     );
     piv.progress = settings.progress.clone();
     piv.relations = solver.relations.clone();
+    if c0 == 0.0 {
+        piv.judge = solver
+            .judge
+            .clone()
+            .map(|judge| crate::pivoting::pivot::Judging {
+                judge,
+                row: prep.scaling.row.clone(),
+                col: prep.scaling.col.clone(),
+            });
+    }
     let start_z = basic_z(prep, &piv.basis.slot_var, &cols.values(&piv.beta));
     let mut records: Vec<PivotRecord> = Vec::new();
     let mut crossed = None;
@@ -177,8 +187,10 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
             // (`Pivoter::verify_ray`): a mechanism needs the driver fixed within round-off of
             // the rows it meets, not only below the pivot tolerance of the column.
             let check = piv.ray_check;
-            let fixed = check.is_none_or(|c| c.driver_fixed());
-            if check.is_some_and(|c| !c.verified()) {
+            // A direction the structure's own equations found a mechanism is judged on them.
+            let judged = piv.judged_mechanism;
+            let fixed = judged || check.is_none_or(|c| c.driver_fixed());
+            if !judged && check.is_some_and(|c| !c.verified()) {
                 path.status = PathStatus::NumericalFailure;
                 None
             } else if last_entering == driver || rate < -tol.pivot * amax || !fixed {

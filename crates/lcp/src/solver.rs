@@ -60,6 +60,9 @@ pub struct PathSolver {
     pub(crate) cov: Vec<f64>,
     /// The settings' row relations that the data satisfy, in the equilibrated rows.
     pub(crate) relations: std::sync::Arc<crate::pivoting::relations::Relations>,
+    /// The structure's own equations, judging the load rates the data cannot tell from
+    /// round-off ([`PathSolver::judged_on`]).
+    pub(crate) judge: Option<std::sync::Arc<crate::StructureJudge>>,
 }
 
 impl fmt::Debug for PathSolver {
@@ -94,6 +97,7 @@ impl PathSolver {
         prep.derive_rows(&relations);
         Ok(Self {
             relations,
+            judge: None,
             q0,
             d,
             options,
@@ -103,6 +107,19 @@ impl PathSolver {
             c0,
             cov,
         })
+    }
+
+    /// Judges the path's doubtful load rates on `judge`, the same problem on the structure's
+    /// own sparse equations (in the same units): where a segment would carry the load a real
+    /// way at a rate below the pivot tolerance of its column, or a ray's load moves at such a
+    /// rate, and the structure's equations give the load no rate beyond round-off of their sums
+    /// and no variable a decrease, the segment is the structure's mechanism at the load
+    /// reached (`crate::schur::judge`). Only a path without a tightening is judged; a judge of
+    /// another order is ignored.
+    pub fn judged_on(&mut self, judge: std::sync::Arc<crate::StructureJudge>) {
+        if judge.order() == self.n {
+            self.judge = Some(judge);
+        }
     }
 
     /// The problem, as given: `M` rebuilt bit for bit from the equilibrated copy the solver

@@ -371,3 +371,52 @@ fn a_beam_pushed_sideways_slides_at_the_limit_load_by_hand() {
     );
     assert!(slipping);
 }
+
+/// Beams on bearings held sideways by soft springs (1 kN/m and 10 kN/m under a beam of 1.5e10
+/// N): past the sliding limit by hand `p*` the beam slides on every bearing at constant load,
+/// a mechanism. On the condensed data that mechanism keeps a residual stiffness of their
+/// round-off (the load's rate 1e-10 of its column), and the path ran on with slips of 1e10
+/// to the target, where the answer was refused as unresolvable in double precision (exit 2; a
+/// reviewer's sweep of round 28). The structure's own equations give the load no rate there
+/// (1e-54 to 1e-18 of their terms), and the path ends in the mechanism at `p*` — in N and m
+/// and in kN and mm alike. The 300-bearing beam's exact direction also has a variable that
+/// blocks at constant load before the mechanism (one pivot taken on the structure's
+/// direction). The steel block on a genuine 300 N/m spring keeps its load rate
+/// (`a_slow_load_rate_still_reaches_the_target`).
+#[test]
+fn a_beam_on_soft_sideways_springs_slides_at_the_limit_load_by_hand() {
+    use unilateral_oracle::fixtures::bearings::Bearings;
+    let cases = [
+        // 80 bearings, friction 0.2, 10 kN/m springs: p* = 2/7.
+        Bearings {
+            m: 80,
+            friction: 0.2,
+            springs: [1e10, 1e4],
+            load_scale: 3.0,
+            sideways: 1e4,
+            kn_mm: false,
+        },
+        // 300 bearings, friction 0.1, 1 kN/m springs: p* = 2/17.
+        Bearings {
+            m: 300,
+            friction: 0.1,
+            springs: [1e9, 1e3],
+            load_scale: 10.0,
+            sideways: 1e4,
+            kn_mm: false,
+        },
+    ];
+    for b in cases {
+        let by_hand = sliding_limit_by_hand(&b);
+        for kn_mm in [false, true] {
+            let b = Bearings { kn_mm, ..b.clone() };
+            // The file's target (1) lies beyond the limit.
+            let (p_limit, slipping) = sliding(&b, 1.0);
+            assert!(
+                (p_limit - by_hand).abs() <= 1e-8 * by_hand,
+                "{b:?}: {p_limit} against {by_hand}"
+            );
+            assert!(slipping, "{b:?}");
+        }
+    }
+}

@@ -15,6 +15,16 @@ pub(crate) struct Tolerances {
     pub value: f64,
 }
 
+/// The structure's own equations with the equilibration that maps their variables to the
+/// tableau's ([`Pivoter::judge`]).
+#[derive(Debug, Clone)]
+pub(crate) struct Judging {
+    pub judge: std::sync::Arc<crate::StructureJudge>,
+    /// The rows' and columns' scales of the equilibration (`x̂ = E x`, `z = D ẑ`).
+    pub row: Vec<f64>,
+    pub col: Vec<f64>,
+}
+
 /// One pivot as recorded on the path.
 #[derive(Debug, Clone)]
 pub(crate) struct PivotRecord {
@@ -95,6 +105,11 @@ pub(crate) struct Pivoter<'a> {
     since_values: usize,
     /// The last ray's direction, checked against the data ([`Pivoter::check_ray`]).
     pub ray_check: Option<RayCheck>,
+    /// The structure's own equations, judging doubtful load rates (the load path without a
+    /// tightening sets it: [`crate::PathSolver::judged_on`]).
+    pub judge: Option<Judging>,
+    /// The run ended in a ray because the judge found the segment's direction a mechanism.
+    pub judged_mechanism: bool,
     /// Bumped after every recorded pivot (inert unless a caller sets one: the load path does).
     pub progress: crate::Progress,
     /// Rows the formulation ties exactly (none unless a caller sets them: the load path does).
@@ -191,6 +206,8 @@ impl<'a> Pivoter<'a> {
             drift: 0.0,
             since_values: 0,
             ray_check: None,
+            judge: None,
+            judged_mechanism: false,
             progress: crate::Progress::default(),
             relations: Default::default(),
             entering: usize::MAX,
@@ -1020,6 +1037,51 @@ impl<'a> Pivoter<'a> {
             .fold(1.0f64, f64::max);
     }
 
+    /// The direction of the segment on which `entering` grows, as the structure's equations
+    /// ([`Pivoter::judge`]) give it, in the tableau's units and with the driver held — where
+    /// they give the load no rate beyond round-off of their sums; else `None`.
+    fn judged_direction(&self, entering: usize) -> Option<Vec<f64>> {
+        use crate::binary::ldexp;
+        let judging = self.judge.as_ref()?;
+        let n = self.cols.n;
+        let mut basic = vec![false; 2 * n + 1];
+        for &v in &self.basis.slot_var {
+            basic[v] = true;
+        }
+        let (rates, verdict) = judging.judge.direction(&basic, entering)?;
+        if !verdict.load_holds() {
+            return None;
+        }
+        // A variable's value in the tableau's units per unit of its own: `x̂ = E x`, `ẑ = z/D`,
+        // all over `2^eh`; the driver `t = p·2^(eg − eh)`.
+        let (eh, eg) = (self.cols.eh, self.cols.eg);
+        let unit = |v: usize| {
+            if v < n {
+                ldexp(judging.row[v], -eh)
+            } else if v < 2 * n {
+                ldexp(1.0 / judging.col[v - n], -eh)
+            } else {
+                ldexp(1.0, eg - eh)
+            }
+        };
+        let per_entering = unit(entering);
+        let driver = self.cols.driver();
+        // `β` moves by `−θ α`: `α` is minus the rate.
+        let alpha: Vec<f64> = self
+            .basis
+            .slot_var
+            .iter()
+            .map(|&v| {
+                if v == driver {
+                    0.0
+                } else {
+                    -rates[v] * unit(v) / per_entering
+                }
+            })
+            .collect();
+        alpha.iter().all(|a| a.is_finite()).then_some(alpha)
+    }
+
     /// Complementary pivoting from `entering` until the driver leaves, a ray, the target, or
     /// the pivot cap. `target = Some((t, stop))` (in the caller's units): when the driver would
     /// pass `t`, stop there if `stop`, otherwise note the segment index in `crossed` and go on.
@@ -1034,7 +1096,7 @@ impl<'a> Pivoter<'a> {
         let driver = self.cols.driver();
         let target = target.map(|(t, stop)| (self.cols.driver_scaled(t), stop));
         loop {
-            let Ok((alpha, step)) = self.choose(entering) else {
+            let Ok((mut alpha, mut step)) = self.choose(entering) else {
                 return (Ending::Singular, entering);
             };
             let amax = max_abs(&alpha);
@@ -1044,7 +1106,7 @@ impl<'a> Pivoter<'a> {
             // slips' rates are 1e6 times the load's, and the load went from 0.998 to 1.56 on
             // one segment without the target 1 being seen); on a ray (no step) only a rate
             // above the tolerance reaches it.
-            let (t_now, t_rate, t_sure) = if entering == driver {
+            let (t_now, mut t_rate, t_sure) = if entering == driver {
                 (0.0, 1.0, true)
             } else if let Some(ds) = self.driver_slot() {
                 let a = alpha[ds];
@@ -1052,6 +1114,27 @@ impl<'a> Pivoter<'a> {
             } else {
                 (0.0, 0.0, false)
             };
+            // A load rate below the column's tolerance that would carry the load a real way
+            // (or without end), judged on the structure's own equations where they are at
+            // hand: a mechanism there ends the path at the load reached.
+            let mut judged = false;
+            if !t_sure && t_rate != 0.0 && entering != driver && self.judge.is_some() {
+                let reach = target.map_or(0.0, |(t, _)| t.abs()).max(t_now.abs());
+                let carries = step.is_none_or(|(_, th)| (th * t_rate).abs() > 1e-6 * reach);
+                // On the structure's equations the load holds: the segment is taken on their
+                // direction, at constant load — to the variable that blocks it there, or
+                // without end, a mechanism.
+                if let Some(exact) = carries.then(|| self.judged_direction(entering)).flatten() {
+                    alpha = exact;
+                    t_rate = 0.0;
+                    step = self.ratio_test(&alpha);
+                    judged = true;
+                    if step.is_none() {
+                        self.judged_mechanism = true;
+                        return (Ending::Ray { alpha }, entering);
+                    }
+                }
+            }
             if let Some((t_target, stop)) = target {
                 if crossed.is_none() && t_rate > 0.0 && t_now <= t_target {
                     let theta_t = (t_target - t_now) / t_rate;
@@ -1081,6 +1164,11 @@ impl<'a> Pivoter<'a> {
             };
             if self.pivots >= max_pivots {
                 return (Ending::IterationLimit, entering);
+            }
+            if judged {
+                // The kernel's inverse is refactorised after a pivot on a direction it did not
+                // form, and the values recomputed from the data.
+                self.drift = f64::INFINITY;
             }
             let leaving = match self.pivot(entering, slot, theta, &alpha) {
                 Ok(l) => l,

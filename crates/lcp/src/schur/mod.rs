@@ -28,12 +28,14 @@
 //! the sweep and the tableaux. Measurements: `docs/performance.md`, rounds 27 and 28.
 
 mod bordered;
+mod judge;
 
 use faer::sparse::SparseColMat;
 use faer::Mat;
 
 use crate::{Breakpoint, Follow, ParametricLcp, PathStatus, Step, Var};
 use bordered::Bordered;
+pub use judge::StructureJudge;
 
 /// A parametric LCP with `M = D − C A⁻¹ B` (see the module's documentation).
 #[derive(Debug, Clone)]
