@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use unilateral_contact::{
-    follow_history, ContactZone, History, HistorySolution, PairResult, Stage,
+    follow_history_judged, ContactZone, History, HistorySolution, PairResult, Stage,
 };
 use unilateral_fem::{Condensed, Model, Results};
 
@@ -43,7 +43,12 @@ pub fn analyze_history(
         cases: zone.cases.clone(),
         stages: stages.to_vec(),
     };
-    let solution = follow_history(&zone, &history, settings).map_err(contact_error)?;
+    // The structure's own blocks judge the load rates the condensed data cannot tell from
+    // round-off.
+    let sparse = crate::sparse_zone_of(model).ok();
+    let solution =
+        follow_history_judged(&zone, &history, sparse.as_ref(), settings).map_err(contact_error)?;
+    drop(sparse);
     let solve = started.elapsed();
     settings.progress.phase(unilateral_lcp::Phase::Recovering);
     let started = Instant::now();

@@ -569,6 +569,7 @@ pub fn sparse_zone_of(model: &Model) -> Result<unilateral_contact::SparseZone, F
         kzz: b.kzz,
         constant: b.constant,
         variable: b.variable,
+        cases: b.cases,
         friction: pairs.iter().map(|p| p.friction).collect(),
         gap: pairs.iter().map(|p| p.gap).collect(),
     })

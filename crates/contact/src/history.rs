@@ -13,7 +13,7 @@ use crate::lcp::ContactLcp;
 use crate::solution::{Event, EventKind, PairResult, PairState};
 use crate::solve::events_of;
 use crate::units::Units;
-use crate::{ContactError, ContactLoad, ContactZone};
+use crate::{ContactError, ContactLoad, ContactZone, SparseZone};
 
 /// A load case by name: the link forces of the bonded structure under the case at factor 1
 /// (`R_case`, `formulation.md` §2).
@@ -259,6 +259,21 @@ pub fn follow_history(
     history: &History,
     settings: &unilateral_lcp::Settings,
 ) -> Result<HistorySolution, ContactError> {
+    follow_history_judged(zone, history, None, settings)
+}
+
+/// [`follow_history`] with the structure's sparse blocks at hand (`sparse`: the same zone as
+/// the bonded structure's blocks, its [`SparseZone::cases`] indexed like the history's): each
+/// stage's load rates that the condensed data cannot tell from round-off are judged on the
+/// structure's own equations with the stage's load increment
+/// ([`unilateral_lcp::EvolutionSolver::stage_judged`]) — a beam sliding on its bearings at
+/// constant load is a mechanism there.
+pub fn follow_history_judged(
+    zone: &ContactZone,
+    history: &History,
+    sparse: Option<&SparseZone>,
+    settings: &unilateral_lcp::Settings,
+) -> Result<HistorySolution, ContactError> {
     zone.validate()?;
     let m = zone.pairs();
     for case in &history.cases {
@@ -386,6 +401,10 @@ pub fn follow_history(
                 .into(),
         ));
     };
+    // The structure's blocks in the solver's units, where they match the zone and the cases.
+    let sparse = sparse
+        .filter(|sp| sp.pairs() == m && sp.cases.len() == history.cases.len())
+        .map(|sp| units.normalise_sparse(sp));
     let reader = Reader {
         zone,
         units,
@@ -401,7 +420,34 @@ pub fn follow_history(
                 }
             }
         }
-        let run = solver.stage(&state, &d);
+        // The judge of the stage: the structure with the stage's increment as its load.
+        let judge = sparse.as_ref().map(|sp| {
+            let mut inc = [vec![0.0; sp.kii.nrows()], vec![0.0; 2 * m]];
+            for (c, loads) in sp.cases.iter().enumerate() {
+                let df = end[c] - start[c];
+                if df != 0.0 {
+                    for (part, load) in inc.iter_mut().zip(loads) {
+                        for (a, b) in part.iter_mut().zip(load) {
+                            *a += df * b;
+                        }
+                    }
+                }
+            }
+            // Directions do not depend on the constant load: none is carried.
+            let lcp = SparseZone {
+                kii: sp.kii.clone(),
+                kiz: sp.kiz.clone(),
+                kzz: sp.kzz.clone(),
+                constant: [vec![0.0; sp.kii.nrows()], vec![0.0; 2 * m]],
+                variable: inc,
+                friction: sp.friction.clone(),
+                gap: vec![0.0; m],
+                cases: Vec::new(),
+            }
+            .lcp();
+            std::sync::Arc::new(unilateral_lcp::StructureJudge::new(lcp))
+        });
+        let run = solver.stage_judged(&state, &d, judge);
         let factors_at = |s: f64| -> Vec<f64> {
             start
                 .iter()
@@ -444,7 +490,21 @@ pub fn follow_history(
             });
         }
         let inc = &run.last_increment;
-        let pairs = reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i]));
+        // A pair's state at the end: by its slip over the stage's last segment, or, where the
+        // stage ends in a mechanism (whose last breakpoint has no segment after it), by its
+        // rate in the mechanism's mode — the bearings that slide as the structure moves.
+        let pairs = match &run.ending {
+            StageEnding::Mechanism(mode) => {
+                let dz = &mode.dz;
+                let top = dz[m..].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                let zmax = run.end.z.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+                let rate = |v: f64| if top > 0.0 { v / top * zmax } else { 0.0 };
+                reader.pairs(&run.end.x, &run.end.z, |i| {
+                    (rate(dz[m + i]), rate(dz[2 * m + i]))
+                })
+            }
+            _ => reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i])),
+        };
         let phi = factors_at(run.s_end);
         let mut residual = reader.residual(&pairs, &phi, history, inc);
         residual.dissipation = reader.dissipation(&chain);

@@ -31,8 +31,8 @@ mod zone;
 
 pub use error::ContactError;
 pub use history::{
-    follow_history, History, HistoryResidual, HistorySolution, HistoryStep, LoadCase, Stage,
-    StageSolution, StageStatus,
+    follow_history, follow_history_judged, History, HistoryResidual, HistorySolution, HistoryStep,
+    LoadCase, Stage, StageSolution, StageStatus,
 };
 pub use lcp::ContactLcp;
 pub use settings::SolveSettings;

@@ -19,6 +19,9 @@ pub struct SparseZone {
     pub constant: [Vec<f64>; 2],
     /// Generalized loads of the variable group (per unit `p`) on `I` and on `z`.
     pub variable: [Vec<f64>; 2],
+    /// Generalized loads of every load case on `I` and on `z`, indexed like the zone's
+    /// [`crate::ContactZone::cases`] (the load histories'; may be empty otherwise).
+    pub cases: Vec<[Vec<f64>; 2]>,
     /// Friction coefficient per pair.
     pub friction: Vec<f64>,
     /// Initial gap per pair.

@@ -111,7 +111,13 @@ impl Units {
                 .iter_mut()
                 .for_each(|v| *v = ldexp(*v, -self.stiffness));
         }
-        for v in z.constant.iter_mut().chain(z.variable.iter_mut()).flatten() {
+        for v in z
+            .constant
+            .iter_mut()
+            .chain(z.variable.iter_mut())
+            .chain(z.cases.iter_mut().flatten())
+            .flatten()
+        {
             *v = self.normalised_force(*v);
         }
         z.gap

@@ -23,6 +23,9 @@ pub struct BondedBlocks {
     pub constant: [Vec<f64>; 2],
     /// The same of the variable group (per unit `p`).
     pub variable: [Vec<f64>; 2],
+    /// The same of every load case of the model, indexed like [`Model::cases`] (the load
+    /// histories' loads).
+    pub cases: Vec<[Vec<f64>; 2]>,
 }
 
 impl Model {
@@ -66,12 +69,18 @@ impl Model {
         }
         let kzz = sparse(nz, nz, &kzz_t)?;
         let group = |g: usize| [asm.b_i[g].clone(), asm.b_z[g].clone()];
+        let cases = asm
+            .cases
+            .iter()
+            .map(|c| [c.b_i.clone(), c.b_z.clone()])
+            .collect();
         Ok(BondedBlocks {
             kii,
             kiz,
             kzz,
             constant: group(0),
             variable: group(1),
+            cases,
         })
     }
 }

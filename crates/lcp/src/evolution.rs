@@ -232,6 +232,19 @@ impl EvolutionSolver {
 
     /// Follows one stage from `from`: the load moves by `s·d`, `s` from 0 to 1.
     pub fn stage(&self, from: &EvolutionState, d: &[f64]) -> StageRun {
+        self.stage_judged(from, d, None)
+    }
+
+    /// [`EvolutionSolver::stage`], the load's rates that the data cannot tell from round-off
+    /// judged on `judge`: the same problem on the structure's own sparse equations, with the
+    /// stage's load increment `d` as its load (as [`crate::PathSolver::judged_on`] judges a
+    /// load path's).
+    pub fn stage_judged(
+        &self,
+        from: &EvolutionState,
+        d: &[f64],
+        judge: Option<std::sync::Arc<crate::StructureJudge>>,
+    ) -> StageRun {
         let n = self.n;
         let failed = |ending| StageRun {
             ending,
@@ -263,6 +276,13 @@ impl EvolutionSolver {
             self.settings.refactor_interval,
         );
         piv.restart_lex();
+        piv.judge = judge
+            .filter(|j| j.order() == n)
+            .map(|judge| crate::pivoting::pivot::Judging {
+                judge,
+                row: self.prep.scaling.row.clone(),
+                col: self.prep.scaling.col.clone(),
+            });
         let reset = &self.problem.incremental;
         let guard = &self.problem.guard;
         let driver = 2 * n;
@@ -296,7 +316,7 @@ impl EvolutionSolver {
             (x, z.collect())
         };
         let ending = loop {
-            let Ok((alpha, step)) = piv.choose(entering) else {
+            let Ok((mut alpha, mut step)) = piv.choose(entering) else {
                 break StageEnding::Singular;
             };
             let amax = max_abs(&alpha);
@@ -310,6 +330,21 @@ impl EvolutionSolver {
             } else {
                 (0.0, 0.0)
             };
+            // A rate of the load below the column's tolerance, read as zero above, that would
+            // still move the load a real way (the pivot applies the whole column), judged on
+            // the structure's equations where they are at hand: where the load holds there,
+            // the segment is taken on their direction at constant load.
+            let mut judged = false;
+            if let Some(ds) = ds.filter(|_| entering != driver && t_rate == 0.0) {
+                let carries = step.is_none_or(|(_, th)| (th * alpha[ds]).abs() > 1e-6 * target);
+                if alpha[ds] != 0.0 && carries && piv.judge.is_some() {
+                    if let Some(exact) = piv.judged_direction(entering) {
+                        alpha = exact;
+                        step = piv.ratio_test(&alpha);
+                        judged = true;
+                    }
+                }
+            }
             if t_rate > 0.0 {
                 let theta_t = (target - t_now) / t_rate;
                 let hit = match step {
@@ -349,6 +384,9 @@ impl EvolutionSolver {
             }
             if piv.pivots >= cap {
                 break StageEnding::IterationLimit;
+            }
+            if judged {
+                piv.force_refactor();
             }
             let Ok(leaving) = piv.pivot(entering, slot, theta, &alpha) else {
                 break StageEnding::Singular;

@@ -420,3 +420,64 @@ fn a_beam_on_soft_sideways_springs_slides_at_the_limit_load_by_hand() {
         }
     }
 }
+
+/// The same sliding beam (80 bearings on 10 kN/m springs, `p* = 2/7` by hand) under a load
+/// history — its dead load, then the push to 0.2, then to 1 — in N and m and in kN and mm:
+/// the last stage ends in the mechanism where the push's factor reaches `p*`, every pair
+/// slipping. On the condensed data alone the stage's load rate there is 1e-10 of its column:
+/// read as zero, yet applied with the whole column, it carried the stage past its end and the
+/// results were out of balance (an internal failure, exit 1). Judged on the structure's
+/// equations with the stage's increment as the load, the load holds there.
+#[test]
+fn a_beam_on_soft_sideways_springs_slides_in_a_load_history_at_the_limit_by_hand() {
+    use unilateral_analysis::analyze_history;
+    use unilateral_contact::{PairState, Stage, StageStatus};
+    use unilateral_oracle::fixtures::bearings::Bearings;
+    for kn_mm in [false, true] {
+        let b = Bearings {
+            m: 80,
+            friction: 0.2,
+            springs: [1e10, 1e4],
+            load_scale: 3.0,
+            sideways: 1e4,
+            kn_mm,
+        };
+        let by_hand = sliding_limit_by_hand(&b);
+        assert!((by_hand - 2.0 / 7.0).abs() < 1e-15);
+        let model = crate::bearings_model(&b);
+        let (dead, push) = (
+            model.case("constant").unwrap().0,
+            model.case("variable").unwrap().0,
+        );
+        let stage = |name: &str, factors: &[(usize, f64)]| {
+            let mut f = vec![None; model.cases().len()];
+            for &(c, v) in factors {
+                f[c] = Some(v);
+            }
+            Stage {
+                name: name.into(),
+                factors: f,
+            }
+        };
+        let stages = [
+            stage("dead load", &[(dead, 1.0)]),
+            stage("push to 0.2", &[(push, 0.2)]),
+            stage("push to 1", &[(push, 1.0)]),
+        ];
+        let a = analyze_history(&model, &stages, &Default::default()).unwrap();
+        let st = &a.history.stages;
+        assert_eq!(st.len(), 3);
+        assert_eq!(st[1].status, StageStatus::Completed);
+        assert_eq!(st[2].status, StageStatus::Mechanism, "{:?}", st[2].reason);
+        let factor = 0.2 + st[2].s_end * 0.8;
+        assert!(
+            (factor - by_hand).abs() <= 1e-8 * by_hand,
+            "{factor} against {by_hand}"
+        );
+        let states: Vec<_> = st[2].pairs.iter().map(|r| r.state).collect();
+        assert!(
+            states.iter().all(|&s| s == PairState::SlipPlus),
+            "{states:?}"
+        );
+    }
+}

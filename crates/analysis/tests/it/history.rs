@@ -131,6 +131,16 @@ fn a_stage_ends_in_a_mechanism_with_its_limit_factor() {
         (mode[0].1 - mode[1].1).abs() < 1e-9 && mode[0].1.abs() > 0.5,
         "{mode:?}"
     );
+    // At the limit both pairs slide, in the mode's direction (read from the mode: the
+    // mechanism's last breakpoint has no segment after it, and the slips since that
+    // breakpoint — none — made both read "stick" until round 29).
+    let slip = if mode[0].1 > 0.0 {
+        PairState::SlipPlus
+    } else {
+        PairState::SlipMinus
+    };
+    let states: Vec<PairState> = st.pairs.iter().map(|r| r.state).collect();
+    assert_eq!(states, vec![slip; 2]);
     assert_eq!(a.history.status(), &StageStatus::Mechanism);
     // The results at the limit are in equilibrium (checked by the recovery) and reported.
     assert_eq!(a.stage_results.len(), 2);

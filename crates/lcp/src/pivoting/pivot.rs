@@ -1037,10 +1037,16 @@ impl<'a> Pivoter<'a> {
             .fold(1.0f64, f64::max);
     }
 
+    /// The next pivot refactorises the kernel's inverse and recomputes the values from the
+    /// data: for a pivot on a direction the inverse did not form ([`Pivoter::judged_direction`]).
+    pub fn force_refactor(&mut self) {
+        self.drift = f64::INFINITY;
+    }
+
     /// The direction of the segment on which `entering` grows, as the structure's equations
     /// ([`Pivoter::judge`]) give it, in the tableau's units and with the driver held — where
     /// they give the load no rate beyond round-off of their sums; else `None`.
-    fn judged_direction(&self, entering: usize) -> Option<Vec<f64>> {
+    pub fn judged_direction(&self, entering: usize) -> Option<Vec<f64>> {
         use crate::binary::ldexp;
         let judging = self.judge.as_ref()?;
         let n = self.cols.n;
@@ -1166,9 +1172,7 @@ impl<'a> Pivoter<'a> {
                 return (Ending::IterationLimit, entering);
             }
             if judged {
-                // The kernel's inverse is refactorised after a pivot on a direction it did not
-                // form, and the values recomputed from the data.
-                self.drift = f64::INFINITY;
+                self.force_refactor();
             }
             let leaving = match self.pivot(entering, slot, theta, &alpha) {
                 Ok(l) => l,
