@@ -20,7 +20,7 @@ use faer::Mat;
 
 use crate::parametric::{mechanism_mode, start_basis};
 use crate::pivoting::basis::Basis;
-use crate::pivoting::pivot::{max_abs, Pivoter, Tolerances};
+use crate::pivoting::pivot::{max_abs, Pivoter, Tolerances, RUNAWAY, UNRESOLVED};
 use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
 use crate::{LcpError, MechanismMode, Settings, Var};
 
@@ -337,10 +337,15 @@ impl EvolutionSolver {
             let mut judged = false;
             if let Some(ds) = ds.filter(|_| entering != driver && t_rate == 0.0) {
                 let carries = step.is_none_or(|(_, th)| (th * alpha[ds]).abs() > 1e-6 * target);
-                if alpha[ds] != 0.0 && carries && piv.judge.is_some() {
+                let runaway = piv.runaway(step, amax) > RUNAWAY;
+                if alpha[ds] != 0.0 && carries && runaway && piv.judge.is_some() {
                     if let Some(exact) = piv.judged_direction(entering) {
                         alpha = exact;
                         step = piv.ratio_test(&alpha);
+                        // Beyond double precision: the mechanism it approaches.
+                        if piv.runaway_by_kind(step, &alpha) > UNRESOLVED {
+                            step = None;
+                        }
                         judged = true;
                     }
                 }

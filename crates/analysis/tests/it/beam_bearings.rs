@@ -311,8 +311,11 @@ fn the_path_satisfies_the_contact_conditions_of_the_hand_zone() {
 
 /// The limit load and whether every pair slips in the `+` direction, for a beam on bearings
 /// pushed sideways (its sliding mechanism), traced to `target`.
-fn sliding(b: &unilateral_oracle::fixtures::bearings::Bearings, target: f64) -> (f64, bool) {
-    use unilateral_contact::{Outcome, PairState, SolveSettings};
+fn sliding(
+    b: &unilateral_oracle::fixtures::bearings::Bearings,
+    target: f64,
+) -> (f64, Vec<unilateral_contact::PairState>) {
+    use unilateral_contact::{Outcome, SolveSettings};
     let model = crate::bearings_model(b);
     let settings = SolveSettings {
         target,
@@ -326,12 +329,16 @@ fn sliding(b: &unilateral_oracle::fixtures::bearings::Bearings, target: f64) -> 
         )
     };
     assert_eq!(a.solution.pairs.len(), b.m);
-    let slipping = a
-        .solution
-        .pairs
-        .iter()
-        .all(|r| r.state == PairState::SlipPlus);
-    (p_limit, slipping)
+    (p_limit, a.solution.pairs.iter().map(|r| r.state).collect())
+}
+
+/// Every pair slides with the beam (`+`), but those the load has lifted off their bearings.
+fn all_slide(states: &[unilateral_contact::PairState], open_allowed: bool) -> bool {
+    use unilateral_contact::PairState;
+    states.iter().any(|&s| s == PairState::SlipPlus)
+        && states
+            .iter()
+            .all(|&s| s == PairState::SlipPlus || (open_allowed && s == PairState::Open))
 }
 
 /// The sliding limit of the beam by hand: friction `f` against the sideways load `H`, the
@@ -364,12 +371,12 @@ fn a_beam_pushed_sideways_slides_at_the_limit_load_by_hand() {
     };
     let by_hand = sliding_limit_by_hand(&b);
     assert!((by_hand - 2.0 / 17.0).abs() < 1e-15);
-    let (p_limit, slipping) = sliding(&b, 30.0);
+    let (p_limit, states) = sliding(&b, 30.0);
     assert!(
         (p_limit - by_hand).abs() <= 1e-9 * by_hand,
         "{p_limit} against {by_hand}"
     );
-    assert!(slipping);
+    assert!(all_slide(&states, false), "{states:?}");
 }
 
 /// Beams on bearings held sideways by soft springs (1 kN/m and 10 kN/m under a beam of 1.5e10
@@ -411,12 +418,12 @@ fn a_beam_on_soft_sideways_springs_slides_at_the_limit_load_by_hand() {
         for kn_mm in [false, true] {
             let b = Bearings { kn_mm, ..b.clone() };
             // The file's target (1) lies beyond the limit.
-            let (p_limit, slipping) = sliding(&b, 1.0);
+            let (p_limit, states) = sliding(&b, 1.0);
             assert!(
                 (p_limit - by_hand).abs() <= 1e-8 * by_hand,
                 "{b:?}: {p_limit} against {by_hand}"
             );
-            assert!(slipping, "{b:?}");
+            assert!(all_slide(&states, false), "{b:?}: {states:?}");
         }
     }
 }
@@ -479,5 +486,47 @@ fn a_beam_on_soft_sideways_springs_slides_in_a_load_history_at_the_limit_by_hand
             states.iter().all(|&s| s == PairState::SlipPlus),
             "{states:?}"
         );
+    }
+}
+
+/// Two beams of a reviewer's sweep on stiffer springs (friction 0.5: `p* = 2` by hand) whose
+/// paths reach the sliding limit after 629 and 909 pivots: there the structure's exact
+/// direction has rates of its forces and gaps at round-off of its data (normal forces at 1e-17
+/// of the direction's terms, gaps closing at 1e-9 of the slips), which, taken as decreases,
+/// blocked the slide after slips of 1e13 to 1e14; the path then wandered down to a false
+/// mechanism at p = 1.12 and 1.30 (the condensed data alone: a singular basis, exit 1). With
+/// those rates judged as the round-off they are, both end in the mechanism at `p*`, every
+/// bearing still pressed sliding with the beam.
+#[test]
+fn beams_reaching_the_sliding_limit_late_on_their_paths_stop_there() {
+    use unilateral_oracle::fixtures::bearings::Bearings;
+    let cases = [
+        Bearings {
+            m: 450,
+            friction: 0.5,
+            springs: [1e10, 1e8],
+            load_scale: 3.0,
+            sideways: 1e4,
+            kn_mm: false,
+        },
+        Bearings {
+            m: 700,
+            friction: 0.5,
+            springs: [1e9, 1e7],
+            load_scale: 10.0,
+            sideways: 1e4,
+            kn_mm: false,
+        },
+    ];
+    for b in cases {
+        let by_hand = sliding_limit_by_hand(&b);
+        assert!((by_hand - 2.0).abs() < 1e-15);
+        let (p_limit, states) = sliding(&b, 200.0);
+        assert!(
+            (p_limit - by_hand).abs() <= 1e-8 * by_hand,
+            "{b:?}: {p_limit} against {by_hand}"
+        );
+        // Their right ends lift off (the variable load pulls up there at p = 2).
+        assert!(all_slide(&states, true), "{b:?}: {states:?}");
     }
 }

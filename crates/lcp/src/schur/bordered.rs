@@ -383,6 +383,11 @@ impl Bordered {
         }
     }
 
+    /// `𝒜0 v = r` solved in working precision, `r` overwritten by `v`.
+    pub fn base_solve(&self, r: &mut [f64]) {
+        self.solve_base(r);
+    }
+
     /// The base's matrix (the basis's equations and fix rows after a refactorisation).
     pub fn base_matrix(&self) -> &SparseColMat<usize, f64> {
         &self.base.matrix

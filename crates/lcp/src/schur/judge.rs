@@ -82,9 +82,9 @@ impl StructureJudge {
         basic: &[bool],
         entering: usize,
     ) -> Option<(Vec<f64>, DirectionVerdict)> {
-        let (v, a) = self.rates(basic, entering)?;
+        let (mut v, spread, a) = self.rates(basic, entering)?;
         let (n, big_n) = (self.lcp.order(), self.lcp.a.nrows());
-        let judged = verdict(&a, &v, big_n + n, big_n + 2 * n);
+        let judged = verdict(&a, &mut v, &spread, basic, big_n, n);
         Some((v[big_n..].to_vec(), judged))
     }
 
@@ -94,7 +94,7 @@ impl StructureJudge {
         &self,
         basic: &[bool],
         entering: usize,
-    ) -> Option<(Vec<f64>, SparseColMat<usize, f64>)> {
+    ) -> Option<(Vec<f64>, Vec<f64>, SparseColMat<usize, f64>)> {
         let lcp = &self.lcp;
         let n = lcp.order();
         let big_n = lcp.a.nrows();
@@ -118,13 +118,61 @@ impl StructureJudge {
         let mut rhs = vec![0.0; big_n + 2 * n + 1];
         rhs[row] = scale;
         let v = bordered.refined_base_solve(&rhs);
-        Some((v, bordered.base_matrix().clone()))
+        // How far the stored data's own round-off moves the direction: each equation's terms
+        // perturbed by one rounding, with signs that do not cancel by design (two sign
+        // patterns), carried through the basis (first-order perturbation, `δv = −𝒜⁻¹ δ𝒜 v`).
+        let a = bordered.base_matrix();
+        let rows = big_n + n;
+        let mut terms = vec![0.0f64; v.len()];
+        for (j, &vj) in v.iter().enumerate() {
+            for (&i, &aij) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+                if i < rows {
+                    terms[i] += (aij * vj).abs();
+                }
+            }
+        }
+        let mut spread = vec![0.0f64; v.len()];
+        for pattern in [0x9e37_79b9_u64, 0x85eb_ca6b_u64] {
+            let mut probe: Vec<f64> = terms
+                .iter()
+                .enumerate()
+                .map(|(i, t)| {
+                    let bit = (i as u64).wrapping_mul(pattern).rotate_left(17) & 1;
+                    if bit == 0 {
+                        f64::EPSILON * t
+                    } else {
+                        -f64::EPSILON * t
+                    }
+                })
+                .collect();
+            bordered.base_solve(&mut probe);
+            for (s, w) in spread.iter_mut().zip(&probe) {
+                *s += w.abs();
+            }
+        }
+        Some((v, spread, a.clone()))
     }
 }
 
-/// The verdict on the direction `v` (the base's unknowns `y, x, z, p`) of the system `a`
-/// whose first `rows` rows are the equations and whose column `pcol` is the load's.
-fn verdict(a: &SparseColMat<usize, f64>, v: &[f64], rows: usize, pcol: usize) -> DirectionVerdict {
+/// The verdict on the direction `v` (the base's unknowns `y, x, z, p`; `N = big_n`) of the
+/// system `a`, whose first `N + n` rows are the equations and whose last column is the load's.
+/// A basic variable's decrease within [`crate::ACCEPT_RESIDUAL`] of the terms that formed it
+/// (an `x` its row's, but not below 8 round-offs of the direction's largest terms; a `z` the
+/// largest rate of a `z`), or within eight times `spread` (what one rounding of each
+/// equation's terms moves it by), is set to zero in `v`: on a mechanism of the structure the
+/// exact direction's rates are round-off of its data — a sliding beam's normal forces
+/// decreasing at 1e-17 of the direction's largest terms, a 700-bearing beam's gaps closing at
+/// 1e-9 of its slips — and taken as rates they blocked the slide after slips of 1e13 to 1e14,
+/// from where the path wandered to a false mechanism at a lower load.
+fn verdict(
+    a: &SparseColMat<usize, f64>,
+    v: &mut [f64],
+    spread: &[f64],
+    basic: &[bool],
+    big_n: usize,
+    n: usize,
+) -> DirectionVerdict {
+    let (rows, pcol) = (big_n + n, big_n + 2 * n);
     // Each equation's terms, and the load's own.
     let mut terms = vec![0.0f64; rows];
     let mut load = 0.0f64;
@@ -145,6 +193,28 @@ fn verdict(a: &SparseColMat<usize, f64>, v: &[f64], rows: usize, pcol: usize) ->
     // rate against the largest terms of the direction — a row the direction hardly moves (a
     // beam's vertical DOF while it slides) has the load's share as its only term.
     let largest = terms.iter().fold(0.0f64, |m, &t| m.max(t));
+    let z_scale = v[big_n + n..pcol]
+        .iter()
+        .fold(0.0f64, |m, r| m.max(r.abs()));
+    for i in 0..2 * n {
+        let at = big_n + i;
+        if !basic[i] || v[at] >= 0.0 {
+            continue;
+        }
+        // An `x` against its row's terms, and never below 8 round-offs of the direction's
+        // largest terms: the data hold those to their last bit, and a row the direction hardly
+        // touches (a pair's normal force while the beam slides) carries that much of them.
+        let roundoff = if i < n {
+            (crate::ACCEPT_RESIDUAL * terms[at]).max(8.0 * f64::EPSILON * largest)
+        } else {
+            crate::ACCEPT_RESIDUAL * z_scale
+        };
+        // Nor below what the data's round-off makes of it (`spread`), eight times over.
+        let roundoff = roundoff.max(8.0 * spread[at]);
+        if -v[at] <= roundoff {
+            v[at] = 0.0;
+        }
+    }
     DirectionVerdict {
         load: if load == 0.0 { 0.0 } else { load / largest },
     }
@@ -207,7 +277,7 @@ mod tests {
         // four basic variables: z1, x2, z3, p.
         assert_eq!(basic.iter().filter(|&&b| b).count(), n);
         let entering = n; // z0
-        let (v, _) = judge.rates(&basic, entering).unwrap();
+        let (v, _, _) = judge.rates(&basic, entering).unwrap();
         // Dense: x = q + p d + M z, rates with z0 = 1: unknowns dz1, dx2, dz3, dp.
         // Rows i: dx_i − M_i1 dz1 − M_i3 dz3 − d_i dp = M_i0 (x0, x1, x3 non-basic: 0; x2 free).
         let mut sys = Mat::<f64>::zeros(n, n);
