@@ -335,7 +335,7 @@ fn sliding(
 /// Every pair slides with the beam (`+`), but those the load has lifted off their bearings.
 fn all_slide(states: &[unilateral_contact::PairState], open_allowed: bool) -> bool {
     use unilateral_contact::PairState;
-    states.iter().any(|&s| s == PairState::SlipPlus)
+    states.contains(&PairState::SlipPlus)
         && states
             .iter()
             .all(|&s| s == PairState::SlipPlus || (open_allowed && s == PairState::Open))

@@ -88,8 +88,9 @@ impl StructureJudge {
         Some((v[big_n..].to_vec(), judged))
     }
 
-    /// The rates of [`StructureJudge::direction`] as the base's unknowns `(y, x, z, p)`, with
-    /// the base's matrix.
+    /// The rates of [`StructureJudge::direction`] as the base's unknowns `(y, x, z, p)`, what
+    /// one rounding of the data moves each by, and the base's matrix.
+    #[allow(clippy::type_complexity)]
     fn rates(
         &self,
         basic: &[bool],
@@ -196,9 +197,9 @@ fn verdict(
     let z_scale = v[big_n + n..pcol]
         .iter()
         .fold(0.0f64, |m, r| m.max(r.abs()));
-    for i in 0..2 * n {
+    for (i, _) in basic.iter().enumerate().take(2 * n).filter(|(_, &b)| b) {
         let at = big_n + i;
-        if !basic[i] || v[at] >= 0.0 {
+        if v[at] >= 0.0 {
             continue;
         }
         // An `x` against its row's terms, and never below 8 round-offs of the direction's
