@@ -350,6 +350,18 @@ impl EvolutionSolver {
                     }
                 }
             }
+            // A rate below the column's tolerance that was not judged still moves `s` by the
+            // whole column at the pivot: where the step carries `s` a real way (1e-6 of the
+            // stage) it counts, as on the load path (`Pivoter::run`) — read as zero, a sliding
+            // beam's last stage (a zone without its structure) ran on past its end to
+            // s = 1.53. On a ray it stays zero: a mechanism.
+            let mut t_rate = t_rate;
+            if let Some(ds) = ds.filter(|_| !judged && entering != driver && t_rate == 0.0) {
+                let raw = -alpha[ds];
+                if raw != 0.0 && step.is_some_and(|(_, th)| (th * raw).abs() > 1e-6 * target) {
+                    t_rate = raw;
+                }
+            }
             if t_rate > 0.0 {
                 let theta_t = (target - t_now) / t_rate;
                 let hit = match step {
