@@ -1174,8 +1174,10 @@ impl<'a> Pivoter<'a> {
             // hand: a mechanism there ends the path at the load reached.
             let mut judged = false;
             if !t_sure && t_rate != 0.0 && entering != driver && self.judge.is_some() {
-                let load = target.map_or(0.0, |(t, _)| t.abs()).max(t_now.abs());
-                let carries = step.is_none_or(|(_, th)| (th * t_rate).abs() > 1e-6 * load);
+                // A real way from the load reached, not from the target: judged against a far
+                // target, a beam's step at its sliding limit (the load falling by 3e-4 of it)
+                // was left to the dense data, which took the path down from the limit.
+                let carries = step.is_none_or(|(_, th)| (th * t_rate).abs() > 1e-6 * t_now.abs());
                 // On the structure's equations the load holds: the segment is taken on their
                 // direction, at constant load — to the variable that blocks it there, or
                 // without end (or beyond what double precision resolves), a mechanism.
