@@ -336,7 +336,11 @@ impl EvolutionSolver {
             // the segment is taken on their direction at constant load.
             let mut judged = false;
             if let Some(ds) = ds.filter(|_| entering != driver && t_rate == 0.0) {
-                let carries = step.is_none_or(|(_, th)| (th * alpha[ds]).abs() > 1e-6 * target);
+                // A real way from the stage's `s` reached, as on the load path: against the
+                // whole stage (a push to 200 of a beam sliding at 2) the step at the limit was
+                // left to the condensed data.
+                let carries =
+                    step.is_none_or(|(_, th)| (th * alpha[ds]).abs() > 1e-6 * t_now.abs());
                 let runaway = piv.runaway(step, amax) > RUNAWAY;
                 if alpha[ds] != 0.0 && carries && runaway && piv.judge.is_some() {
                     if let Some(exact) = piv.judged_direction(entering) {

@@ -593,3 +593,46 @@ fn a_stage_on_the_zone_alone_does_not_run_past_its_end() {
         );
     }
 }
+
+/// A reviewer's beam (400 bearings, friction 0.5: `p* = 2` by hand) under its dead load and
+/// then a push to 200 in one stage: the stage ends in the mechanism at a push of 2. Its step at
+/// the limit moves `s` by 3e-6 — a real way from the `s` reached (0.01), not from the whole
+/// stage — and was left to the condensed data when judged against the stage, which took the
+/// path down from the limit (exit 2).
+#[test]
+fn a_long_stage_past_the_sliding_limit_ends_there() {
+    use unilateral_analysis::analyze_history;
+    use unilateral_contact::{Stage, StageStatus};
+    use unilateral_oracle::fixtures::bearings::Bearings;
+    let b = Bearings {
+        m: 400,
+        friction: 0.5,
+        springs: [1e8, 1e5],
+        load_scale: 0.3,
+        sideways: 1e4,
+        kn_mm: true,
+    };
+    let by_hand = sliding_limit_by_hand(&b);
+    let model = crate::bearings_model(&b);
+    let (dead, push) = (
+        model.case("constant").unwrap().0,
+        model.case("variable").unwrap().0,
+    );
+    let stage = |name: &str, c: usize, v: f64| {
+        let mut f = vec![None; model.cases().len()];
+        f[c] = Some(v);
+        Stage {
+            name: name.into(),
+            factors: f,
+        }
+    };
+    let stages = [stage("dead", dead, 1.0), stage("push to 200", push, 200.0)];
+    let a = analyze_history(&model, &stages, &Default::default()).unwrap();
+    let st = &a.history.stages[1];
+    assert_eq!(st.status, StageStatus::Mechanism, "{:?}", st.reason);
+    let factor = 200.0 * st.s_end;
+    assert!(
+        (factor - by_hand).abs() <= 1e-8 * by_hand,
+        "{factor} against {by_hand}"
+    );
+}
