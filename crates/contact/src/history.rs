@@ -402,9 +402,15 @@ pub fn follow_history_judged(
         ));
     };
     // The structure's blocks in the solver's units, where they match the zone and the cases.
+    // Its LCP is formed once; each stage's judge takes it with the stage's increment as the
+    // load (the directions do not depend on the constant load).
     let sparse = sparse
         .filter(|sp| sp.pairs() == m && sp.cases.len() == history.cases.len())
-        .map(|sp| units.normalise_sparse(sp));
+        .map(|sp| {
+            let sp = units.normalise_sparse(sp);
+            let lcp = sp.lcp();
+            (sp, lcp)
+        });
     let reader = Reader {
         zone,
         units,
@@ -421,7 +427,7 @@ pub fn follow_history_judged(
             }
         }
         // The judge of the stage: the structure with the stage's increment as its load.
-        let judge = sparse.as_ref().map(|sp| {
+        let judge = sparse.as_ref().map(|(sp, base)| {
             let mut inc = [vec![0.0; sp.kii.nrows()], vec![0.0; 2 * m]];
             for (c, loads) in sp.cases.iter().enumerate() {
                 let df = end[c] - start[c];
@@ -433,18 +439,8 @@ pub fn follow_history_judged(
                     }
                 }
             }
-            // Directions do not depend on the constant load: none is carried.
-            let lcp = SparseZone {
-                kii: sp.kii.clone(),
-                kiz: sp.kiz.clone(),
-                kzz: sp.kzz.clone(),
-                constant: [vec![0.0; sp.kii.nrows()], vec![0.0; 2 * m]],
-                variable: inc,
-                friction: sp.friction.clone(),
-                gap: vec![0.0; m],
-                cases: Vec::new(),
-            }
-            .lcp();
+            let mut lcp = base.clone();
+            (lcp.d0, lcp.da) = sp.load_direction(&inc);
             std::sync::Arc::new(unilateral_lcp::StructureJudge::new(lcp))
         });
         let run = solver.stage_judged(&state, &d, judge);

@@ -119,24 +119,42 @@ impl SparseZone {
                 bz[i] += v * eta;
             }
         }
-        let tz = |b: &[f64]| -> Vec<f64> {
-            let mut out = vec![0.0; n];
-            for (z, &v) in b.iter().enumerate() {
-                for (r, w) in t_col(z).into_iter().filter(|e| e.0 != usize::MAX) {
-                    out[r] -= w * v;
-                }
-            }
-            out
-        };
+        let (d0, da) = self.load_direction(&self.variable);
         SchurLcp {
             a: self.kii.clone(),
             b: sparse(ni, n, &tb),
             c: sparse(n, ni, &tc),
             d: sparse(n, n, &td),
-            q0: tz(&bz),
+            q0: self.minus_t(&bz),
             qa: bi.iter().map(|v| -v).collect(),
-            d0: tz(&self.variable[1]),
-            da: self.variable[0].iter().map(|v| -v).collect(),
+            d0,
+            da,
         }
+    }
+
+    /// The LCP's load direction `(d0, da) = (−T b_z, −b_I)` of generalized loads `[b_I, b_z]`
+    /// (as [`SparseZone::lcp`] forms it of the variable group): the same LCP under another
+    /// load is [`SparseZone::lcp`] with these two vectors replaced.
+    pub fn load_direction(&self, load: &[Vec<f64>; 2]) -> (Vec<f64>, Vec<f64>) {
+        (self.minus_t(&load[1]), load[0].iter().map(|v| -v).collect())
+    }
+
+    /// `−T b` for `b` on the links (`T` stacks `[I, 0]`, `[F, I]`, `[F, −I]`).
+    fn minus_t(&self, b: &[f64]) -> Vec<f64> {
+        let m = self.pairs();
+        let f = &self.friction;
+        let mut out = vec![0.0; 3 * m];
+        for (z, &v) in b.iter().enumerate() {
+            let i = z % m;
+            if z < m {
+                out[i] -= v;
+                out[m + i] -= f[i] * v;
+                out[2 * m + i] -= f[i] * v;
+            } else {
+                out[m + i] -= v;
+                out[2 * m + i] += v;
+            }
+        }
+        out
     }
 }

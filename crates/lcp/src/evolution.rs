@@ -20,7 +20,7 @@ use faer::Mat;
 
 use crate::parametric::{mechanism_mode, start_basis};
 use crate::pivoting::basis::Basis;
-use crate::pivoting::pivot::{max_abs, Pivoter, Tolerances, RUNAWAY, UNRESOLVED};
+use crate::pivoting::pivot::{max_abs, Pivoter, Tolerances};
 use crate::pivoting::prepare::{check_matrix, check_vector, Prepared};
 use crate::{LcpError, MechanismMode, Settings, Var};
 
@@ -334,24 +334,14 @@ impl EvolutionSolver {
             // still move the load a real way (the pivot applies the whole column), judged on
             // the structure's equations where they are at hand: where the load holds there,
             // the segment is taken on their direction at constant load.
+            // A rate of `s` read as zero, judged on the structure's equations where they are at
+            // hand (`Pivoter::judged_step`; a real way from the `s` reached, as on the load
+            // path: against the whole stage, a push to 200 of a beam sliding at 2 was left to
+            // the condensed data at the limit).
             let mut judged = false;
-            if let Some(ds) = ds.filter(|_| entering != driver && t_rate == 0.0) {
-                // A real way from the stage's `s` reached, as on the load path: against the
-                // whole stage (a push to 200 of a beam sliding at 2) the step at the limit was
-                // left to the condensed data.
-                let carries =
-                    step.is_none_or(|(_, th)| (th * alpha[ds]).abs() > 1e-6 * t_now.abs());
-                let runaway = piv.runaway(step, amax) > RUNAWAY;
-                if alpha[ds] != 0.0 && carries && runaway && piv.judge.is_some() {
-                    if let Some(exact) = piv.judged_direction(entering) {
-                        alpha = exact;
-                        step = piv.ratio_test(&alpha);
-                        // Beyond double precision: the mechanism it approaches.
-                        if piv.runaway_by_kind(step, &alpha) > UNRESOLVED {
-                            step = None;
-                        }
-                        judged = true;
-                    }
+            if let Some(ds) = ds.filter(|_| t_rate == 0.0) {
+                if let Some((exact, at)) = piv.judged_step(entering, step, alpha[ds], t_now, amax) {
+                    (alpha, step, judged) = (exact, at, true);
                 }
             }
             // A rate below the column's tolerance that was not judged still moves `s` by the

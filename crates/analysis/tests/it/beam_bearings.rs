@@ -353,6 +353,43 @@ fn sliding_limit_by_hand(b: &unilateral_oracle::fixtures::bearings::Bearings) ->
     b.friction * vc / (h - b.friction * vv)
 }
 
+/// The 80-bearing beam on 10 kN/m sideways springs (friction 0.2): `p* = 2/7` by hand.
+fn soft_80(kn_mm: bool) -> unilateral_oracle::fixtures::bearings::Bearings {
+    unilateral_oracle::fixtures::bearings::Bearings {
+        m: 80,
+        friction: 0.2,
+        springs: [1e10, 1e4],
+        load_scale: 3.0,
+        sideways: 1e4,
+        kn_mm,
+    }
+}
+
+/// The stages of a load history on a fixture beam, each `(name, case, factor)` with the case
+/// by its name in the model: `constant` (the dead load) or `variable` (the push).
+fn stages(
+    model: &unilateral_fem::Model,
+    list: &[(&str, &str, f64)],
+) -> Vec<unilateral_contact::Stage> {
+    list.iter()
+        .map(|&(name, case, factor)| {
+            let mut factors = vec![None; model.cases().len()];
+            factors[model.case(case).unwrap().0] = Some(factor);
+            unilateral_contact::Stage {
+                name: name.into(),
+                factors,
+            }
+        })
+        .collect()
+}
+
+/// The sliding beam's three stages: its dead load, then the push to 0.2, then to 1.
+const DEAD_PUSH_TO_1: [(&str, &str, f64); 3] = [
+    ("dead load", "constant", 1.0),
+    ("push to 0.2", "variable", 0.2),
+    ("push to 1", "variable", 1.0),
+];
+
 /// A beam on 600 bearings whose variable load pushes it sideways (10 kN/m, friction 0.1, stiff
 /// springs): once friction can no longer hold it, every bearing slips and the beam slides as
 /// a rigid body — by hand, at `p* = f·V_c / (H − f·V_v)` = 2/17. Until round 28 the
@@ -395,14 +432,7 @@ fn a_beam_on_soft_sideways_springs_slides_at_the_limit_load_by_hand() {
     use unilateral_oracle::fixtures::bearings::Bearings;
     let cases = [
         // 80 bearings, friction 0.2, 10 kN/m springs: p* = 2/7.
-        Bearings {
-            m: 80,
-            friction: 0.2,
-            springs: [1e10, 1e4],
-            load_scale: 3.0,
-            sideways: 1e4,
-            kn_mm: false,
-        },
+        soft_80(false),
         // 300 bearings, friction 0.1, 1 kN/m springs: p* = 2/17.
         Bearings {
             m: 300,
@@ -438,39 +468,13 @@ fn a_beam_on_soft_sideways_springs_slides_at_the_limit_load_by_hand() {
 #[test]
 fn a_beam_on_soft_sideways_springs_slides_in_a_load_history_at_the_limit_by_hand() {
     use unilateral_analysis::analyze_history;
-    use unilateral_contact::{PairState, Stage, StageStatus};
-    use unilateral_oracle::fixtures::bearings::Bearings;
+    use unilateral_contact::{PairState, StageStatus};
     for kn_mm in [false, true] {
-        let b = Bearings {
-            m: 80,
-            friction: 0.2,
-            springs: [1e10, 1e4],
-            load_scale: 3.0,
-            sideways: 1e4,
-            kn_mm,
-        };
+        let b = soft_80(kn_mm);
         let by_hand = sliding_limit_by_hand(&b);
         assert!((by_hand - 2.0 / 7.0).abs() < 1e-15);
         let model = crate::bearings_model(&b);
-        let (dead, push) = (
-            model.case("constant").unwrap().0,
-            model.case("variable").unwrap().0,
-        );
-        let stage = |name: &str, factors: &[(usize, f64)]| {
-            let mut f = vec![None; model.cases().len()];
-            for &(c, v) in factors {
-                f[c] = Some(v);
-            }
-            Stage {
-                name: name.into(),
-                factors: f,
-            }
-        };
-        let stages = [
-            stage("dead load", &[(dead, 1.0)]),
-            stage("push to 0.2", &[(push, 0.2)]),
-            stage("push to 1", &[(push, 1.0)]),
-        ];
+        let stages = stages(&model, &DEAD_PUSH_TO_1);
         let a = analyze_history(&model, &stages, &Default::default()).unwrap();
         let st = &a.history.stages;
         assert_eq!(st.len(), 3);
@@ -551,37 +555,12 @@ fn beams_reaching_the_sliding_limit_late_on_their_paths_stop_there() {
 /// from the zone alone).
 #[test]
 fn a_stage_on_the_zone_alone_does_not_run_past_its_end() {
-    use unilateral_contact::{follow_history, History, Stage};
-    use unilateral_oracle::fixtures::bearings::Bearings;
-    let b = Bearings {
-        m: 80,
-        friction: 0.2,
-        springs: [1e10, 1e4],
-        load_scale: 3.0,
-        sideways: 1e4,
-        kn_mm: true,
-    };
-    let model = crate::bearings_model(&b);
+    use unilateral_contact::{follow_history, History};
+    let model = crate::bearings_model(&soft_80(true));
     let (_, zone) = unilateral_analysis::contact_zone_of(&model).unwrap();
-    let (dead, push) = (
-        model.case("constant").unwrap().0,
-        model.case("variable").unwrap().0,
-    );
-    let stage = |name: &str, c: usize, v: f64| {
-        let mut f = vec![None; model.cases().len()];
-        f[c] = Some(v);
-        Stage {
-            name: name.into(),
-            factors: f,
-        }
-    };
     let history = History {
         cases: zone.cases.clone(),
-        stages: vec![
-            stage("dead load", dead, 1.0),
-            stage("push to 0.2", push, 0.2),
-            stage("push to 1", push, 1.0),
-        ],
+        stages: stages(&model, &DEAD_PUSH_TO_1),
     };
     let h = follow_history(&zone, &history, &Default::default()).unwrap();
     for st in &h.stages {
@@ -602,7 +581,7 @@ fn a_stage_on_the_zone_alone_does_not_run_past_its_end() {
 #[test]
 fn a_long_stage_past_the_sliding_limit_ends_there() {
     use unilateral_analysis::analyze_history;
-    use unilateral_contact::{Stage, StageStatus};
+    use unilateral_contact::StageStatus;
     use unilateral_oracle::fixtures::bearings::Bearings;
     let b = Bearings {
         m: 400,
@@ -614,19 +593,13 @@ fn a_long_stage_past_the_sliding_limit_ends_there() {
     };
     let by_hand = sliding_limit_by_hand(&b);
     let model = crate::bearings_model(&b);
-    let (dead, push) = (
-        model.case("constant").unwrap().0,
-        model.case("variable").unwrap().0,
+    let stages = stages(
+        &model,
+        &[
+            ("dead", "constant", 1.0),
+            ("push to 200", "variable", 200.0),
+        ],
     );
-    let stage = |name: &str, c: usize, v: f64| {
-        let mut f = vec![None; model.cases().len()];
-        f[c] = Some(v);
-        Stage {
-            name: name.into(),
-            factors: f,
-        }
-    };
-    let stages = [stage("dead", dead, 1.0), stage("push to 200", push, 200.0)];
     let a = analyze_history(&model, &stages, &Default::default()).unwrap();
     let st = &a.history.stages[1];
     assert_eq!(st.status, StageStatus::Mechanism, "{:?}", st.reason);

@@ -81,14 +81,14 @@ const X_RATE: f64 = 1e-9;
 /// (the sliding beams of the tests: 1.7e4 to 1e10; the reviewers' long paths whose load rates
 /// are small but genuine: at most 0.02, and judging all of them cost 907 sparse
 /// factorisations, four times the path's time).
-pub(crate) const RUNAWAY: f64 = 100.0;
+const RUNAWAY: f64 = 100.0;
 
 /// A step on the structure's direction that moves the basic variables by more than this many
 /// times their largest value of the same kind ([`Pivoter::runaway_by_kind`]) is beyond double
 /// precision (the bound of the callers' resolvability check of the links' dislocations against
 /// the forces): the mechanism it approaches is the answer. (The direction's decreases within
 /// the data's round-off are already zero, `schur/judge.rs`; this bounds what remains.)
-pub(crate) const UNRESOLVED: f64 = 1e10;
+const UNRESOLVED: f64 = 1e10;
 
 /// Relative kernel residual above which the basis is refactorised at once.
 const DRIFT: f64 = 1e-9;
@@ -1054,7 +1054,7 @@ impl<'a> Pivoter<'a> {
 
     /// How far a step moves the basic variables against their current values:
     /// `θ·‖α‖∞ / ‖β‖∞`, infinite without a step (a ray).
-    pub fn runaway(&self, step: Option<Choice>, amax: f64) -> f64 {
+    fn runaway(&self, step: Option<Choice>, amax: f64) -> f64 {
         step.map_or(f64::INFINITY, |(_, theta)| {
             theta * amax / max_abs(&self.beta).max(f64::MIN_POSITIVE)
         })
@@ -1063,7 +1063,7 @@ impl<'a> Pivoter<'a> {
     /// [`Pivoter::runaway`] of each kind against its own values — the forces `x` against the
     /// largest basic force, the displacements `z` (the entering one among them, at rate one)
     /// against the largest basic displacement — the larger of the two.
-    pub fn runaway_by_kind(&self, step: Option<Choice>, alpha: &[f64]) -> f64 {
+    fn runaway_by_kind(&self, step: Option<Choice>, alpha: &[f64]) -> f64 {
         let Some((_, theta)) = step else {
             return f64::INFINITY;
         };
@@ -1092,10 +1092,40 @@ impl<'a> Pivoter<'a> {
         self.drift = f64::INFINITY;
     }
 
+    /// The segment on which `entering` grows, on the structure's own equations
+    /// ([`Pivoter::judge`]), where the load's `rate` there is below the column's tolerance: if
+    /// the step would carry the load a real way (1e-6 of the load `now` reached, not of the
+    /// target: judged against a far target, a beam's step at its sliding limit was left to the
+    /// dense data, which took the path down from the limit) or without end, and is a runaway
+    /// step, and the load holds on those equations, the structure's direction with the driver
+    /// held and its ratio test's step — `None` for a mechanism: nothing blocks, or only
+    /// beyond double precision. `None` where nothing is judged.
+    pub fn judged_step(
+        &self,
+        entering: usize,
+        step: Option<Choice>,
+        rate: f64,
+        now: f64,
+        amax: f64,
+    ) -> Option<(Vec<f64>, Option<Choice>)> {
+        if self.judge.is_none() || rate == 0.0 || entering == self.cols.driver() {
+            return None;
+        }
+        let carries = step.is_none_or(|(_, th)| (th * rate).abs() > 1e-6 * now.abs());
+        if !carries || self.runaway(step, amax) <= RUNAWAY {
+            return None;
+        }
+        let alpha = self.judged_direction(entering)?;
+        let step = self
+            .ratio_test(&alpha)
+            .filter(|&at| self.runaway_by_kind(Some(at), &alpha) <= UNRESOLVED);
+        Some((alpha, step))
+    }
+
     /// The direction of the segment on which `entering` grows, as the structure's equations
     /// ([`Pivoter::judge`]) give it, in the tableau's units and with the driver held — where
     /// they give the load no rate beyond round-off of their sums; else `None`.
-    pub fn judged_direction(&self, entering: usize) -> Option<Vec<f64>> {
+    fn judged_direction(&self, entering: usize) -> Option<Vec<f64>> {
         use crate::binary::ldexp;
         let judging = self.judge.as_ref()?;
         let n = self.cols.n;
@@ -1169,28 +1199,14 @@ impl<'a> Pivoter<'a> {
             } else {
                 (0.0, 0.0, false)
             };
-            // A load rate below the column's tolerance that would carry the load a real way
-            // (or without end), judged on the structure's own equations where they are at
-            // hand: a mechanism there ends the path at the load reached.
+            // A load rate below the column's tolerance, judged on the structure's own equations
+            // where they are at hand (`Pivoter::judged_step`): a mechanism there ends the path
+            // at the load reached.
             let mut judged = false;
-            if !t_sure && t_rate != 0.0 && entering != driver && self.judge.is_some() {
-                // A real way from the load reached, not from the target: judged against a far
-                // target, a beam's step at its sliding limit (the load falling by 3e-4 of it)
-                // was left to the dense data, which took the path down from the limit.
-                let carries = step.is_none_or(|(_, th)| (th * t_rate).abs() > 1e-6 * t_now.abs());
-                // On the structure's equations the load holds: the segment is taken on their
-                // direction, at constant load — to the variable that blocks it there, or
-                // without end (or beyond what double precision resolves), a mechanism.
-                let runaway = self.runaway(step, amax) > RUNAWAY;
-                if let Some(exact) = (carries && runaway)
-                    .then(|| self.judged_direction(entering))
-                    .flatten()
-                {
-                    alpha = exact;
-                    t_rate = 0.0;
-                    step = self.ratio_test(&alpha);
-                    judged = true;
-                    if self.runaway_by_kind(step, &alpha) > UNRESOLVED {
+            if !t_sure {
+                if let Some((exact, at)) = self.judged_step(entering, step, t_rate, t_now, amax) {
+                    (alpha, step, t_rate, judged) = (exact, at, 0.0, true);
+                    if step.is_none() {
                         self.judged_mechanism = true;
                         return (Ending::Ray { alpha }, entering);
                     }

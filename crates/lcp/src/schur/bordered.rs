@@ -393,49 +393,24 @@ impl Bordered {
         &self.base.matrix
     }
 
-    /// The base system `𝒜0 v = r` solved and refined with residuals in double-double
-    /// arithmetic (each product split exactly by a fused multiply-add, the sums by Knuth's
-    /// two-sum; the unknowns kept as unevaluated sums of two doubles through four rounds):
-    /// the solution of the data as stored, to far below the round-off of a working-precision
-    /// solve. For a base without a border (just refactorised).
+    /// The base system `𝒜0 v = r` solved on its factor and refined with residuals in
+    /// double-double arithmetic ([`super::refined_in_double_double`]): the solution of the data
+    /// as stored, to far below the round-off of a working-precision solve. For a base without
+    /// a border (just refactorised).
     pub fn refined_base_solve(&self, r: &[f64]) -> Vec<f64> {
         debug_assert!(self.cols.is_empty());
-        let size = self.size();
         let a = &self.base.matrix;
-        let mut hi = r.to_vec();
-        self.solve_base(&mut hi);
-        let mut lo = vec![0.0; size];
-        let two_sum = |x: f64, y: f64| {
-            let s = x + y;
-            let v = s - x;
-            (s, (x - (s - v)) + (y - v))
-        };
-        for _ in 0..4 {
-            // r − 𝒜0 (hi + lo), row by row in double-double, by columns of the sparse matrix.
-            let (mut s, mut e) = (r.to_vec(), vec![0.0; size]);
-            for j in 0..size {
-                let (h, l) = (hi[j], lo[j]);
-                if h == 0.0 && l == 0.0 {
-                    continue;
+        super::refined_in_double_double(
+            r,
+            |visit| {
+                for j in 0..a.ncols() {
+                    for (&i, &aij) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+                        visit(i, j, aij);
+                    }
                 }
-                for (&i, &aij) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-                    let p = -aij * h;
-                    let pe = (-aij).mul_add(h, -p);
-                    let (t, te) = two_sum(s[i], p);
-                    s[i] = t;
-                    e[i] += te + pe - aij * l;
-                }
-            }
-            let mut dx: Vec<f64> = s.iter().zip(&e).map(|(s, e)| s + e).collect();
-            self.solve_base(&mut dx);
-            for i in 0..size {
-                let (t, te) = two_sum(hi[i], dx[i]);
-                let (h, l) = two_sum(t, te + lo[i]);
-                hi[i] = h;
-                lo[i] = l;
-            }
-        }
-        hi.iter().zip(&lo).map(|(h, l)| h + l).collect()
+            },
+            |v| self.solve_base(v),
+        )
     }
 
     /// Solves the basis system whose right-hand side is `r` on the base's rows (the fix rows

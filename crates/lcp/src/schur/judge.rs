@@ -74,28 +74,14 @@ impl StructureJudge {
     /// The direction of the segment on which the non-basic `entering` grows from the basis
     /// `basic` (`2n + 1` flags, `n` set, the driver among them), solved from the structure's
     /// equations with residuals refined in double-double arithmetic; `None` where the basis is
-    /// singular on them or the arguments do not describe such a segment.
-    /// The rates are those of every variable (`x`, `z`, then `p`; zero where non-basic, one for
-    /// `entering`).
+    /// singular on them or the arguments do not describe such a segment. The rates are those
+    /// of every variable (`x`, `z`, then `p`; zero where non-basic, one for `entering`), with
+    /// the decreases that are round-off of the data set to zero ([`verdict`]).
     pub(crate) fn direction(
         &self,
         basic: &[bool],
         entering: usize,
     ) -> Option<(Vec<f64>, DirectionVerdict)> {
-        let (mut v, spread, a) = self.rates(basic, entering)?;
-        let (n, big_n) = (self.lcp.order(), self.lcp.a.nrows());
-        let judged = verdict(&a, &mut v, &spread, basic, big_n, n);
-        Some((v[big_n..].to_vec(), judged))
-    }
-
-    /// The rates of [`StructureJudge::direction`] as the base's unknowns `(y, x, z, p)`, what
-    /// one rounding of the data moves each by, and the base's matrix.
-    #[allow(clippy::type_complexity)]
-    fn rates(
-        &self,
-        basic: &[bool],
-        entering: usize,
-    ) -> Option<(Vec<f64>, Vec<f64>, SparseColMat<usize, f64>)> {
         let lcp = &self.lcp;
         let n = lcp.order();
         let big_n = lcp.a.nrows();
@@ -118,83 +104,79 @@ impl StructureJudge {
         let (row, scale) = bordered.fix_row(entering)?;
         let mut rhs = vec![0.0; big_n + 2 * n + 1];
         rhs[row] = scale;
-        let v = bordered.refined_base_solve(&rhs);
+        let mut v = bordered.refined_base_solve(&rhs);
+        let terms = Terms::of(bordered.base_matrix(), &v, big_n + n, big_n + 2 * n);
         // How far the stored data's own round-off moves the direction: each equation's terms
         // perturbed by one rounding, with signs that do not cancel by design (two sign
         // patterns), carried through the basis (first-order perturbation, `δv = −𝒜⁻¹ δ𝒜 v`).
-        let a = bordered.base_matrix();
-        let rows = big_n + n;
-        let mut terms = vec![0.0f64; v.len()];
-        for (j, &vj) in v.iter().enumerate() {
-            for (&i, &aij) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-                if i < rows {
-                    terms[i] += (aij * vj).abs();
-                }
-            }
-        }
         let mut spread = vec![0.0f64; v.len()];
         for pattern in [0x9e37_79b9_u64, 0x85eb_ca6b_u64] {
-            let mut probe: Vec<f64> = terms
-                .iter()
-                .enumerate()
-                .map(|(i, t)| {
-                    let bit = (i as u64).wrapping_mul(pattern).rotate_left(17) & 1;
-                    if bit == 0 {
-                        f64::EPSILON * t
-                    } else {
-                        -f64::EPSILON * t
-                    }
-                })
-                .collect();
+            let mut probe = vec![0.0f64; v.len()];
+            for (i, (p, t)) in probe.iter_mut().zip(&terms.rows).enumerate() {
+                let bit = (i as u64).wrapping_mul(pattern).rotate_left(17) & 1;
+                *p = if bit == 0 { 1.0 } else { -1.0 } * f64::EPSILON * t;
+            }
             bordered.base_solve(&mut probe);
             for (s, w) in spread.iter_mut().zip(&probe) {
                 *s += w.abs();
             }
         }
-        Some((v, spread, a.clone()))
+        let judged = verdict(&mut v, &terms, &spread, basic, big_n, n);
+        v.drain(..big_n);
+        Some((v, judged))
     }
 }
 
-/// The verdict on the direction `v` (the base's unknowns `y, x, z, p`; `N = big_n`) of the
-/// system `a`, whose first `N + n` rows are the equations and whose last column is the load's.
-/// A basic variable's decrease within [`crate::ACCEPT_RESIDUAL`] of the terms that formed it
-/// (an `x` its row's, but not below 8 round-offs of the direction's largest terms; a `z` the
-/// largest rate of a `z`), or within eight times `spread` (what one rounding of each
-/// equation's terms moves it by), is set to zero in `v`: on a mechanism of the structure the
-/// exact direction's rates are round-off of its data — a sliding beam's normal forces
-/// decreasing at 1e-17 of the direction's largest terms, a 700-bearing beam's gaps closing at
-/// 1e-9 of its slips — and taken as rates they blocked the slide after slips of 1e13 to 1e14,
-/// from where the path wandered to a false mechanism at a lower load.
+/// The terms of a direction `v` in the equations (the first `rows` rows of the base system):
+/// `Σ_j |a_ij v_j|` by row, and the largest term of the load's column `pcol`.
+struct Terms {
+    rows: Vec<f64>,
+    load: f64,
+}
+
+impl Terms {
+    fn of(a: &SparseColMat<usize, f64>, v: &[f64], rows: usize, pcol: usize) -> Self {
+        let (mut terms, mut load) = (vec![0.0f64; rows], 0.0f64);
+        for (j, &vj) in v.iter().enumerate() {
+            if vj == 0.0 {
+                continue;
+            }
+            for (&i, &aij) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+                if i < rows {
+                    terms[i] += (aij * vj).abs();
+                    if j == pcol {
+                        load = load.max((aij * vj).abs());
+                    }
+                }
+            }
+        }
+        Self { rows: terms, load }
+    }
+}
+
+/// The verdict on the direction `v` (the base's unknowns `y, x, z, p`; `N = big_n`) with its
+/// `terms` in the `N + n` equations. A basic variable's decrease within
+/// [`crate::ACCEPT_RESIDUAL`] of the terms that formed it (an `x` its row's, but not below 8
+/// round-offs of the direction's largest terms; a `z` the largest rate of a `z`), or within
+/// eight times `spread` (what one rounding of each equation's terms moves it by), is set to
+/// zero in `v`: on a mechanism of the structure the exact direction's rates are round-off of
+/// its data — a sliding beam's normal forces decreasing at 1e-17 of the direction's largest
+/// terms, a 700-bearing beam's gaps closing at 1e-9 of its slips — and taken as rates they
+/// blocked the slide after slips of 1e13 to 1e14, from where the path wandered to a false
+/// mechanism at a lower load.
 fn verdict(
-    a: &SparseColMat<usize, f64>,
     v: &mut [f64],
+    terms: &Terms,
     spread: &[f64],
     basic: &[bool],
     big_n: usize,
     n: usize,
 ) -> DirectionVerdict {
-    let (rows, pcol) = (big_n + n, big_n + 2 * n);
-    // Each equation's terms, and the load's own.
-    let mut terms = vec![0.0f64; rows];
-    let mut load = 0.0f64;
-    for (j, &vj) in v.iter().enumerate() {
-        if vj == 0.0 {
-            continue;
-        }
-        for (&i, &aij) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-            if i < rows {
-                terms[i] += (aij * vj).abs();
-                if j == pcol {
-                    load = load.max((aij * vj).abs());
-                }
-            }
-        }
-    }
     // Every equation is one of forces (the structure's DOFs, the links' forces): the load's
     // rate against the largest terms of the direction — a row the direction hardly moves (a
     // beam's vertical DOF while it slides) has the load's share as its only term.
-    let largest = terms.iter().fold(0.0f64, |m, &t| m.max(t));
-    let z_scale = v[big_n + n..pcol]
+    let largest = terms.rows.iter().fold(0.0f64, |m, &t| m.max(t));
+    let z_scale = v[big_n + n..big_n + 2 * n]
         .iter()
         .fold(0.0f64, |m, r| m.max(r.abs()));
     for (i, _) in basic.iter().enumerate().take(2 * n).filter(|(_, &b)| b) {
@@ -206,7 +188,7 @@ fn verdict(
         // largest terms: the data hold those to their last bit, and a row the direction hardly
         // touches (a pair's normal force while the beam slides) carries that much of them.
         let roundoff = if i < n {
-            (crate::ACCEPT_RESIDUAL * terms[at]).max(8.0 * f64::EPSILON * largest)
+            (crate::ACCEPT_RESIDUAL * terms.rows[at]).max(8.0 * f64::EPSILON * largest)
         } else {
             crate::ACCEPT_RESIDUAL * z_scale
         };
@@ -217,7 +199,11 @@ fn verdict(
         }
     }
     DirectionVerdict {
-        load: if load == 0.0 { 0.0 } else { load / largest },
+        load: if terms.load == 0.0 {
+            0.0
+        } else {
+            terms.load / largest
+        },
     }
 }
 
@@ -278,7 +264,7 @@ mod tests {
         // four basic variables: z1, x2, z3, p.
         assert_eq!(basic.iter().filter(|&&b| b).count(), n);
         let entering = n; // z0
-        let (v, _, _) = judge.rates(&basic, entering).unwrap();
+        let (v, _) = judge.direction(&basic, entering).unwrap();
         // Dense: x = q + p d + M z, rates with z0 = 1: unknowns dz1, dx2, dz3, dp.
         // Rows i: dx_i − M_i1 dz1 − M_i3 dz3 − d_i dp = M_i0 (x0, x1, x3 non-basic: 0; x2 free).
         let mut sys = Mat::<f64>::zeros(n, n);
@@ -292,12 +278,7 @@ mod tests {
         }
         use faer::linalg::solvers::Solve;
         let sol = sys.partial_piv_lu().solve(&rhs);
-        let got = [
-            v[big_n + n + 1],
-            v[big_n + 2],
-            v[big_n + n + 3],
-            v[big_n + 2 * n],
-        ];
+        let got = [v[n + 1], v[2], v[n + 3], v[2 * n]];
         for k in 0..n {
             assert!(
                 (got[k] - sol[(k, 0)]).abs() <= 1e-12 * sol[(k, 0)].abs().max(1.0),
@@ -306,6 +287,6 @@ mod tests {
                 sol[(k, 0)]
             );
         }
-        assert_eq!(v[big_n + n], 1.0);
+        assert_eq!(v[n], 1.0);
     }
 }

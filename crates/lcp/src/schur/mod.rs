@@ -191,42 +191,66 @@ impl SchurLcp {
 }
 
 /// The solution of the dense system `a x = b` refined with residuals in double-double
-/// arithmetic (each product split exactly by a fused multiply-add, the sums by Knuth's
-/// two-sum), the unknowns kept as unevaluated sums of two doubles through four rounds and
-/// rounded at the end.
+/// arithmetic ([`refined_in_double_double`]) on its partial-pivoting LU.
 fn refined_dense_solution(a: &Mat<f64>, b: &Mat<f64>) -> Vec<f64> {
-    use faer::linalg::solvers::Solve;
+    use faer::linalg::solvers::SolveCore;
     let size = a.nrows();
     let lu = a.partial_piv_lu();
-    let first = lu.solve(b);
-    let mut hi: Vec<f64> = (0..size).map(|i| first[(i, 0)]).collect();
+    let rhs: Vec<f64> = (0..size).map(|i| b[(i, 0)]).collect();
+    refined_in_double_double(
+        &rhs,
+        |visit| {
+            for j in 0..size {
+                for i in 0..size {
+                    visit(i, j, a[(i, j)]);
+                }
+            }
+        },
+        |r| {
+            lu.solve_in_place_with_conj(
+                faer::Conj::No,
+                faer::MatMut::from_column_major_slice_mut(r, size, 1),
+            )
+        },
+    )
+}
+
+/// The solution of `A x = b` refined with residuals in double-double arithmetic: each product
+/// split exactly by a fused multiply-add, the sums by Knuth's two-sum, the unknowns kept as
+/// unevaluated sums of two doubles through four rounds and rounded at the end. `entries`
+/// visits the entries `(i, j, a_ij)` of `A` (a row's in increasing `j`), `solve` overwrites a
+/// right-hand side with an approximate solution (a factorisation of `A`).
+pub(crate) fn refined_in_double_double(
+    b: &[f64],
+    entries: impl Fn(&mut dyn FnMut(usize, usize, f64)),
+    solve: impl Fn(&mut [f64]),
+) -> Vec<f64> {
+    let size = b.len();
+    let mut hi = b.to_vec();
+    solve(&mut hi);
     let mut lo = vec![0.0; size];
     let two_sum = |x: f64, y: f64| {
         let s = x + y;
         let v = s - x;
         (s, (x - (s - v)) + (y - v))
     };
-    let mut r = Mat::<f64>::zeros(size, 1);
     for _ in 0..4 {
-        for i in 0..size {
-            // b_i − Σ a_ij (hi_j + lo_j), in double-double.
-            let (mut s, mut e) = (b[(i, 0)], 0.0);
-            for j in 0..size {
-                let aij = a[(i, j)];
-                if aij == 0.0 {
-                    continue;
-                }
-                let p = -aij * hi[j];
-                let pe = (-aij).mul_add(hi[j], -p);
-                let (t, te) = two_sum(s, p);
-                s = t;
-                e += te + pe - aij * lo[j];
+        // b − A (hi + lo), row by row in double-double.
+        let (mut s, mut e) = (b.to_vec(), vec![0.0; size]);
+        entries(&mut |i, j, aij| {
+            if aij == 0.0 {
+                return;
             }
-            r[(i, 0)] = s + e;
-        }
-        let dx = lu.solve(&r);
+            let p = -aij * hi[j];
+            let pe = (-aij).mul_add(hi[j], -p);
+            let (t, te) = two_sum(s[i], p);
+            s[i] = t;
+            e[i] += te + pe - aij * lo[j];
+        });
+        let mut dx: Vec<f64> = s.iter().zip(&e).map(|(s, e)| s + e).collect();
+        solve(&mut dx);
         for i in 0..size {
-            let (t, te) = two_sum(hi[i], dx[(i, 0)]);
+            let (t, te) = two_sum(hi[i], dx[i]);
             let (h, l) = two_sum(t, te + lo[i]);
             hi[i] = h;
             lo[i] = l;
