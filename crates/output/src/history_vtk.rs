@@ -250,7 +250,7 @@ fn array(
     let mut bad = None;
     for (k, v) in values.into_iter().enumerate() {
         out.push_str(if k % components.max(1) == 0 {
-            "\n          "
+            "\n"
         } else {
             " "
         });
