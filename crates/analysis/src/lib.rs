@@ -97,13 +97,15 @@ pub enum AnalysisError {
     /// dislocations allows: the forces those make term by term (`dislocation`) exceed the
     /// forces of the state (`forces`) by more than double precision resolves within the
     /// check's tolerance (a 1 mm gap closed by a rigid motion of a steel block, and loads of
-    /// a hundredth of a newton). The data's conditioning, not the program's fault.
+    /// a hundredth of a newton; the same block held by a 10 N/m spring, sliding 200 m). The
+    /// data's conditioning, not the program's fault.
     #[error(
         "the results at p = {} cannot be resolved in double precision: the links' \
          dislocations (gaps and slips) make forces of {dislocation:.3e} term by term, {:.1e} \
          times the forces of this state ({forces:.3e}), whose round-off leaves them out of \
          balance by {relative:.3e} of those (accepted {EQUILIBRIUM_TOLERANCE:e}); give a larger \
-         load (target) against the gaps, or smaller gaps",
+         load (target) against the gaps, smaller gaps, or supports that keep the slips short \
+         (a spring a billionth of the structure's stiffness lets it slide metres)",
         unilateral_contact::number_text(*p),
         dislocation / forces
     )]

@@ -340,8 +340,12 @@ impl EvolutionSolver {
             // the condensed data at the limit).
             let mut judged = false;
             if let Some(ds) = ds.filter(|_| t_rate == 0.0) {
-                if let Some((exact, at)) = piv.judged_step(entering, step, alpha[ds], t_now, amax) {
-                    (alpha, step, judged) = (exact, at, true);
+                // (A genuine rate of `s` there is left to the condensed data, as before.)
+                if let Some(j) = piv
+                    .judged_step(entering, step, alpha[ds], t_now, amax)
+                    .filter(|j| !j.genuine)
+                {
+                    (alpha, step, judged) = (j.alpha, j.step, true);
                 }
             }
             // A rate below the column's tolerance that was not judged still moves `s` by the

@@ -92,6 +92,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 start_slots: (0..n).collect(),
                 records: vec![],
                 target_segment: None,
+                judged_load_segments: Vec::new(),
             };
         }
     };
@@ -171,6 +172,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         start_slots,
         records: pivots,
         target_segment: crossed,
+        judged_load_segments: std::mem::take(&mut piv.judged_load_segments),
     };
     // (segment, p) at which to report the solution.
     let report: Option<(usize, f64)> = match ending {
@@ -187,10 +189,12 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
             // (`Pivoter::verify_ray`): a mechanism needs the driver fixed within round-off of
             // the rows it meets, not only below the pivot tolerance of the column.
             let check = piv.ray_check;
-            // A direction the structure's own equations found a mechanism is judged on them.
+            // A direction the structure's own equations found a mechanism is judged on them;
+            // one on which they gave the load a genuine rate is a ray.
             let judged = piv.judged_mechanism;
-            let fixed = judged || check.is_none_or(|c| c.driver_fixed());
-            if !judged && check.is_some_and(|c| !c.verified()) {
+            let judged_ray = path.judged_load_segments.last() == Some(&kseg);
+            let fixed = judged || (!judged_ray && check.is_none_or(|c| c.driver_fixed()));
+            if !judged && !judged_ray && check.is_some_and(|c| !c.verified()) {
                 path.status = PathStatus::NumericalFailure;
                 None
             } else if last_entering == driver || rate < -tol.pivot * amax || !fixed {
@@ -315,6 +319,7 @@ pub(crate) fn adopt(solver: &PathSolver, schur: crate::SchurPath) -> Option<Load
         start_slots: (0..n).collect(),
         records,
         target_segment: schur.target_segment,
+        judged_load_segments: Vec::new(),
     };
     let crossed = schur.target_segment;
     let report = match schur.status {
@@ -528,6 +533,13 @@ pub(crate) fn basis_point_on_segment(
             .is_some(),
         None => true,
     };
+    // A segment whose direction came from the structure's equations: its point too, where it
+    // solves the problem on this solver's data.
+    if complete && c0 == 0.0 && path.judged_load_segments.contains(&seg) {
+        if let Some(pt) = structure_point(solver, &slots, p) {
+            return Ok(pt);
+        }
+    }
     let q_real: Vec<f64> = solver.q_at(p);
     let evaluated = if complete {
         remove_tightening(prep, &q_real, slots, c0, cov, settings)
@@ -552,6 +564,28 @@ pub(crate) fn basis_point_on_segment(
         }
         Err(verdict) => Err(verdict),
     }
+}
+
+/// The point of the complementary basis `slots` at load `p` solved from the structure's
+/// equations ([`crate::StructureJudge::point`]), where this solver has them and the point
+/// solves its problem (verified on its data, as every reported point is).
+fn structure_point(solver: &PathSolver, slots: &[usize], p: f64) -> Option<PathPoint> {
+    let judge = solver.judge.as_ref()?;
+    let n = solver.prep.n;
+    let mut basic = vec![false; 2 * n];
+    for &v in slots {
+        *basic.get_mut(v)? = true;
+    }
+    let (x, z) = judge.point(&basic, p)?;
+    let residual = solver.residual(p, &x, &z);
+    residual.accepts(&x, &z).then_some(PathPoint {
+        p,
+        x,
+        z,
+        residual,
+        tightening_pivots: 0,
+        fallback: false,
+    })
 }
 
 /// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified; else how

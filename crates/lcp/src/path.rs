@@ -263,6 +263,10 @@ pub struct LoadPath {
     pub unreported: Option<Unreported>,
     pub(crate) start_slots: Vec<usize>,
     pub(crate) records: Vec<(usize, usize)>,
+    /// The segments (by the number of pivots before them) whose direction, and whose points,
+    /// come from the structure's equations ([`crate::StructureJudge`]): the load's rate there
+    /// is genuine but below what the condensed `M` can tell from round-off.
+    pub(crate) judged_load_segments: Vec<usize>,
     /// The number of steps made before the load first reached the target (the target lies on
     /// the segment after that many pivots), if it did.
     pub target_segment: Option<usize>,

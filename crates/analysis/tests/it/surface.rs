@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use unilateral_analysis::analyze;
-use unilateral_contact::{Follow, PairState, SolveSettings};
+use unilateral_contact::{EventKind, Follow, PairState, SolveSettings};
 use unilateral_fem::{Endpoint, Model};
 use unilateral_io::read_model;
 
@@ -558,6 +558,108 @@ fn a_slow_load_rate_still_reaches_the_target() {
     assert!(
         steps.iter().skip(first_moving).any(|s| s.p == 0.0),
         "a return to p = 0"
+    );
+}
+
+/// [`steel_block_pushed`] held by a spring of `k` N/m at its heel, in N and m or in kN and mm
+/// (the same block: E = 2e11 Pa = 200 kN/mm², 1 m = 1000 mm, 2000 N = 2 kN, k N/m =
+/// k·1e-6 kN/mm).
+fn steel_block_on_a_spring(k: f64, kn_mm: bool) -> String {
+    let spring = format!(
+        "\n[[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n"
+    );
+    let text = steel_block_pushed(&spring);
+    if !kn_mm {
+        return text;
+    }
+    text.replace("units = \"N, m\"", "units = \"kN, mm\"")
+        .replace("E = 2.0e11", "E = 200.0")
+        .replace("thickness = 1.0", "thickness = 1000.0")
+        .replace("width = 1.0", "width = 1000.0")
+        .replace("height = 0.5", "height = 500.0")
+        .replace("fy = -2000.0", "fy = -2.0")
+        .replace("fx = 5000.0", "fx = 5.0")
+        .replace(
+            &format!("stiffness = {k:e}"),
+            &format!("stiffness = {:e}", k * 1e-6),
+        )
+}
+
+/// The steel block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 178 and 100
+/// N/m (in N·m and in kN·mm): 10⁻⁹ of the block's own stiffness, so that the load's rate
+/// while every pair slides is below what the condensed data can tell from round-off. It was
+/// read as a mechanism at p = 0.6 (the friction limit f·W = 3000 N). By hand: once every
+/// pair slides (p ≥ 0.6) the spring carries 5000·p − 3000, so at p = 1 the block has slid
+/// (5000 − 3000)/k (11.2 m, 20 m), the friction is f·W and the normal forces carry W. The
+/// heel opens where it opens on a stiff spring (k = 1e5 N/m, slips of 2 cm): the spring
+/// force at p does not depend on k, only the slip does.
+#[test]
+fn a_block_on_a_spring_a_billionth_of_its_stiffness_slides_to_the_target() {
+    let heel_opens = |a: &unilateral_analysis::Analysis| -> f64 {
+        a.solution
+            .steps
+            .iter()
+            .find(|s| s.events.iter().any(|e| e.kind == EventKind::Opens))
+            .map(|s| s.p)
+            .expect("the heel opens")
+    };
+    let stiff = read("s.toml", &steel_block_on_a_spring(1e5, false)).unwrap();
+    let reference = heel_opens(&analyze(&stiff.model, &settings()).unwrap());
+    assert!((reference - 0.998489).abs() < 1e-6, "{reference}");
+    for k in [178.0, 100.0] {
+        for kn_mm in [false, true] {
+            let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+            let p = read("s.toml", &steel_block_on_a_spring(k, kn_mm)).unwrap();
+            let a = analyze(&p.model, &settings()).unwrap_or_else(|e| panic!("k = {k}: {e}"));
+            assert_eq!(
+                a.solution.outcome,
+                unilateral_analysis::Outcome::TargetReached,
+                "k = {k}, kN·mm {kn_mm}"
+            );
+            assert_eq!(a.solution.p, Some(1.0));
+            let slip = 2000.0 / k * length;
+            let pairs = &a.solution.pairs;
+            for r in pairs {
+                assert!((r.z_t - slip).abs() < 1e-5 * slip, "k = {k}: {r:?}");
+                if r.name == "g.1" {
+                    assert_eq!(r.state, PairState::Open, "the heel: {r:?}");
+                } else {
+                    assert_eq!(r.state, PairState::SlipPlus, "{r:?}");
+                    assert!(
+                        (r.x_t + 0.3 * r.x_n).abs() < 1e-6 * 10000.0 * force,
+                        "{r:?}"
+                    );
+                }
+            }
+            let sn: f64 = pairs.iter().map(|r| r.x_n).sum();
+            let st: f64 = pairs.iter().map(|r| r.x_t).sum();
+            assert!(
+                (sn - 10000.0 * force).abs() < 1e-6 * 10000.0 * force,
+                "Σ x_n = {sn}"
+            );
+            assert!(
+                (st + 3000.0 * force).abs() < 1e-6 * 10000.0 * force,
+                "Σ x_t = {st}"
+            );
+            // The path's states are the stiff spring's; the heel's opening load to the
+            // conditioning of slips 1e9 times the block's strains (measured: 1.7e-6 at most).
+            let opens = heel_opens(&a);
+            assert!(
+                (opens - reference).abs() < 3e-6 * reference,
+                "k = {k}, kN·mm {kn_mm}: the heel opens at {opens}, {reference} on a stiff spring"
+            );
+            let r = a.results.as_ref().expect("the structure at p = 1");
+            assert!(r.equilibrium.relative() <= 1e-6, "{:?}", r.equilibrium);
+        }
+    }
+    // On 10 N/m the slips (200 m) make forces 2.3e9 times the state's: the state at p = 1
+    // cannot be resolved in double precision, and is refused as such (the model's limit, not
+    // a mechanism nor the program's failure).
+    let p = read("s.toml", &steel_block_on_a_spring(10.0, false)).unwrap();
+    let e = analyze(&p.model, &settings()).unwrap_err();
+    assert!(
+        matches!(e, unilateral_analysis::AnalysisError::Unresolved { .. }),
+        "{e}"
     );
 }
 

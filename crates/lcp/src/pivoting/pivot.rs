@@ -25,6 +25,18 @@ pub(crate) struct Judging {
     pub col: Vec<f64>,
 }
 
+/// A segment judged on the structure's equations ([`Pivoter::judged_step`]).
+#[derive(Debug, Clone)]
+pub(crate) struct JudgedStep {
+    /// The direction in the tableau's units (`β` moves by `−θ α`).
+    pub alpha: Vec<f64>,
+    /// The ratio test's step on it (`None`: nothing blocks within double precision).
+    pub step: Option<Choice>,
+    /// The load has a rate beyond the round-off of the structure's equations (in `alpha`);
+    /// else it is held (its rate zero).
+    pub genuine: bool,
+}
+
 /// One pivot as recorded on the path.
 #[derive(Debug, Clone)]
 pub(crate) struct PivotRecord {
@@ -125,6 +137,11 @@ pub(crate) struct Pivoter<'a> {
     pub judge: Option<Judging>,
     /// The run ended in a ray because the judge found the segment's direction a mechanism.
     pub judged_mechanism: bool,
+    /// The segments (by the number of pivots before them) taken on the structure's direction
+    /// where it gives the load a genuine rate the dense data could not tell from round-off (a
+    /// block held by a spring 10⁻⁹ of its own stiffness); a point on such a segment is formed
+    /// from the structure's equations ([`crate::StructureJudge::point`]).
+    pub judged_load_segments: Vec<usize>,
     /// Bumped after every recorded pivot (inert unless a caller sets one: the load path does).
     pub progress: crate::Progress,
     /// Rows the formulation ties exactly (none unless a caller sets them: the load path does).
@@ -223,6 +240,7 @@ impl<'a> Pivoter<'a> {
             ray_check: None,
             judge: None,
             judged_mechanism: false,
+            judged_load_segments: Vec::new(),
             progress: crate::Progress::default(),
             relations: Default::default(),
             entering: usize::MAX,
@@ -1097,9 +1115,11 @@ impl<'a> Pivoter<'a> {
     /// the step would carry the load a real way (1e-6 of the load `now` reached, not of the
     /// target: judged against a far target, a beam's step at its sliding limit was left to the
     /// dense data, which took the path down from the limit) or without end, and is a runaway
-    /// step, and the load holds on those equations, the structure's direction with the driver
-    /// held and its ratio test's step — `None` for a mechanism: nothing blocks, or only
-    /// beyond double precision. `None` where nothing is judged.
+    /// step, the structure's direction and its ratio test's step — `None` for no block, or
+    /// only beyond double precision. Where the load holds on those equations the driver is
+    /// held (its rate zero: without a block, a mechanism); where they give it a rate beyond
+    /// their round-off (`genuine`), the driver moves at that rate. `None` where nothing is
+    /// judged.
     pub fn judged_step(
         &self,
         entering: usize,
@@ -1107,7 +1127,7 @@ impl<'a> Pivoter<'a> {
         rate: f64,
         now: f64,
         amax: f64,
-    ) -> Option<(Vec<f64>, Option<Choice>)> {
+    ) -> Option<JudgedStep> {
         if self.judge.is_none() || rate == 0.0 || entering == self.cols.driver() {
             return None;
         }
@@ -1115,17 +1135,32 @@ impl<'a> Pivoter<'a> {
         if !carries || self.runaway(step, amax) <= RUNAWAY {
             return None;
         }
-        let alpha = self.judged_direction(entering)?;
-        let step = self
-            .ratio_test(&alpha)
-            .filter(|&at| self.runaway_by_kind(Some(at), &alpha) <= UNRESOLVED);
-        Some((alpha, step))
+        let (alpha, genuine) = self.judged_direction(entering)?;
+        // With the load held, a block beyond double precision's reach of the values is none
+        // (a mechanism); with the load moving, the step is as far as the load goes to it (a
+        // block held by a soft spring slides metres from rest).
+        // Where the load moves, every decrease the judge left is the structure's own (it set
+        // those within the data's round-off to zero), however small beside the slips: a
+        // heel's normal force falling at 1e-10 of them, below the column's tolerance.
+        let step = if genuine {
+            let cand = (0..alpha.len()).filter(|&i| alpha[i] > 0.0).collect();
+            self.ratio_test_over(&alpha, cand)
+        } else {
+            self.ratio_test(&alpha)
+                .filter(|&at| self.runaway_by_kind(Some(at), &alpha) <= UNRESOLVED)
+        };
+        Some(JudgedStep {
+            alpha,
+            step,
+            genuine,
+        })
     }
 
     /// The direction of the segment on which `entering` grows, as the structure's equations
-    /// ([`Pivoter::judge`]) give it, in the tableau's units and with the driver held — where
-    /// they give the load no rate beyond round-off of their sums; else `None`.
-    fn judged_direction(&self, entering: usize) -> Option<Vec<f64>> {
+    /// ([`Pivoter::judge`]) give it, in the tableau's units; with the driver held where they
+    /// give the load no rate beyond round-off of their sums, else with the load's rate they
+    /// give (`true`: a genuine rate).
+    fn judged_direction(&self, entering: usize) -> Option<(Vec<f64>, bool)> {
         use crate::binary::ldexp;
         let judging = self.judge.as_ref()?;
         let n = self.cols.n;
@@ -1134,9 +1169,7 @@ impl<'a> Pivoter<'a> {
             basic[v] = true;
         }
         let (rates, verdict) = judging.judge.direction(&basic, entering)?;
-        if !verdict.load_holds() {
-            return None;
-        }
+        let holds = verdict.load_holds();
         // A variable's value in the tableau's units per unit of its own: `x̂ = E x`, `ẑ = z/D`,
         // all over `2^eh`; the driver `t = p·2^(eg − eh)`.
         let (eh, eg) = (self.cols.eh, self.cols.eg);
@@ -1157,14 +1190,17 @@ impl<'a> Pivoter<'a> {
             .slot_var
             .iter()
             .map(|&v| {
-                if v == driver {
+                if v == driver && holds {
                     0.0
                 } else {
                     -rates[v] * unit(v) / per_entering
                 }
             })
             .collect();
-        alpha.iter().all(|a| a.is_finite()).then_some(alpha)
+        alpha
+            .iter()
+            .all(|a| a.is_finite())
+            .then_some((alpha, !holds))
     }
 
     /// Complementary pivoting from `entering` until the driver leaves, a ray, the target, or
@@ -1202,11 +1238,20 @@ impl<'a> Pivoter<'a> {
             // A load rate below the column's tolerance, judged on the structure's own equations
             // where they are at hand (`Pivoter::judged_step`): a mechanism there ends the path
             // at the load reached.
+            // A genuine rate there (a soft spring's) is the load's rate on this segment.
             let mut judged = false;
+            let mut t_sure = t_sure;
             if !t_sure {
-                if let Some((exact, at)) = self.judged_step(entering, step, t_rate, t_now, amax) {
-                    (alpha, step, t_rate, judged) = (exact, at, 0.0, true);
-                    if step.is_none() {
+                if let Some(j) = self.judged_step(entering, step, t_rate, t_now, amax) {
+                    let rate = match (j.genuine, self.driver_slot()) {
+                        (true, Some(ds)) => -j.alpha[ds],
+                        _ => 0.0,
+                    };
+                    (alpha, step, t_rate, judged) = (j.alpha, j.step, rate, true);
+                    if rate > 0.0 {
+                        t_sure = true;
+                        self.judged_load_segments.push(records.len());
+                    } else if step.is_none() {
                         self.judged_mechanism = true;
                         return (Ending::Ray { alpha }, entering);
                     }
