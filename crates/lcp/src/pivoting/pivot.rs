@@ -1137,11 +1137,11 @@ impl<'a> Pivoter<'a> {
         }
         let (alpha, genuine) = self.judged_direction(entering)?;
         // With the load held, a block beyond double precision's reach of the values is none
-        // (a mechanism); with the load moving, the step is as far as the load goes to it (a
-        // block held by a soft spring slides metres from rest).
-        // Where the load moves, every decrease the judge left is the structure's own (it set
-        // those within the data's round-off to zero), however small beside the slips: a
-        // heel's normal force falling at 1e-10 of them, below the column's tolerance.
+        // (a mechanism). With the load moving, the step is as far as the load goes to it (a
+        // block held by a soft spring slides metres from rest), and every decrease the judge
+        // left is the structure's own (it set those within the data's round-off to zero),
+        // however small beside the slips: a heel's normal force falling at 1e-10 of them,
+        // below the column's tolerance.
         let step = if genuine {
             let cand = (0..alpha.len()).filter(|&i| alpha[i] > 0.0).collect();
             self.ratio_test_over(&alpha, cand)
@@ -1237,8 +1237,8 @@ impl<'a> Pivoter<'a> {
             };
             // A load rate below the column's tolerance, judged on the structure's own equations
             // where they are at hand (`Pivoter::judged_step`): a mechanism there ends the path
-            // at the load reached.
-            // A genuine rate there (a soft spring's) is the load's rate on this segment.
+            // at the load reached; a genuine rate there (a soft spring's) is the load's rate on
+            // this segment.
             let mut judged = false;
             let mut t_sure = t_sure;
             if !t_sure {

@@ -94,12 +94,8 @@ impl StructureJudge {
             return None;
         }
         let nonbasic: Vec<bool> = basic.iter().map(|b| !b).collect();
-        let mut guard = self.basis.lock().ok()?;
-        if guard.is_none() {
-            *guard = Some(Bordered::slack(lcp).ok()?);
-        }
+        let mut guard = self.factorised(&nonbasic)?;
         let bordered = guard.as_mut()?;
-        bordered.refactor(&nonbasic).ok()?;
         // Every non-basic variable held at zero but the entering one, held at one.
         let (row, scale) = bordered.fix_row(entering)?;
         let mut rhs = vec![0.0; big_n + 2 * n + 1];
@@ -125,16 +121,15 @@ impl StructureJudge {
         v.drain(..big_n);
         Some((v, judged))
     }
-}
 
-impl StructureJudge {
     /// The point of the complementary basis `basic` (`2n` flags, `n` set, one of each pair)
     /// at load `p`, solved from the structure's equations with residuals refined in
     /// double-double arithmetic: `(x, z)`, the non-basic variables zero. `None` where the
-    /// basis is singular on them or the flags do not describe such a basis. Where the
-    /// condensed `M` cannot form a basis's point (a block held by a spring 10⁻⁹ of its own
-    /// stiffness, sliding metres: the basis's conditioning times the condensation's round-off
-    /// put it out of balance by 1e-3), the structure's equations still do.
+    /// basis is singular on them or the flags do not describe such a basis. For a segment
+    /// whose direction came from these equations ([`crate::PathSolver::judged_on`]): the
+    /// condensed `M` forms its points with the condensation's round-off times the basis's
+    /// conditioning (a block sliding metres on a spring 10⁻⁹ of its stiffness: out of balance
+    /// by 9.1e-7 of its forces, 7.6e-7 from these equations).
     pub(crate) fn point(&self, basic: &[bool], p: f64) -> Option<(Vec<f64>, Vec<f64>)> {
         let lcp = &self.lcp;
         let n = lcp.order();
@@ -144,12 +139,8 @@ impl StructureJudge {
         }
         let mut nonbasic: Vec<bool> = basic.iter().map(|b| !b).collect();
         nonbasic.push(true);
-        let mut guard = self.basis.lock().ok()?;
-        if guard.is_none() {
-            *guard = Some(Bordered::slack(lcp).ok()?);
-        }
+        let mut guard = self.factorised(&nonbasic)?;
         let bordered = guard.as_mut()?;
-        bordered.refactor(&nonbasic).ok()?;
         let (row, scale) = bordered.fix_row(2 * n)?;
         let mut rhs = vec![0.0; big_n + 2 * n + 1];
         rhs[..big_n].copy_from_slice(&lcp.qa);
@@ -159,6 +150,19 @@ impl StructureJudge {
         let x = v[big_n..big_n + n].to_vec();
         let z = v[big_n + n..big_n + 2 * n].to_vec();
         (x.iter().chain(&z).all(|v| v.is_finite())).then_some((x, z))
+    }
+}
+
+impl StructureJudge {
+    /// The structure's basis system with the non-basic variables `nonbasic` (`2n + 1` flags)
+    /// held, factorised afresh (the column order made on the first call and kept).
+    fn factorised(&self, nonbasic: &[bool]) -> Option<std::sync::MutexGuard<'_, Option<Bordered>>> {
+        let mut guard = self.basis.lock().ok()?;
+        if guard.is_none() {
+            *guard = Some(Bordered::slack(&self.lcp).ok()?);
+        }
+        guard.as_mut()?.refactor(nonbasic).ok()?;
+        Some(guard)
     }
 }
 
