@@ -126,6 +126,8 @@ pub struct EvolutionSolver {
     settings: Settings,
     n: usize,
     prep: Prepared,
+    /// The settings' row relations that the data satisfy, in the equilibrated rows.
+    relations: std::sync::Arc<crate::pivoting::relations::Relations>,
 }
 
 impl std::fmt::Debug for EvolutionSolver {
@@ -156,12 +158,18 @@ impl EvolutionSolver {
             )));
         }
         settings.validate(n)?;
-        let prep = Prepared::new(&problem.m);
+        let mut prep = Prepared::new(&problem.m);
+        let relations = std::sync::Arc::new(crate::pivoting::relations::Relations::new(
+            &prep,
+            &settings.row_relations,
+        ));
+        prep.derive_rows(&relations);
         Ok(Self {
             problem,
             settings,
             n,
             prep,
+            relations,
         })
     }
 
@@ -276,6 +284,7 @@ impl EvolutionSolver {
             self.settings.refactor_interval,
         );
         piv.restart_lex();
+        piv.relations = self.relations.clone();
         piv.judge = judge
             .filter(|j| j.order() == n)
             .map(|judge| crate::pivoting::pivot::Judging {
@@ -339,12 +348,12 @@ impl EvolutionSolver {
             // path: against the whole stage, a push to 200 of a beam sliding at 2 was left to
             // the condensed data at the limit).
             let mut judged = false;
+            let mut t_rate = t_rate;
             if let Some(ds) = ds.filter(|_| t_rate == 0.0) {
-                // (A genuine rate of `s` there is left to the condensed data, as before.)
-                if let Some(j) = piv
-                    .judged_step(entering, step, alpha[ds], t_now, amax)
-                    .filter(|j| !j.genuine)
-                {
+                if let Some(j) = piv.judged_step(entering, step, alpha[ds], t_now, amax) {
+                    if j.genuine {
+                        t_rate = -j.alpha[ds];
+                    }
                     (alpha, step, judged) = (j.alpha, j.step, true);
                 }
             }
@@ -353,7 +362,6 @@ impl EvolutionSolver {
             // stage) it counts, as on the load path (`Pivoter::run`) — read as zero, a sliding
             // beam's last stage (a zone without its structure) ran on past its end to
             // s = 1.53. On a ray it stays zero: a mechanism.
-            let mut t_rate = t_rate;
             if let Some(ds) = ds.filter(|_| !judged && entering != driver && t_rate == 0.0) {
                 let raw = -alpha[ds];
                 if raw != 0.0 && step.is_some_and(|(_, th)| (th * raw).abs() > 1e-6 * target) {

@@ -663,21 +663,26 @@ fn a_block_on_a_spring_a_billionth_of_its_stiffness_slides_to_the_target() {
     );
 }
 
-/// The block of [`a_slow_load_rate_still_reaches_the_target`] (300 N/m at its heel) in a
-/// load history, its weight and then the push to 1 (in N·m and kN·mm). By hand as on the path:
-/// every pair slides from 0.6, and at the end the block has slid 2000/300 = 6.67 m, the heel
-/// open. The open heel's tangential force is the round-off of terms of 7e11 N (metres of slip
-/// times the links' stiffness), 6e-5 N: against the largest force (4100 N) the final state's
-/// check read it as a violation of 1.9e-8 of the signs and of complementarity, above the 1e-8
-/// allowed, and refused the stage as the program's failure (exit 1). Each force is now judged
-/// against the terms that form it, as on the load path.
+/// The block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 300 and 178 N/m
+/// at its heel in a load history, its weight and then the push to 1 (in N·m and kN·mm). By
+/// hand as on the path: every pair slides from 0.6, and at the end the block has slid
+/// 2000/k m (6.67 m, 11.2 m), the heel open.
+///
+/// * 300 N/m: the open heel's tangential force is the round-off of terms of 7e11 N (metres of
+///   slip times the links' stiffness), 6e-5 N. Against the largest force (4100 N) the final
+///   state's check read it as a violation of 1.9e-8 of the signs and of complementarity,
+///   above the 1e-8 allowed, and refused the stage as the program's failure (exit 1). A force
+///   is now judged against its terms' round-off too.
+/// * 178 N/m: the stage read a mechanism at the friction limit (s = 0.6), as the path did
+///   before round 30; the structure's equations now drive the segment, with the rows that
+///   the friction relations tie decided by them (as on the path).
 #[test]
 fn a_block_sliding_metres_in_a_load_history_passes_its_check() {
     use unilateral_analysis::analyze_history;
     use unilateral_contact::StageStatus;
-    for kn_mm in [false, true] {
+    for (k, kn_mm) in [(300.0, false), (300.0, true), (178.0, false), (178.0, true)] {
         let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-        let text = steel_block_on_a_spring(300.0, kn_mm)
+        let text = steel_block_on_a_spring(k, kn_mm)
             .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
             .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]")
             + "\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n\
@@ -685,18 +690,18 @@ fn a_block_sliding_metres_in_a_load_history_passes_its_check() {
         let p = read("h.toml", &text).unwrap();
         let stages = p.history.clone().expect("a history");
         let a = analyze_history(&p.model, &stages, &p.settings.engine)
-            .unwrap_or_else(|e| panic!("kN·mm {kn_mm}: {e}"));
+            .unwrap_or_else(|e| panic!("k = {k}, kN·mm {kn_mm}: {e}"));
         let st = &a.history.stages;
         assert!(
             st.iter().all(|s| s.status == StageStatus::Completed),
-            "kN·mm {kn_mm}: {:?}",
+            "k = {k}, kN·mm {kn_mm}: {:?}",
             st.iter()
                 .map(|s| (&s.status, &s.reason))
                 .collect::<Vec<_>>()
         );
         let end = &st[1];
         assert!(end.residual.max() <= 1e-8, "{:?}", end.residual);
-        let slip = 2000.0 / 300.0 * length;
+        let slip = 2000.0 / k * length;
         for r in &end.pairs {
             assert!((r.z_t - slip).abs() < 1e-5 * slip, "{r:?}");
             let expected = if r.name == "g.1" {
