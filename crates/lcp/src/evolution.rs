@@ -126,7 +126,8 @@ pub struct EvolutionSolver {
     settings: Settings,
     n: usize,
     prep: Prepared,
-    /// The settings' row relations that the data satisfy, in the equilibrated rows.
+    /// The settings' row relations that the data satisfy, in the equilibrated rows: they
+    /// decide the ties of a step judged on the structure's equations.
     relations: std::sync::Arc<crate::pivoting::relations::Relations>,
 }
 
@@ -158,12 +159,14 @@ impl EvolutionSolver {
             )));
         }
         settings.validate(n)?;
-        let mut prep = Prepared::new(&problem.m);
+        let prep = Prepared::new(&problem.m);
+        // For the ties of the judged steps only: the stages' own pivoting keeps its rules
+        // (with the relations throughout, three stiff-spring histories of a reviewer's sweep
+        // met a singular basis or a false mechanism).
         let relations = std::sync::Arc::new(crate::pivoting::relations::Relations::new(
             &prep,
             &settings.row_relations,
         ));
-        prep.derive_rows(&relations);
         Ok(Self {
             problem,
             settings,
@@ -284,13 +287,13 @@ impl EvolutionSolver {
             self.settings.refactor_interval,
         );
         piv.restart_lex();
-        piv.relations = self.relations.clone();
         piv.judge = judge
             .filter(|j| j.order() == n)
             .map(|judge| crate::pivoting::pivot::Judging {
                 judge,
                 row: self.prep.scaling.row.clone(),
                 col: self.prep.scaling.col.clone(),
+                relations: Some(self.relations.clone()),
             });
         let reset = &self.problem.incremental;
         let guard = &self.problem.guard;

@@ -114,6 +114,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 judge,
                 row: prep.scaling.row.clone(),
                 col: prep.scaling.col.clone(),
+                relations: None,
             });
     }
     let start_z = basic_z(prep, &piv.basis.slot_var, &cols.values(&piv.beta));

@@ -23,6 +23,9 @@ pub(crate) struct Judging {
     /// The rows' and columns' scales of the equilibration (`x̂ = E x`, `z = D ẑ`).
     pub row: Vec<f64>,
     pub col: Vec<f64>,
+    /// Row relations that decide the ties of a judged step where the pivoter has none of its
+    /// own ([`Pivoter::relations`]: a load history's stages).
+    pub relations: Option<std::sync::Arc<Relations>>,
 }
 
 /// A segment judged on the structure's equations ([`Pivoter::judged_step`]).
@@ -286,15 +289,16 @@ impl<'a> Pivoter<'a> {
         best.1
     }
 
-    /// The candidates that the row relations do not exclude ([`Relations::filter`]).
-    fn related_candidates(&self, cand: Vec<usize>) -> Vec<usize> {
-        if self.relations.is_empty() {
+    /// The candidates that the row relations `relations` do not exclude
+    /// ([`Relations::filter`]).
+    fn related_candidates_by(&self, relations: &Relations, cand: Vec<usize>) -> Vec<usize> {
+        if relations.is_empty() {
             return cand;
         }
         let b = &self.basis;
         let n = self.cols.n;
         let driver = self.cols.driver();
-        self.relations.filter(
+        relations.filter(
             cand,
             |s| b.slot_var[s],
             |i| (i < n && b.is_basic(i)).then(|| b.var_slot[i]),
@@ -452,7 +456,17 @@ impl<'a> Pivoter<'a> {
 
     /// [`Pivoter::ratio_test`] over the given candidate slots (positive entries of `alpha`).
     fn ratio_test_over(&self, alpha: &[f64], cand: Vec<usize>) -> Option<(usize, f64)> {
-        let cand = self.related_candidates(cand);
+        self.ratio_test_over_by(&self.relations, alpha, cand)
+    }
+
+    /// [`Pivoter::ratio_test_over`] with the ties of related rows decided by `relations`.
+    fn ratio_test_over_by(
+        &self,
+        relations: &Relations,
+        alpha: &[f64],
+        cand: Vec<usize>,
+    ) -> Option<(usize, f64)> {
+        let cand = self.related_candidates_by(relations, cand);
         if cand.is_empty() {
             return None;
         }
@@ -1144,7 +1158,15 @@ impl<'a> Pivoter<'a> {
         // below the column's tolerance.
         let step = if genuine {
             let cand = (0..alpha.len()).filter(|&i| alpha[i] > 0.0).collect();
-            self.ratio_test_over(&alpha, cand)
+            // A sliding pair's normal force and its friction part reach zero together where
+            // it opens: its relation says which row leaves (a history's stage, which has no
+            // relations of its own, takes the judge's; without them the friction part left
+            // and the basis turned singular).
+            let relations = match self.judge.as_ref().and_then(|j| j.relations.as_ref()) {
+                Some(r) if self.relations.is_empty() => r,
+                _ => &self.relations,
+            };
+            self.ratio_test_over_by(relations, &alpha, cand)
         } else {
             self.ratio_test(&alpha)
                 .filter(|&at| self.runaway_by_kind(Some(at), &alpha) <= UNRESOLVED)
