@@ -352,7 +352,27 @@ impl EvolutionSolver {
             // the condensed data at the limit).
             let mut judged = false;
             let mut t_rate = t_rate;
-            if let Some(ds) = ds.filter(|_| t_rate == 0.0) {
+            // Rows of `x` that the ratio test passed over (rates below the column's tolerance)
+            // and that would reach zero before the segment ends, judged on the structure's
+            // equations where they are at hand and `s` moves there: a block sliding on in a
+            // later stage on a soft spring, its heel unloading at 3e-10 of the slips' terms,
+            // ran past the heel's opening to a state out of balance.
+            if piv.judge.is_some() && (t_rate > 0.0 || entering == driver) {
+                let to_end = (target - t_now) / t_rate;
+                let theta_end = step.map_or(to_end, |(_, th)| th.min(to_end));
+                if piv.hides_blocks(&alpha, theta_end) {
+                    if let Some(j) = piv.judged_moving(entering) {
+                        let rate = match ds {
+                            Some(ds) if entering != driver => -j.alpha[ds],
+                            _ => 1.0,
+                        };
+                        if rate > 0.0 {
+                            (alpha, step, t_rate, judged) = (j.alpha, j.step, rate, true);
+                        }
+                    }
+                }
+            }
+            if let Some(ds) = ds.filter(|_| !judged && t_rate == 0.0) {
                 if let Some(j) = piv.judged_step(entering, step, alpha[ds], t_now, amax) {
                     if j.genuine {
                         t_rate = -j.alpha[ds];

@@ -290,14 +290,27 @@ impl<'a> Pivoter<'a> {
     }
 
     /// The candidates that the row relations `relations` do not exclude
-    /// ([`Relations::filter`]).
-    fn related_candidates_by(&self, relations: &Relations, cand: Vec<usize>) -> Vec<usize> {
+    /// ([`Relations::filter`]); with `h_exact` false the relations' `κ = λᵀh` are taken as
+    /// zero (the data's), not read from a right-hand side that carries round-off.
+    fn related_candidates_by(
+        &self,
+        relations: &Relations,
+        cand: Vec<usize>,
+        h_exact: bool,
+    ) -> Vec<usize> {
         if relations.is_empty() {
             return cand;
         }
         let b = &self.basis;
         let n = self.cols.n;
         let driver = self.cols.driver();
+        let zeros;
+        let h = if h_exact {
+            &self.cols.h[..]
+        } else {
+            zeros = vec![0.0; self.cols.h.len()];
+            &zeros[..]
+        };
         relations.filter(
             cand,
             |s| b.slot_var[s],
@@ -305,7 +318,7 @@ impl<'a> Pivoter<'a> {
             self.entering,
             driver,
             b.is_basic(driver),
-            &self.cols.h,
+            h,
             &self.cols.g,
             |terms, drv| self.relation_lex_sign(terms, drv),
         )
@@ -456,17 +469,19 @@ impl<'a> Pivoter<'a> {
 
     /// [`Pivoter::ratio_test`] over the given candidate slots (positive entries of `alpha`).
     fn ratio_test_over(&self, alpha: &[f64], cand: Vec<usize>) -> Option<(usize, f64)> {
-        self.ratio_test_over_by(&self.relations, alpha, cand)
+        self.ratio_test_over_by(&self.relations, alpha, cand, true)
     }
 
-    /// [`Pivoter::ratio_test_over`] with the ties of related rows decided by `relations`.
+    /// [`Pivoter::ratio_test_over`] with the ties of related rows decided by `relations`
+    /// (`h_exact`: [`Pivoter::related_candidates_by`]).
     fn ratio_test_over_by(
         &self,
         relations: &Relations,
         alpha: &[f64],
         cand: Vec<usize>,
+        h_exact: bool,
     ) -> Option<(usize, f64)> {
-        let cand = self.related_candidates_by(relations, cand);
+        let cand = self.related_candidates_by(relations, cand, h_exact);
         if cand.is_empty() {
             return None;
         }
@@ -1157,16 +1172,7 @@ impl<'a> Pivoter<'a> {
         // however small beside the slips: a heel's normal force falling at 1e-10 of them,
         // below the column's tolerance.
         let step = if genuine {
-            let cand = (0..alpha.len()).filter(|&i| alpha[i] > 0.0).collect();
-            // A sliding pair's normal force and its friction part reach zero together where
-            // it opens: its relation says which row leaves (a history's stage, which has no
-            // relations of its own, takes the judge's; without them the friction part left
-            // and the basis turned singular).
-            let relations = match self.judge.as_ref().and_then(|j| j.relations.as_ref()) {
-                Some(r) if self.relations.is_empty() => r,
-                _ => &self.relations,
-            };
-            self.ratio_test_over_by(relations, &alpha, cand)
+            self.moving_ratio_test(&alpha)
         } else {
             self.ratio_test(&alpha)
                 .filter(|&at| self.runaway_by_kind(Some(at), &alpha) <= UNRESOLVED)
@@ -1175,6 +1181,46 @@ impl<'a> Pivoter<'a> {
             alpha,
             step,
             genuine,
+        })
+    }
+
+    /// The ratio test on a direction the structure's equations gave with the load moving:
+    /// every decrease they left is a candidate ([`Pivoter::judged_step`]).
+    fn moving_ratio_test(&self, alpha: &[f64]) -> Option<Choice> {
+        let cand = (0..alpha.len()).filter(|&i| alpha[i] > 0.0).collect();
+        // A sliding pair's normal force and its friction part reach zero together where it
+        // opens: its relation says which row leaves (a history's stage, which has no
+        // relations of its own, takes the judge's; without them the friction part left and
+        // the basis turned singular). A stage's right-hand side carries the round-off of the
+        // slips it absorbed (terms of 1e12 N against forces of 1e3 N), so there the
+        // relation's `κ = λᵀh`, zero by the data (the loads and `M` satisfy it), is taken as
+        // zero: read from `h`, its round-off let the friction part leave in kN·mm.
+        match self.judge.as_ref().and_then(|j| j.relations.as_ref()) {
+            Some(r) if self.relations.is_empty() => self.ratio_test_over_by(r, alpha, cand, false),
+            _ => self.ratio_test_over_by(&self.relations, alpha, cand, true),
+        }
+    }
+
+    /// Whether rows of `x` that the ratio test passed over (rates below the column's pivot
+    /// tolerance, [`Pivoter::suspects`]) would reach zero within `theta_end` of the segment,
+    /// where the structure's equations are at hand to judge them.
+    pub fn hides_blocks(&self, alpha: &[f64], theta_end: f64) -> bool {
+        self.judge.is_some() && !self.suspects(alpha, theta_end).is_empty()
+    }
+
+    /// The segment on which `entering` (the driver too) grows, on the structure's equations,
+    /// where the load moves on it: their direction and the ratio test over every decrease
+    /// they leave. `None` where they hold the load, or give nothing.
+    pub fn judged_moving(&self, entering: usize) -> Option<JudgedStep> {
+        let (alpha, genuine) = self.judged_direction(entering)?;
+        if !genuine && entering != self.cols.driver() {
+            return None;
+        }
+        let step = self.moving_ratio_test(&alpha);
+        Some(JudgedStep {
+            alpha,
+            step,
+            genuine: true,
         })
     }
 

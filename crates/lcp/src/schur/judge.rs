@@ -85,10 +85,13 @@ impl StructureJudge {
         let lcp = &self.lcp;
         let n = lcp.order();
         let big_n = lcp.a.nrows();
+        // The driver enters from a complementary basis (a load history's stage at its start):
+        // the direction per unit load, whose rate is the load's own.
+        let driver_enters = entering == 2 * n;
         if basic.len() != 2 * n + 1
-            || entering >= 2 * n
+            || entering > 2 * n
             || basic[entering]
-            || !basic[2 * n]
+            || !(driver_enters || basic[2 * n])
             || basic.iter().filter(|&&b| b).count() != n
         {
             return None;
@@ -117,7 +120,7 @@ impl StructureJudge {
                 *s += w.abs();
             }
         }
-        let judged = verdict(&mut v, &terms, &spread, basic, big_n, n);
+        let judged = verdict(&mut v, &terms, &spread, basic, big_n, n, driver_enters);
         v.drain(..big_n);
         Some((v, judged))
     }
@@ -210,13 +213,17 @@ fn verdict(
     basic: &[bool],
     big_n: usize,
     n: usize,
+    driver_enters: bool,
 ) -> DirectionVerdict {
     // Every equation is one of forces (the structure's DOFs, the links' forces): the load's
     // rate against the largest terms of the direction — a row the direction hardly moves (a
     // beam's vertical DOF while it slides) has the load's share as its only term.
     let largest = terms.rows.iter().fold(0.0f64, |m, &t| m.max(t));
+    // With the driver entering, the load moves by definition.
     let verdict = DirectionVerdict {
-        load: if terms.load == 0.0 {
+        load: if driver_enters {
+            f64::INFINITY
+        } else if terms.load == 0.0 {
             0.0
         } else {
             terms.load / largest
