@@ -663,6 +663,39 @@ fn a_block_on_a_spring_a_billionth_of_its_stiffness_slides_to_the_target() {
     );
 }
 
+/// [`steel_block_on_a_spring`] with its weight and push as load cases `weight` and `push`, in
+/// a history of the weight and then the pushes `pushes` (`(stage name, factor)`), analysed;
+/// every stage must complete.
+fn block_history(
+    k: f64,
+    kn_mm: bool,
+    pushes: &[(&str, f64)],
+) -> unilateral_analysis::HistoryAnalysis {
+    use unilateral_contact::StageStatus;
+    let mut text = steel_block_on_a_spring(k, kn_mm)
+        .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
+        .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]");
+    text.push_str("\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n");
+    for (name, f) in pushes {
+        text.push_str(&format!(
+            "\n[[history]]\nname = \"{name}\"\nfactors = {{ push = {f} }}\n"
+        ));
+    }
+    let p = read("h.toml", &text).unwrap();
+    let stages = p.history.clone().expect("a history");
+    let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+        .unwrap_or_else(|e| panic!("k = {k}, kN·mm {kn_mm}: {e}"));
+    let st = &a.history.stages;
+    assert!(
+        st.iter().all(|s| s.status == StageStatus::Completed),
+        "k = {k}, kN·mm {kn_mm}: {:?}",
+        st.iter()
+            .map(|s| (&s.status, &s.reason))
+            .collect::<Vec<_>>()
+    );
+    a
+}
+
 /// The block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 300 and 178 N/m
 /// at its heel in a load history, its weight and then the push to 1 (in N·m and kN·mm). By
 /// hand as on the path: every pair slides from 0.6, and at the end the block has slid
@@ -678,27 +711,10 @@ fn a_block_on_a_spring_a_billionth_of_its_stiffness_slides_to_the_target() {
 ///   the friction relations tie decided by them (as on the path).
 #[test]
 fn a_block_sliding_metres_in_a_load_history_passes_its_check() {
-    use unilateral_analysis::analyze_history;
-    use unilateral_contact::StageStatus;
     for (k, kn_mm) in [(300.0, false), (300.0, true), (178.0, false), (178.0, true)] {
         let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-        let text = steel_block_on_a_spring(k, kn_mm)
-            .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
-            .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]")
-            + "\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n\
-               \n[[history]]\nname = \"push\"\nfactors = { push = 1.0 }\n";
-        let p = read("h.toml", &text).unwrap();
-        let stages = p.history.clone().expect("a history");
-        let a = analyze_history(&p.model, &stages, &p.settings.engine)
-            .unwrap_or_else(|e| panic!("k = {k}, kN·mm {kn_mm}: {e}"));
+        let a = block_history(k, kn_mm, &[("push", 1.0)]);
         let st = &a.history.stages;
-        assert!(
-            st.iter().all(|s| s.status == StageStatus::Completed),
-            "k = {k}, kN·mm {kn_mm}: {:?}",
-            st.iter()
-                .map(|s| (&s.status, &s.reason))
-                .collect::<Vec<_>>()
-        );
         let end = &st[1];
         assert!(end.residual.max() <= 1e-8, "{:?}", end.residual);
         let slip = 2000.0 / k * length;
@@ -739,30 +755,10 @@ fn a_block_sliding_metres_in_a_load_history_passes_its_check() {
 /// their round-off (`docs/engine.md`, "A genuine load rate").
 #[test]
 fn a_block_on_a_soft_spring_pushed_back_and_forth_in_a_history_by_hand() {
-    use unilateral_analysis::analyze_history;
-    use unilateral_contact::StageStatus;
     let k = 178.0;
-    let mut text = steel_block_on_a_spring(k, false)
-        .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
-        .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]");
-    text.push_str("\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n");
-    for (name, f) in [("0.8", 0.8), ("1", 1.0), ("back", 0.3), ("1.5", 1.5)] {
-        text.push_str(&format!(
-            "\n[[history]]\nname = \"{name}\"\nfactors = {{ push = {f} }}\n"
-        ));
-    }
-    let p = read("h.toml", &text).unwrap();
-    let stages = p.history.clone().expect("a history");
-    let a =
-        analyze_history(&p.model, &stages, &p.settings.engine).unwrap_or_else(|e| panic!("{e}"));
+    let pushes = [("0.8", 0.8), ("1", 1.0), ("back", 0.3), ("1.5", 1.5)];
+    let a = block_history(k, false, &pushes);
     let st = &a.history.stages;
-    assert!(
-        st.iter().all(|s| s.status == StageStatus::Completed),
-        "{:?}",
-        st.iter()
-            .map(|s| (&s.status, &s.reason))
-            .collect::<Vec<_>>()
-    );
     // (stage, spring force, Σ x_t): the slip is the spring's force over k.
     for (i, spring, friction) in [
         (1, 1000.0, -3000.0),

@@ -304,13 +304,6 @@ impl<'a> Pivoter<'a> {
         let b = &self.basis;
         let n = self.cols.n;
         let driver = self.cols.driver();
-        let zeros;
-        let h = if h_exact {
-            &self.cols.h[..]
-        } else {
-            zeros = vec![0.0; self.cols.h.len()];
-            &zeros[..]
-        };
         relations.filter(
             cand,
             |s| b.slot_var[s],
@@ -318,7 +311,7 @@ impl<'a> Pivoter<'a> {
             self.entering,
             driver,
             b.is_basic(driver),
-            h,
+            h_exact.then_some(&self.cols.h[..]),
             &self.cols.g,
             |terms, drv| self.relation_lex_sign(terms, drv),
         )

@@ -110,7 +110,8 @@ impl Relations {
     ///
     /// `var_of` gives the basic variable of a slot, `slot_of` the slot of a basic `x_i`,
     /// `entering` is the entering column, `driver` the driver's column, `driver_basic` whether it
-    /// is basic, `h` and `g` the tableau's right-hand side and driver column, and `lex` the
+    /// is basic, `h` and `g` the tableau's right-hand side (`None`: every `κ = λᵀh` is zero, as
+    /// the data make it) and driver column, and `lex` the
     /// sign of the first non-zero entry of `λᵀB_start` in the priority order for a relation.
     #[allow(clippy::too_many_arguments)]
     pub fn filter(
@@ -121,7 +122,7 @@ impl Relations {
         entering: usize,
         driver: usize,
         driver_basic: bool,
-        h: &[f64],
+        h: Option<&[f64]>,
         g: &[f64],
         lex: impl Fn(&[(usize, f64)], i8) -> i8,
     ) -> Vec<usize> {
@@ -158,7 +159,7 @@ impl Relations {
                 // Alone: its rate is zero by the data.
                 [(a, _)] => excluded.push(a),
                 [(a, la), (b, lb)] if (la > 0.0) != (lb > 0.0) => {
-                    let kappa = match sign_of(combine(terms, |i| h[i])) {
+                    let kappa = match h.map_or(0, |h| sign_of(combine(terms, |i| h[i]))) {
                         0 => lex(terms, -g_sign),
                         s => s,
                     };

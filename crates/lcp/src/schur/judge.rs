@@ -278,6 +278,19 @@ mod tests {
         SparseColMat::try_new_from_triplets(m.nrows(), m.ncols(), &t).unwrap()
     }
 
+    /// `got` against the dense LU solution of `sys · v = rhs`, entry by entry to 1e-12.
+    fn agrees_with_dense_solve(sys: &Mat<f64>, rhs: &Mat<f64>, got: &[f64], what: &str) {
+        use faer::linalg::solvers::Solve;
+        let sol = sys.partial_piv_lu().solve(rhs);
+        for (k, g) in got.iter().enumerate() {
+            assert!(
+                (g - sol[(k, 0)]).abs() <= 1e-12 * sol[(k, 0)].abs().max(1.0),
+                "{what} {k}: {g} against {}",
+                sol[(k, 0)]
+            );
+        }
+    }
+
     /// Reference: the direction solved from the formed `M` (`lcp.dense()`) by a dense LU of
     /// the basis's columns — the same rates as the judge's solve of the sparse equations.
     #[test]
@@ -328,17 +341,7 @@ mod tests {
             sys[(i, 3)] = -dense.d[i];
             rhs[(i, 0)] = dense.m[(i, 0)];
         }
-        use faer::linalg::solvers::Solve;
-        let sol = sys.partial_piv_lu().solve(&rhs);
-        let got = [v[n + 1], v[2], v[n + 3], v[2 * n]];
-        for k in 0..n {
-            assert!(
-                (got[k] - sol[(k, 0)]).abs() <= 1e-12 * sol[(k, 0)].abs().max(1.0),
-                "rate {k}: {} against {}",
-                got[k],
-                sol[(k, 0)]
-            );
-        }
+        agrees_with_dense_solve(&sys, &rhs, &[v[n + 1], v[2], v[n + 3], v[2 * n]], "rate");
         assert_eq!(v[n], 1.0);
     }
 
@@ -387,17 +390,7 @@ mod tests {
             sys[(i, 3)] = -dense.m[(i, 3)];
             rhs[(i, 0)] = dense.q0[i] + p * dense.d[i];
         }
-        use faer::linalg::solvers::Solve;
-        let sol = sys.partial_piv_lu().solve(&rhs);
-        let got = [x[0], z[1], x[2], z[3]];
-        for k in 0..n {
-            assert!(
-                (got[k] - sol[(k, 0)]).abs() <= 1e-12 * sol[(k, 0)].abs().max(1.0),
-                "value {k}: {} against {}",
-                got[k],
-                sol[(k, 0)]
-            );
-        }
+        agrees_with_dense_solve(&sys, &rhs, &[x[0], z[1], x[2], z[3]], "value");
         assert_eq!([x[1], x[3], z[0], z[2]], [0.0; 4]);
         // Not a complementary basis (x0 and z0 both basic): refused.
         let mut both = basic.clone();
