@@ -1216,11 +1216,12 @@ pub(crate) fn num(s: &mut String, x: f64) {
 /// * [`VtkFormat::Compressed`] — the same, each array zlib-compressed in blocks of
 ///   [`ZLIB_BLOCK`] bytes (`compressor="vtkZLibDataCompressor"`: a `UInt64` header of the
 ///   block count, the block size, the size of a partial last block (0 when it is full) and
-///   the compressed size of every block, then the compressed blocks). zlib's fastest level:
-///   on the 1000-bearing beam's frames 4.5 % larger than at its default level (620 against
-///   594 MB, 29 % of the binary files) for a seventh of its time (deflating at about 330
-///   MB/s against 48 MB/s a core), which made `--vtk-format compressed` twice as slow as
-///   binary.
+///   the compressed size of every block, then the compressed blocks). The fastest level of
+///   `zlib-rs` (a zlib in Rust), one compressor a thread: the 1000-bearing beam's frames take
+///   743 MB, 35 % of the binary files. Speed was chosen over size: on the 300-bearing beam's
+///   arrays `miniz_oxide`'s fastest level made files 14 % smaller in 2.2 times the time (7
+///   times with a compressor set up for each block, as before round 31), and its default
+///   level is a seventh of that speed again (`docs/performance.md`, round 31).
 ///
 /// The small field data of a file (`TimeValue`, `reported`, `stage`) stays text in every
 /// format.
@@ -1505,11 +1506,31 @@ fn encode(
     bad
 }
 
+/// One block's zlib stream at the fastest level. A thread's compressor is made once and reset
+/// for each block: setting one up costs more than compressing a frame's small array (with
+/// `miniz_oxide`, a compressor a block was two thirds of the 1000-bearing beam's deflating).
 fn zlib(bytes: &[u8]) -> io::Result<Vec<u8>> {
-    use std::io::Write as _;
-    let mut e = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::fast());
-    e.write_all(bytes)?;
-    e.finish()
+    use flate2::{Compress, Compression, FlushCompress, Status};
+    use std::cell::RefCell;
+    thread_local! {
+        static COMPRESSOR: RefCell<Compress> = RefCell::new(Compress::new(Compression::fast(), true));
+    }
+    COMPRESSOR.with(|c| {
+        let mut c = c.borrow_mut();
+        c.reset();
+        // Deflate's stored blocks add 5 bytes in 16 KB at worst, zlib 6 bytes in all.
+        let mut out = Vec::with_capacity(bytes.len() + bytes.len() / 1024 + 64);
+        loop {
+            let done = c.total_in() as usize;
+            let status = c
+                .compress_vec(&bytes[done..], &mut out, FlushCompress::Finish)
+                .map_err(io::Error::other)?;
+            match status {
+                Status::StreamEnd => return Ok(out),
+                Status::Ok | Status::BufError => out.reserve(out.capacity().max(64)),
+            }
+        }
+    })
 }
 
 #[cfg(test)]
