@@ -9,7 +9,7 @@ use unilateral_contact::{
 };
 use unilateral_fem::{Condensed, Model, Results};
 
-use crate::{condensed_zone, contact_error, recover_at, AnalysisError, Timings};
+use crate::{condensed_zone, contact_error, recover_at, AnalysisError, Place, Timings};
 
 /// A finished history analysis of a structural model.
 #[derive(Debug)]
@@ -60,8 +60,11 @@ pub fn analyze_history(
             .zip(&st.factors_end)
             .map(|(a, b)| a + st.s_end * (b - a))
             .collect();
-        let t = (st.stage - 1) as f64 + st.s_end;
-        stage_results.push(recover_at(&condensed, &factors, t, &st.pairs)?);
+        let at = Place::Stage {
+            stage: st.stage,
+            s: st.s_end,
+        };
+        stage_results.push(recover_at(&condensed, &factors, at, &st.pairs)?);
     }
     let recover = started.elapsed();
     Ok(HistoryAnalysis {
@@ -154,7 +157,7 @@ impl HistoryAnalysis {
             .zip(&st.factors_end)
             .map(|(a, b)| a + s * (b - a))
             .collect();
-        let r = recover_at(&self.condensed, &factors, (stage - 1) as f64 + s, &pairs)?;
+        let r = recover_at(&self.condensed, &factors, Place::Stage { stage, s }, &pairs)?;
         Ok((pairs, r))
     }
 }

@@ -70,26 +70,24 @@ pub enum AnalysisError {
     /// Recovering the results at `p` failed: an internal failure, but for sums of forces too
     /// large for the model's units ([`FemError::Overflow`]), the model's.
     #[error(
-        "{}recovering the results at p = {}: {source}",
-        if matches!(source, FemError::Overflow { .. }) { "" } else { "internal failure (the program's fault, not the model's): " },
-        unilateral_contact::number_text(*p)
+        "{}recovering the results at {at}: {source}",
+        if matches!(source, FemError::Overflow { .. }) { "" } else { "internal failure (the program's fault, not the model's): " }
     )]
     Recovery {
-        /// The load parameter.
-        p: f64,
+        /// The point of the path or history.
+        at: Place,
         /// The finite-element error.
         #[source]
         source: FemError,
     },
     /// The recovered results are not in equilibrium (an internal failure).
     #[error(
-        "internal failure (the program's fault, not the model's): the results at p = {} are \
-         out of balance (relative residual {relative:.3e}, accepted {EQUILIBRIUM_TOLERANCE:e})",
-        unilateral_contact::number_text(*p)
+        "internal failure (the program's fault, not the model's): the results at {at} are \
+         out of balance (relative residual {relative:.3e}, accepted {EQUILIBRIUM_TOLERANCE:e})"
     )]
     Equilibrium {
-        /// The load parameter.
-        p: f64,
+        /// The point of the path or history.
+        at: Place,
         /// The relative out-of-balance force.
         relative: f64,
     },
@@ -100,18 +98,17 @@ pub enum AnalysisError {
     /// a hundredth of a newton; the same block held by a 10 N/m spring, sliding 200 m). The
     /// data's conditioning, not the program's fault.
     #[error(
-        "the results at p = {} cannot be resolved in double precision: the links' \
+        "the results at {at} cannot be resolved in double precision: the links' \
          dislocations (gaps and slips) make forces of {dislocation:.3e} term by term, {:.1e} \
          times the forces of this state ({forces:.3e}), whose round-off leaves them out of \
          balance by {relative:.3e} of those (accepted {EQUILIBRIUM_TOLERANCE:e}); give a larger \
          load (target) against the gaps, smaller gaps, or supports that keep the slips short \
          (a spring a billionth of the structure's stiffness lets it slide metres)",
-        unilateral_contact::number_text(*p),
         dislocation / forces
     )]
     Unresolved {
-        /// The load parameter.
-        p: f64,
+        /// The point of the path or history.
+        at: Place,
         /// The relative out-of-balance force.
         relative: f64,
         /// The size of the dislocations' forces ([`unilateral_fem::Equilibrium::dislocation_force`]).
@@ -484,7 +481,7 @@ fn link_values(p: f64, pairs: &[PairResult]) -> LinkValues {
 }
 
 /// The error of a recovery at `p`, an element it names by the model's name for it.
-fn recovery_error(p: f64, source: FemError, names: &Names) -> AnalysisError {
+fn recovery_error(at: Place, source: FemError, names: &Names) -> AnalysisError {
     let source = match source {
         FemError::Overflow {
             element: Some(e),
@@ -495,17 +492,14 @@ fn recovery_error(p: f64, source: FemError, names: &Names) -> AnalysisError {
         },
         other => other,
     };
-    AnalysisError::Recovery { p, source }
+    AnalysisError::Recovery { at, source }
 }
 
 /// Recovered results that are finite and in equilibrium, or the error that says which not.
-fn checked(r: Results, p: f64) -> Result<Results, AnalysisError> {
+fn checked(r: Results, at: Place) -> Result<Results, AnalysisError> {
     if !r.all_finite() {
         return Err(AnalysisError::Internal {
-            what: format!(
-                "recovering the results at p = {}",
-                unilateral_contact::number_text(p)
-            ),
+            what: format!("recovering the results at {at}"),
             message: "a recovered displacement, force or stress is not a finite number".into(),
         });
     }
@@ -519,33 +513,73 @@ fn checked(r: Results, p: f64) -> Result<Results, AnalysisError> {
         let roundoff = 64.0 * f64::EPSILON * dislocation / forces;
         if relative.is_finite() && roundoff > EQUILIBRIUM_TOLERANCE && relative <= roundoff {
             return Err(AnalysisError::Unresolved {
-                p,
+                at,
                 relative,
                 dislocation,
                 forces,
             });
         }
-        return Err(AnalysisError::Equilibrium { p, relative });
+        return Err(AnalysisError::Equilibrium { at, relative });
     }
     Ok(r)
 }
 
 /// The full structural results (displacements, reactions, element forces, stresses) for the
 /// pair results `pairs` under the load `Σ factors[c]·(case c)`, the factors indexed like the
-/// model's load cases ([`Condensed::case_names`]): any point of a load history. `label` (a
-/// history's pseudo-time, say) is what [`Results::p`] and the errors call the point. The
-/// results are checked as those of [`analyze`] are: finite, and in equilibrium within
-/// [`EQUILIBRIUM_TOLERANCE`].
+/// model's load cases ([`Condensed::case_names`]): any point of a load history. `at` is the
+/// point the errors name; its [`Place::label`] is [`Results::p`]. The results are checked as
+/// those of [`analyze`] are: finite, and in equilibrium within [`EQUILIBRIUM_TOLERANCE`].
 pub fn recover_at(
     c: &Condensed,
     factors: &[f64],
-    label: f64,
+    at: Place,
     pairs: &[PairResult],
 ) -> Result<Results, AnalysisError> {
     let r = c
-        .recover_at(factors, &link_values(label, pairs))
-        .map_err(|source| recovery_error(label, source, c.model().names()))?;
-    checked(r, label)
+        .recover_at(factors, &link_values(at.label(), pairs))
+        .map_err(|source| recovery_error(at, source, c.model().names()))?;
+    checked(r, at)
+}
+
+/// A point of a load path or of a load history, as errors name it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Place {
+    /// The load parameter `p` of a load path ("p = 2.5").
+    Load(f64),
+    /// Stage `stage` (from 1) of a load history at its parameter `s` in `[0, 1]` ("s = 0.25 of
+    /// stage 3").
+    Stage {
+        /// The stage, from 1.
+        stage: usize,
+        /// The stage's parameter.
+        s: f64,
+    },
+}
+
+impl Place {
+    /// The point as one number: `p`, or a history's pseudo-time `stage − 1 + s` (what
+    /// [`Results::p`] holds).
+    pub fn label(self) -> f64 {
+        match self {
+            Place::Load(p) => p,
+            Place::Stage { stage, s } => stage.saturating_sub(1) as f64 + s,
+        }
+    }
+}
+
+impl std::fmt::Display for Place {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Place::Load(p) => write!(f, "p = {}", unilateral_contact::number_text(p)),
+            Place::Stage { stage, s } => {
+                write!(
+                    f,
+                    "s = {} of stage {stage}",
+                    unilateral_contact::number_text(s)
+                )
+            }
+        }
+    }
 }
 
 /// The contact zone of a condensed model, with every load case of the model
@@ -672,8 +706,10 @@ impl Analysis {
         let r = self
             .condensed
             .recover(&link_values(p, pairs))
-            .map_err(|source| recovery_error(p, source, self.condensed.model().names()))?;
-        checked(r, p)
+            .map_err(|source| {
+                recovery_error(Place::Load(p), source, self.condensed.model().names())
+            })?;
+        checked(r, Place::Load(p))
     }
 
     /// The pair results (without tightening) and full structural results at another load `p`

@@ -378,12 +378,12 @@ mod tests {
         assert!(msg.contains("node `beam.0` uy"), "{msg}");
         // The program's own computations.
         let recovery = AnalysisError::Recovery {
-            p: 1.0,
+            at: unilateral_analysis::Place::Load(1.0),
             source: FemError::LinearAlgebra("singular".into()),
         };
         check(analysis_failure(&file(), &recovery), 1);
         let balance = AnalysisError::Equilibrium {
-            p: 1.0,
+            at: unilateral_analysis::Place::Load(1.0),
             relative: 0.3,
         };
         let msg = check(analysis_failure(&file(), &balance), 1);

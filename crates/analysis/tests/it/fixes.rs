@@ -4,7 +4,7 @@
 //! (beam theory, statics) written out in the test's comment; no expected value comes from the
 //! code under test.
 
-use unilateral_analysis::{analyze, AnalysisError, Outcome, PairState};
+use unilateral_analysis::{analyze, AnalysisError, Outcome, PairState, Place};
 use unilateral_contact::{EventKind, Follow, SolveSettings};
 use unilateral_fem::{ContactPairSpec, FemError, FrameSection, Load, LoadFrame, LoadGroup, Model};
 
@@ -669,11 +669,11 @@ fn internal_failures_are_told_from_bad_input() {
     // path.
     let internal = [
         AnalysisError::Equilibrium {
-            p: 1.0,
+            at: Place::Load(1.0),
             relative: 1.0,
         },
         AnalysisError::Recovery {
-            p: 1.0,
+            at: Place::Stage { stage: 3, s: 0.25 },
             source: FemError::BadSolution("x_n is not finite".into()),
         },
         AnalysisError::Internal {
@@ -681,6 +681,15 @@ fn internal_failures_are_told_from_bad_input() {
             message: "Rnn has a negative diagonal entry".into(),
         },
     ];
+    // A history's point is named by its stage and the stage's parameter, not by a
+    // pseudo-time the user never wrote.
+    let msg = internal[1].to_string();
+    assert!(msg.contains("at s = 0.25 of stage 3:"), "{msg}");
+    assert!(
+        internal[0].to_string().contains("at p = 1 are"),
+        "{}",
+        internal[0]
+    );
     for e in &internal {
         assert!(e.is_internal(), "{e}");
         assert!(

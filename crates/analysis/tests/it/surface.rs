@@ -696,6 +696,32 @@ fn block_history(
     a
 }
 
+/// A history whose end cannot be resolved in double precision names the point by its stage
+/// and the stage's parameter: the block on a 10 N/m spring (slips of 200 m, forces of 1e13 N
+/// term by term against 5000 N) pushed to 1 in its second stage. Errors called it "p = 1",
+/// the stage's pseudo-time, which the user never wrote.
+#[test]
+fn a_history_that_cannot_be_resolved_names_the_stage() {
+    let text = steel_block_on_a_spring(10.0, false)
+        .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
+        .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]")
+        + "\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n\
+           \n[[history]]\nname = \"push\"\nfactors = { push = 1.0 }\n";
+    let p = read("h.toml", &text).unwrap();
+    let stages = p.history.clone().expect("a history");
+    let e = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+        .expect_err("slips of 200 m");
+    let unilateral_analysis::AnalysisError::Unresolved { at, .. } = &e else {
+        panic!("{e}");
+    };
+    assert_eq!(*at, unilateral_analysis::Place::Stage { stage: 2, s: 1.0 });
+    assert!(
+        e.to_string()
+            .starts_with("the results at s = 1 of stage 2 cannot"),
+        "{e}"
+    );
+}
+
 /// The block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 300 and 178 N/m
 /// at its heel in a load history, its weight and then the push to 1 (in N·m and kN·mm). By
 /// hand as on the path: every pair slides from 0.6, and at the end the block has slid

@@ -110,7 +110,9 @@ fn a_structural_model_reads_its_cases_and_stages() {
         z_t: bonded.z_t[0],
         state: unilateral_contact::PairState::Stick,
     }];
-    let r = unilateral_analysis::recover_at(&c, &factors, 4.0, &pairs).unwrap();
+    // The end of stage 4 (pseudo-time 3 + s = 4).
+    let end = unilateral_analysis::Place::Stage { stage: 4, s: 1.0 };
+    let r = unilateral_analysis::recover_at(&c, &factors, end, &pairs).unwrap();
     assert_eq!(r.p, 4.0);
     let at = |label: unilateral_fem::DofLabel| {
         r.reactions
@@ -126,7 +128,7 @@ fn a_structural_model_reads_its_cases_and_stages() {
     ));
     assert!(close(at(unilateral_fem::DofLabel::Ux), 2.0));
     // one factor per case, or a located refusal of the call (not a panic)
-    assert!(unilateral_analysis::recover_at(&c, &[1.0], 0.0, &pairs).is_err());
+    assert!(unilateral_analysis::recover_at(&c, &[1.0], end, &pairs).is_err());
 }
 
 // Reference: the files of the paper's method mean what they meant (no history, the two
