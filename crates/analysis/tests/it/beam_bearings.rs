@@ -458,6 +458,37 @@ fn a_beam_on_soft_sideways_springs_slides_at_the_limit_load_by_hand() {
     }
 }
 
+/// A beam on 50 bearings (friction 0.5) whose soles are held sideways by springs of 100 N/m,
+/// loads × 0.3: by hand `p* = 0.5·3000 / (3000 − 0.5·4500)` = 2. Past the last bearing's slip
+/// the structure moves only sideways (the forces and the load hold): on the condensed data
+/// the load's rate there passed the column's tolerance, and the path went on to a ray from p
+/// = 81.75 (`--trace end`) or to an answer at the target refused as unresolvable in double
+/// precision (exit 2, a reviewer's sweep). Such a direction, moving only displacements, is
+/// now judged on the structure's equations where its step runs away (`docs/engine.md`,
+/// "Near-mechanisms"), and the path ends in the mechanism at `p*`. The data's conditioning
+/// (springs 1e-8 of the beam's axial stiffness) leaves 2.5e-7 of `p*`. Every pair slides,
+/// but those the load lifts off at the far end.
+#[test]
+fn a_beam_on_sideways_springs_a_hundred_newtons_a_metre_slides_at_the_limit_by_hand() {
+    let b = unilateral_oracle::fixtures::bearings::Bearings {
+        m: 50,
+        friction: 0.5,
+        springs: [1e10, 1e2],
+        load_scale: 0.3,
+        sideways: 1e4,
+        kn_mm: false,
+    };
+    let by_hand = sliding_limit_by_hand(&b);
+    assert!((by_hand - 2.0).abs() < 1e-15);
+    let (p_limit, states) = sliding(&b, 200.0);
+    assert!(
+        (p_limit - by_hand).abs() <= 1e-6 * by_hand,
+        "{p_limit} against {by_hand}"
+    );
+    // The variable load lifts the far end (upwards there at p* = 2): those pairs are open.
+    assert!(all_slide(&states, true), "{states:?}");
+}
+
 /// The same sliding beam (80 bearings on 10 kN/m springs, `p* = 2/7` by hand) under a load
 /// history — its dead load, then the push to 0.2, then to 1 — in N and m and in kN and mm:
 /// the last stage ends in the mechanism where the push's factor reaches `p*`, every pair
