@@ -458,6 +458,48 @@ fn a_beam_on_soft_sideways_springs_slides_at_the_limit_load_by_hand() {
     }
 }
 
+/// A beam on 600 bearings (friction 0.5, soles on 10 kN/m sideways springs, loads × 3): by
+/// hand `p* = 0.5·30000 / (30000 − 0.5·45000)` = 2. Traced to its end the path went past `p*`
+/// to a false mechanism at p = 412.7 (to a target of 200: exit 2): the sliding direction's
+/// load rate there was 2.7e-11 of its column, below the tolerance, its step no runaway
+/// (13 times the values), and its forces' rates 3200 times the load's. A direction that
+/// moves only displacements and whose load changes that much more slowly than its forces is
+/// judged on the structure's equations (`LOAD_BELOW_FORCES`), and the path ends in the
+/// mechanism at `p*`.
+#[test]
+fn a_long_beam_traced_to_its_end_slides_at_the_limit_by_hand() {
+    use unilateral_contact::{Follow, Outcome, SolveSettings};
+    let b = unilateral_oracle::fixtures::bearings::Bearings {
+        m: 600,
+        friction: 0.5,
+        springs: [1e10, 1e4],
+        load_scale: 3.0,
+        sideways: 1e4,
+        kn_mm: false,
+    };
+    let by_hand = sliding_limit_by_hand(&b);
+    assert!((by_hand - 2.0).abs() < 1e-15);
+    let settings = SolveSettings {
+        follow: Follow::ToEnd,
+        ..SolveSettings::default()
+    };
+    let a = analyze(&crate::bearings_model(&b), &settings).unwrap();
+    let Outcome::Mechanism { p_limit, mode } = &a.solution.outcome else {
+        panic!("{:?}", a.solution.outcome);
+    };
+    assert!((p_limit - by_hand).abs() <= 1e-8 * by_hand, "{p_limit}");
+    // The beam slides as a rigid body: every bearing's slip rate the same (to 3e-9 of it on
+    // the condensed direction), none lifting (the far end, open, by 1e-9 of it).
+    let rate = mode[0].1;
+    assert!(rate.abs() > 0.0);
+    let odd: Vec<_> = mode
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| (m.1 - rate).abs() > 1e-8 * rate.abs() || m.0.abs() > 1e-8 * rate.abs())
+        .collect();
+    assert!(odd.is_empty(), "{odd:?}");
+}
+
 /// A beam on 50 bearings (friction 0.5) whose soles are held sideways by springs of 100 N/m,
 /// loads × 0.3: by hand `p* = 0.5·3000 / (3000 − 0.5·4500)` = 2. Past the last bearing's slip
 /// the structure moves only sideways (the forces and the load hold): on the condensed data
