@@ -99,16 +99,20 @@ pub enum AnalysisError {
     /// data's conditioning, not the program's fault.
     #[error(
         "the results at {at} cannot be resolved in double precision: the links' \
-         dislocations (gaps and slips) make forces of {dislocation:.3e} term by term, {:.1e} \
-         times the forces of this state ({forces:.3e}), whose round-off leaves them out of \
-         balance by {relative:.3e} of those (accepted {EQUILIBRIUM_TOLERANCE:e}); give a larger \
-         load (target) against the gaps, smaller gaps, or supports that keep the slips short \
-         (a spring a billionth of the structure's stiffness lets it slide metres)",
-        dislocation / forces
+         dislocations ({}) make forces of {dislocation:.3e} term by term, {:.1e} times the \
+         forces of this state ({forces:.3e}), whose round-off leaves them out of balance by \
+         {relative:.3e} of those (accepted {EQUILIBRIUM_TOLERANCE:e}); give {}supports that \
+         keep the slips short (a spring a billionth of the structure's stiffness lets it slide \
+         metres)",
+        if *gaps { "gaps and slips" } else { "slips" },
+        dislocation / forces,
+        if *gaps { "a larger load (target) against the gaps, smaller gaps, or " } else { "" }
     )]
     Unresolved {
         /// The point of the path or history.
         at: Place,
+        /// Whether the model has gaps (the advice names them only then).
+        gaps: bool,
         /// The relative out-of-balance force.
         relative: f64,
         /// The size of the dislocations' forces ([`unilateral_fem::Equilibrium::dislocation_force`]).
@@ -496,7 +500,7 @@ fn recovery_error(at: Place, source: FemError, names: &Names) -> AnalysisError {
 }
 
 /// Recovered results that are finite and in equilibrium, or the error that says which not.
-fn checked(r: Results, at: Place) -> Result<Results, AnalysisError> {
+fn checked(r: Results, at: Place, model: &Model) -> Result<Results, AnalysisError> {
     if !r.all_finite() {
         return Err(AnalysisError::Internal {
             what: format!("recovering the results at {at}"),
@@ -514,6 +518,7 @@ fn checked(r: Results, at: Place) -> Result<Results, AnalysisError> {
         if relative.is_finite() && roundoff > EQUILIBRIUM_TOLERANCE && relative <= roundoff {
             return Err(AnalysisError::Unresolved {
                 at,
+                gaps: model.pairs().iter().any(|p| p.gap != 0.0),
                 relative,
                 dislocation,
                 forces,
@@ -538,7 +543,7 @@ pub fn recover_at(
     let r = c
         .recover_at(factors, &link_values(at.label(), pairs))
         .map_err(|source| recovery_error(at, source, c.model().names()))?;
-    checked(r, at)
+    checked(r, at, c.model())
 }
 
 /// A point of a load path or of a load history, as errors name it.
@@ -709,7 +714,7 @@ impl Analysis {
             .map_err(|source| {
                 recovery_error(Place::Load(p), source, self.condensed.model().names())
             })?;
-        checked(r, Place::Load(p))
+        checked(r, Place::Load(p), self.condensed.model())
     }
 
     /// The pair results (without tightening) and full structural results at another load `p`

@@ -402,6 +402,9 @@ fn a_state_the_gaps_round_off_swamps_is_the_datas_conditioning() {
             .contains("cannot be resolved in double precision"),
         "{e}"
     );
+    // The model has a gap: the advice names it.
+    assert!(e.to_string().contains("(gaps and slips)"), "{e}");
+    assert!(e.to_string().contains("smaller gaps"), "{e}");
 }
 
 /// A block on the ground (f = 0.4, weight W = 2000 N) pushed sideways by 100 N·p slides as a
@@ -745,7 +748,7 @@ fn block_history(
 
 /// A history whose end cannot be resolved in double precision names the point by its stage
 /// and the stage's parameter: the block on a 10 N/m spring (slips of 200 m, forces of 1e13 N
-/// term by term against 5000 N) pushed to 1 in its second stage. Errors called it "p = 1",
+/// term by term against 5000 N) pushed to 1 in its second stage. Errors called it "p = 2",
 /// the stage's pseudo-time, which the user never wrote.
 #[test]
 fn a_history_that_cannot_be_resolved_names_the_stage() {
@@ -767,6 +770,10 @@ fn a_history_that_cannot_be_resolved_names_the_stage() {
             .starts_with("the results at s = 1 of stage 2 cannot"),
         "{e}"
     );
+    // The block has no gap: the advice is about the slips alone (it named gaps the model
+    // does not have).
+    assert!(e.to_string().contains("dislocations (slips)"), "{e}");
+    assert!(!e.to_string().contains("gap"), "{e}");
 }
 
 /// The block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 300 and 178 N/m
