@@ -388,11 +388,30 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
     if let Some(p) = a.solution.p {
         progress.phase(unilateral_lcp::Phase::Recovering);
         let started = Instant::now();
-        let r = a.recover_pairs(p, &a.solution.pairs)?;
+        let r = match a.recover_pairs(p, &a.solution.pairs) {
+            Err(e @ (AnalysisError::Equilibrium { .. } | AnalysisError::Unresolved { .. })) => {
+                structure_point_recovered(&mut a, p).ok_or(e)?
+            }
+            r => r?,
+        };
         a.results = Some(r);
         a.timings.recover = Some(started.elapsed());
     }
     Ok(a)
+}
+
+/// The reported solution at `p` formed again on the structure's own equations, where the one
+/// formed on the condensed data left the recovered structure out of balance: the condensed
+/// `M` carries its condensation's round-off, which a state of soft springs or long slips
+/// amplifies (a block lifting its heel on an inclined spring, out of balance by 7e-6 of its
+/// forces at its mechanism). Taken, with its results, only where the structure it gives is
+/// in balance; `None` otherwise (the first error stands).
+fn structure_point_recovered(a: &mut Analysis, p: f64) -> Option<Results> {
+    let (pairs, residual) = a.solution.at_on_structure(p).ok()??;
+    let r = a.recover_pairs(p, &pairs).ok()?;
+    a.solution.pairs = pairs;
+    a.solution.residual = Some(residual);
+    Some(r)
 }
 
 /// The model checked against the memory it needs, condensed, and its contact zone checked; with

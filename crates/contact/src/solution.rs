@@ -382,6 +382,21 @@ impl ContactSolution {
         Ok(Some((self.engine.read_point(&pt)?, pt.residual)))
     }
 
+    /// [`ContactSolution::at`] with the point formed on the structure's own equations
+    /// ([`unilateral_lcp::PathSolver::structure_solution_at`]; a structural model's solve
+    /// without a tightening keeps them): for a caller whose check of the structure finds the
+    /// point formed on the condensed data out of balance beyond the data's round-off. `None`
+    /// where there are no such equations or their point does not verify.
+    pub fn at_on_structure(
+        &self,
+        p: f64,
+    ) -> Result<Option<(Vec<PairResult>, Residual)>, ContactError> {
+        let Some(pt) = self.engine.solver.structure_solution_at(&self.path, p)? else {
+            return Ok(None);
+        };
+        Ok(Some((self.engine.read_point(&pt)?, pt.residual)))
+    }
+
     /// [`ContactSolution::at`] at many loads, one answer per load in the order given, in one
     /// walk along the path ([`PathSolver::points_at`]): the cost of about one more trace of the
     /// path instead of a fresh factorisation per load. The errors are those of

@@ -570,6 +570,25 @@ pub(crate) fn basis_point_on_segment(
 /// The point of the complementary basis `slots` at load `p` solved from the structure's
 /// equations ([`crate::StructureJudge::point`]), where this solver has them and the point
 /// solves its problem (verified on its data, as every reported point is).
+/// [`PathSolver::structure_solution_at`]: the point at `p` of the basis of the path's last
+/// segment through `p`, formed on the structure's equations.
+pub(crate) fn structure_point_at(
+    solver: &PathSolver,
+    path: &LoadPath,
+    p: f64,
+) -> Option<PathPoint> {
+    if solver.c0 != 0.0 {
+        return None;
+    }
+    let seg = path.last_segment_containing(p)?;
+    let n = solver.prep.n;
+    let mut slots = path.slots_after(seg);
+    if let Some(ds) = slots.iter().position(|&v| v == 2 * n) {
+        slots[ds] = path.segment_entering(seg, n)?;
+    }
+    structure_point(solver, &slots, p)
+}
+
 fn structure_point(solver: &PathSolver, slots: &[usize], p: f64) -> Option<PathPoint> {
     let judge = solver.judge.as_ref()?;
     let n = solver.prep.n;

@@ -271,6 +271,24 @@ impl PathSolver {
         Ok(point_at(self, path, p))
     }
 
+    /// The solution without tightening at load `p` of a path this solver followed, formed on
+    /// the structure's own equations ([`PathSolver::judged_on`]) from the basis of the path's
+    /// last segment through `p`, and verified on this solver's data as every point is: for a
+    /// caller whose own check on the structure finds the point formed on the condensed data
+    /// out of balance beyond the data's round-off. `Ok(None)` without a judge, with a
+    /// tightening, off the path, or where that basis is singular on the structure or its
+    /// point does not verify.
+    ///
+    /// A path of a problem of another order is refused ([`LcpError::Dimension`]).
+    pub fn structure_solution_at(
+        &self,
+        path: &LoadPath,
+        p: f64,
+    ) -> Result<Option<PathPoint>, LcpError> {
+        self.check_path(path)?;
+        Ok(crate::parametric::structure_point_at(self, path, p))
+    }
+
     /// The load of step `k` (1-based, as [`crate::Step::index`]) of a path this solver followed,
     /// computed afresh from the data: the basis of the segment before the step factorised anew
     /// and its values and rates refined in working precision, where the path itself moves its
