@@ -1368,10 +1368,11 @@ impl<'a> Pivoter<'a> {
             // this segment.
             let mut judged = false;
             let mut t_sure = t_sure;
-            // A direction that moves only displacements and takes the load back is judged too,
-            // whatever its runaway and even where its load rate passes the column's
-            // tolerance: the rate may be the condensation's round-off of a mechanism
-            // ([`NEAR_MECHANISM`]).
+            // A direction that moves only displacements is judged too where it takes the load
+            // back, where its forces move hundreds of times faster than the load over a real
+            // step, or where its step runs away — even with a load rate above the column's
+            // tolerance: that rate may be the condensation's round-off of a mechanism
+            // ([`NEAR_MECHANISM`], [`LOAD_BELOW_FORCES`], [`LOAD_STEP`]).
             let near = self.judge.is_some()
                 && self
                     .near_mechanism(entering, &alpha, t_rate, amax)
