@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use unilateral_contact::{
-    follow_history_judged, ContactZone, History, HistorySolution, PairResult, Stage,
+    follow_history_judged, ContactZone, History, HistorySolution, PairResult, Stage, StageStatus,
 };
 use unilateral_fem::{Condensed, Model, Results};
 
@@ -22,7 +22,8 @@ pub struct HistoryAnalysis {
     /// The history on the contact zone: every stage, step and pair state.
     pub history: HistorySolution,
     /// Full results (displacements, reactions, element forces, stresses) at the end of every
-    /// stage run, in the order of `history.stages`.
+    /// stage run, in the order of `history.stages`; none for a last stage that ended in a
+    /// numerical failure (its end is no state of the structure).
     pub stage_results: Vec<Results>,
     /// Wall-clock times of condensation, solve and recovery.
     pub timings: Timings,
@@ -54,6 +55,12 @@ pub fn analyze_history(
     let started = Instant::now();
     let mut stage_results = Vec::with_capacity(solution.stages.len());
     for st in &solution.stages {
+        // A stage the engine failed in (a singular basis, or an end state that fails its
+        // check) has no state to recover: its results are left out (they were recovered and
+        // read "out of balance", hiding the stage's own reason) and the history ends there.
+        if st.status == StageStatus::NumericalFailure {
+            break;
+        }
         let factors: Vec<f64> = st
             .factors_start
             .iter()

@@ -550,7 +550,21 @@ pub fn history_summary(h: &HistorySolution, title: &str) -> Result<String, NonFi
     let pairs = h.final_pairs();
     let _ = writeln!(s);
     if pairs.len() <= SUMMARY_PAIRS {
-        let _ = writeln!(s, "final state of the pairs:");
+        // A stage that failed ends in no state of the structure: its pairs are where the
+        // engine stopped, shown for diagnosis, not as an answer.
+        let failed = h
+            .stages
+            .last()
+            .is_some_and(|st| st.status == unilateral_contact::StageStatus::NumericalFailure);
+        let _ = writeln!(
+            s,
+            "{}",
+            if failed {
+                "the pairs where the engine stopped (not a solution):"
+            } else {
+                "final state of the pairs:"
+            }
+        );
         let w = pairs
             .iter()
             .map(|p| p.name.chars().count())

@@ -568,6 +568,30 @@ fn mechanism_in_the_summary() {
     assert!(s.contains("stage 3: the pairs slide together"), "{s}");
 }
 
+/// A history whose last stage the engine failed in: its pairs are where the engine stopped,
+/// and the summary says so instead of calling them the final state (they read like an answer:
+/// an open pair carrying a friction force of 1e5 N in a reviewer's run).
+#[test]
+fn a_failed_stage_is_no_final_state_in_the_summary() {
+    let mut h = history();
+    let st = &mut h.stages[2];
+    st.status = StageStatus::NumericalFailure;
+    st.reason = Some("the state reached at s = 1 of stage 3 fails its check".into());
+    let s = history_summary(&h, "t").unwrap();
+    assert!(
+        s.contains("the pairs where the engine stopped (not a solution):"),
+        "{s}"
+    );
+    assert!(!s.contains("final state"), "{s}");
+    assert!(
+        s.contains("stage 3: the state reached at s = 1 of stage 3 fails its check"),
+        "{s}"
+    );
+    // A completed history keeps its heading.
+    let s = history_summary(&history(), "t").unwrap();
+    assert!(s.contains("final state of the pairs:"), "{s}");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Pictures
 
