@@ -769,6 +769,56 @@ fn block_history(
     a
 }
 
+/// A T-footing (a frame: a 2 m foot on three frictional supports, f = 0.3, a 1 m column) under
+/// 100 kN down and 10 kN·p sideways at the column's top, held there by a spring of 1 N/m. By
+/// hand every support slides at `p = f·W/H = 3`; past it the spring holds the frame, the load
+/// growing with the slide (a ray, not a mechanism). In kN·mm the path read a mechanism at 3:
+/// the structure's equations judged the spring's load rate against their largest terms, and in
+/// mm the column's moment equations outweigh its force equations a thousand times more than
+/// in m. The equations are now weighted to common units (`schur/judge.rs`, `row_weights`):
+/// both units give the ray from 3 (a reviewer's sweep: nine runs of T-footings on 1 N/m
+/// springs in kN·mm agree with N·m now).
+#[test]
+fn a_frame_on_a_soft_spring_slides_alike_in_newtons_and_metres_and_in_kilonewtons_and_millimetres()
+{
+    let frame = |kn_mm: bool| {
+        let (l, f, k, e, a, i) = if kn_mm {
+            (1000.0, 1e-3, 1e-6, 210.0, 5e4, 1e9)
+        } else {
+            (1.0, 1.0, 1.0, 2.1e11, 0.05, 1e-3)
+        };
+        let units = if kn_mm { "kN, mm" } else { "N, m" };
+        format!(
+            "units = \"{units}\"\n\
+             [[sections]]\nname = \"s\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
+             [[members]]\nname = \"foot\"\nstart = [{m:e}, 0.0]\nend = [{l:e}, 0.0]\n\
+             divisions = 2\nsection = \"s\"\n\
+             [[members]]\nname = \"col\"\nstart = \"foot.1\"\nend = [0.0, {l:e}]\n\
+             divisions = 2\nsection = \"s\"\n\
+             [[contact]]\nname = \"base\"\nfrom = \"ground\"\nto = \"foot.nodes\"\n\
+             normal = [0.0, 1.0]\nfriction = 0.3\n\
+             [[springs]]\nnodes = \"col.end\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
+             [[loads.constant.nodal]]\nnodes = \"col.end\"\nfy = {fy:e}\n\
+             [[loads.variable.nodal]]\nnodes = \"col.end\"\nfx = {fx:e}\n",
+            m = -l,
+            fy = -1e5 * f,
+            fx = 1e4 * f,
+        )
+    };
+    let end = SolveSettings {
+        follow: Follow::ToEnd,
+        ..settings()
+    };
+    for kn_mm in [false, true] {
+        let p = read("t.toml", &frame(kn_mm)).unwrap();
+        let a = analyze(&p.model, &end).unwrap_or_else(|e| panic!("kN·mm {kn_mm}: {e}"));
+        let unilateral_analysis::Outcome::Ray { p_from } = a.solution.outcome else {
+            panic!("kN·mm {kn_mm}: {:?}", a.solution.outcome);
+        };
+        assert!((p_from - 3.0).abs() < 1e-6 * 3.0, "kN·mm {kn_mm}: {p_from}");
+    }
+}
+
 /// A stage the engine fails in (a singular basis, or an end state that fails its check) has
 /// no state of the structure to recover: its results are left out and the history is reported
 /// with the stage's own reason. They were recovered and refused as "out of balance", an error

@@ -29,8 +29,8 @@ const ZERO_LOAD_RATE: f64 = 1024.0 * f64::EPSILON;
 /// What the structure's equations say of a direction (see [`StructureJudge::direction`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct DirectionVerdict {
-    /// The load's rate against the terms of the equations: the largest `|d_i·dp|` over the
-    /// largest `Σ_j |a_ij v_j|` (every row is one of forces).
+    /// The load's rate against the terms of the equations: the largest `w_i·|d_i·dp|` over the
+    /// largest `w_i·Σ_j |a_ij v_j|`, each row weighted to common units ([`row_weights`]).
     pub load: f64,
 }
 
@@ -47,6 +47,9 @@ impl DirectionVerdict {
 pub struct StructureJudge {
     lcp: SchurLcp,
     basis: Mutex<Option<Bordered>>,
+    /// The weights that make the equations' terms comparable whatever the units
+    /// ([`row_weights`]).
+    weights: Vec<f64>,
 }
 
 impl std::fmt::Debug for StructureJudge {
@@ -61,6 +64,7 @@ impl StructureJudge {
     /// A judge on `lcp`, the same problem as the dense solver's (in the same units).
     pub fn new(lcp: SchurLcp) -> Self {
         Self {
+            weights: row_weights(&lcp),
             lcp,
             basis: Mutex::new(None),
         }
@@ -104,7 +108,7 @@ impl StructureJudge {
         let mut rhs = vec![0.0; big_n + 2 * n + 1];
         rhs[row] = scale;
         let mut v = bordered.refined_base_solve(&rhs);
-        let terms = Terms::of(bordered.base_matrix(), &v, big_n + n, big_n + 2 * n);
+        let terms = Terms::of(bordered.base_matrix(), &v, &self.weights, big_n + 2 * n);
         // How far the stored data's own round-off moves the direction: each equation's terms
         // perturbed by one rounding, with signs that do not cancel by design (two sign
         // patterns), carried through the basis (first-order perturbation, `δv = −𝒜⁻¹ δ𝒜 v`).
@@ -169,15 +173,64 @@ impl StructureJudge {
     }
 }
 
-/// The terms of a direction `v` in the equations (the first `rows` rows of the base system):
-/// `Σ_j |a_ij v_j|` by row, and the largest term of the load's column `pcol`.
-struct Terms {
+/// The weights of the equations `A y − B z − da·p` (the structure's DOFs) and
+/// `x − D z + C y − d0·p` (the links' forces) that make their terms comparable whatever the
+/// units: `1/√A_ii` for a DOF's row, `1/√max_j |D_kj|` for a link's. A row's terms are a force
+/// (a DOF's that translates, a link's) or a moment (a DOF's that rotates); weighted so, both are
+/// of the units `√(force·length)`, and a change of units scales every weighted term alike.
+/// Compared unweighted, the moments' rows of a frame in kN·mm outweighed its forces' a thousand
+/// times more than in N·m, and a T-footing's genuine 1 N/m spring read as a mechanism in kN·mm
+/// only (a reviewer's sweep).
+fn row_weights(lcp: &SchurLcp) -> Vec<f64> {
+    let (big_n, n) = (lcp.a.nrows(), lcp.order());
+    let mut w = vec![0.0f64; big_n + n];
+    for j in 0..lcp.a.ncols().min(big_n) {
+        for (&i, &aij) in lcp.a.row_idx_of_col_raw(j).iter().zip(lcp.a.val_of_col(j)) {
+            if i == j && aij != 0.0 {
+                w[i] = 1.0 / aij.abs().sqrt();
+            }
+        }
+    }
+    let mut dmax = vec![0.0f64; n];
+    for j in 0..lcp.d.ncols() {
+        for (&k, &dkj) in lcp.d.row_idx_of_col_raw(j).iter().zip(lcp.d.val_of_col(j)) {
+            if k < n {
+                dmax[k] = dmax[k].max(dkj.abs());
+            }
+        }
+    }
+    // A link's row without a stiffness of its own takes the largest of the links' (the same
+    // units).
+    let dall = dmax.iter().fold(0.0f64, |m, &d| m.max(d));
+    for (k, d) in dmax.iter().enumerate() {
+        let d = if *d > 0.0 { *d } else { dall };
+        w[big_n + k] = if d > 0.0 { 1.0 / d.sqrt() } else { 1.0 };
+    }
+    // A DOF's row without a diagonal (none in a stiffness) keeps its terms as they are.
+    for x in w.iter_mut().take(big_n) {
+        if *x == 0.0 {
+            *x = 1.0;
+        }
+    }
+    w
+}
+
+/// The terms of a direction `v` in the equations (the first `weights.len()` rows of the base
+/// system): `Σ_j |a_ij v_j|` by row, the largest of them weighted ([`row_weights`]), and the
+/// largest weighted term of the load's column `pcol`.
+struct Terms<'w> {
     rows: Vec<f64>,
+    /// The rows' weights.
+    weights: &'w [f64],
+    /// The largest `w_i·Σ_j |a_ij v_j|`.
+    largest: f64,
+    /// The largest `w_i·|a_i,pcol v_pcol|`.
     load: f64,
 }
 
-impl Terms {
-    fn of(a: &SparseColMat<usize, f64>, v: &[f64], rows: usize, pcol: usize) -> Self {
+impl<'w> Terms<'w> {
+    fn of(a: &SparseColMat<usize, f64>, v: &[f64], weights: &'w [f64], pcol: usize) -> Self {
+        let rows = weights.len();
         let (mut terms, mut load) = (vec![0.0f64; rows], 0.0f64);
         for (j, &vj) in v.iter().enumerate() {
             if vj == 0.0 {
@@ -187,12 +240,21 @@ impl Terms {
                 if i < rows {
                     terms[i] += (aij * vj).abs();
                     if j == pcol {
-                        load = load.max((aij * vj).abs());
+                        load = load.max(weights[i] * (aij * vj).abs());
                     }
                 }
             }
         }
-        Self { rows: terms, load }
+        let largest = terms
+            .iter()
+            .zip(weights)
+            .fold(0.0f64, |m, (t, w)| m.max(w * t));
+        Self {
+            rows: terms,
+            weights,
+            largest,
+            load,
+        }
     }
 }
 
@@ -215,10 +277,10 @@ fn verdict(
     n: usize,
     driver_enters: bool,
 ) -> DirectionVerdict {
-    // Every equation is one of forces (the structure's DOFs, the links' forces): the load's
-    // rate against the largest terms of the direction — a row the direction hardly moves (a
-    // beam's vertical DOF while it slides) has the load's share as its only term.
-    let largest = terms.rows.iter().fold(0.0f64, |m, &t| m.max(t));
+    // The load's rate against the largest terms of the direction, every row weighted to the
+    // same units ([`row_weights`]) — a row the direction hardly moves (a beam's vertical DOF
+    // while it slides) has the load's share as its only term.
+    let largest = terms.largest;
     // With the driver entering, the load moves by definition.
     let verdict = DirectionVerdict {
         load: if driver_enters {
@@ -241,7 +303,8 @@ fn verdict(
         // largest terms: the data hold those to their last bit, and a row the direction hardly
         // touches (a pair's normal force while the beam slides) carries that much of them.
         let roundoff = if i < n {
-            (crate::ACCEPT_RESIDUAL * terms.rows[at]).max(8.0 * f64::EPSILON * largest)
+            (crate::ACCEPT_RESIDUAL * terms.rows[at])
+                .max(8.0 * f64::EPSILON * largest / terms.weights[at])
         } else {
             crate::ACCEPT_RESIDUAL * z_scale
         };
