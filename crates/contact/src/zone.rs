@@ -213,7 +213,7 @@ impl ContactZone {
 impl ContactZone {
     /// Checks that `Rnn` and `Rtt` are positive semidefinite, as a stiffness is (after
     /// [`ContactZone::validate`], which checks their symmetry and diagonals), up to
-    /// [`SEMIDEFINITE_SLACK`] of the zone's largest entry: for matrices a user gives, where a
+    /// `SEMIDEFINITE_SLACK` of the zone's largest entry: for matrices a user gives, where a
     /// wrong sign or a swapped entry makes a zone no structure has (a negative eigenvalue of
     /// the size of the entries), while a zone condensed from a finely meshed structure — whose
     /// zero eigenvalues carry the condensation's round-off — passes. Each block `R + δI` must
