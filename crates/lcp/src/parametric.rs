@@ -522,30 +522,21 @@ pub(crate) fn basis_point_on_segment(
 ) -> Result<PathPoint, BasisVerdict> {
     let (prep, settings) = (&solver.prep, solver.settings());
     let (c0, cov) = (solver.c0, &solver.cov[..]);
-    let n = prep.n;
-    let driver = 2 * n;
-    let mut slots = path.slots_after(seg);
-    // The driver's slot takes the segment's entering column; a segment without one (the end
-    // of the record) has no basis to evaluate.
-    let complete = match slots.iter().position(|&v| v == driver) {
-        Some(ds) => path
-            .segment_entering(seg, n)
-            .map(|e| slots[ds] = e)
-            .is_some(),
-        None => true,
-    };
+    let slots = segment_slots(path, seg, prep.n);
     // A segment whose direction came from the structure's equations: its point too, where it
     // solves the problem on this solver's data.
-    if complete && c0 == 0.0 && path.judged_load_segments.contains(&seg) {
-        if let Some(pt) = structure_point(solver, &slots, p) {
+    if let (Some(slots), true) = (
+        &slots,
+        c0 == 0.0 && path.judged_load_segments.contains(&seg),
+    ) {
+        if let Some(pt) = structure_point(solver, slots, p) {
             return Ok(pt);
         }
     }
     let q_real: Vec<f64> = solver.q_at(p);
-    let evaluated = if complete {
-        remove_tightening(prep, &q_real, slots, c0, cov, settings)
-    } else {
-        Err(BasisVerdict::Singular)
+    let evaluated = match slots {
+        Some(slots) => remove_tightening(prep, &q_real, slots, c0, cov, settings),
+        None => Err(BasisVerdict::Singular),
     };
     match evaluated {
         Ok((x, z, pivots)) => {
@@ -570,6 +561,17 @@ pub(crate) fn basis_point_on_segment(
 /// The point of the complementary basis `slots` at load `p` solved from the structure's
 /// equations ([`crate::StructureJudge::point`]), where this solver has them and the point
 /// solves its problem (verified on its data, as every reported point is).
+/// The basis of segment `seg` of `path` (order `n`): the slots after its pivots, the driver's
+/// slot taking the segment's entering column. `None` for a segment without one (the end of the
+/// record), which has no basis to evaluate.
+fn segment_slots(path: &LoadPath, seg: usize, n: usize) -> Option<Vec<usize>> {
+    let mut slots = path.slots_after(seg);
+    if let Some(ds) = slots.iter().position(|&v| v == 2 * n) {
+        slots[ds] = path.segment_entering(seg, n)?;
+    }
+    Some(slots)
+}
+
 /// [`PathSolver::structure_solution_at`]: the point at `p` of the basis of the path's last
 /// segment through `p`, formed on the structure's equations.
 pub(crate) fn structure_point_at(
@@ -581,12 +583,7 @@ pub(crate) fn structure_point_at(
         return None;
     }
     let seg = path.last_segment_containing(p)?;
-    let n = solver.prep.n;
-    let mut slots = path.slots_after(seg);
-    if let Some(ds) = slots.iter().position(|&v| v == 2 * n) {
-        slots[ds] = path.segment_entering(seg, n)?;
-    }
-    structure_point(solver, &slots, p)
+    structure_point(solver, &segment_slots(path, seg, solver.prep.n)?, p)
 }
 
 fn structure_point(solver: &PathSolver, slots: &[usize], p: f64) -> Option<PathPoint> {

@@ -737,14 +737,12 @@ fn a_block_on_a_spring_a_billionth_of_its_stiffness_slides_to_the_target() {
 }
 
 /// [`steel_block_on_a_spring`] with its weight and push as load cases `weight` and `push`, in
-/// a history of the weight and then the pushes `pushes` (`(stage name, factor)`), analysed;
-/// every stage must complete.
-fn block_history(
+/// a history of the weight and then the pushes `pushes` (`(stage name, factor)`), analysed.
+fn analyze_block_history(
     k: f64,
     kn_mm: bool,
     pushes: &[(&str, f64)],
-) -> unilateral_analysis::HistoryAnalysis {
-    use unilateral_contact::StageStatus;
+) -> Result<unilateral_analysis::HistoryAnalysis, unilateral_analysis::AnalysisError> {
     let mut text = steel_block_on_a_spring(k, kn_mm)
         .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
         .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]");
@@ -756,7 +754,17 @@ fn block_history(
     }
     let p = read("h.toml", &text).unwrap();
     let stages = p.history.clone().expect("a history");
-    let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+    unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+}
+
+/// [`analyze_block_history`]; every stage must complete.
+fn block_history(
+    k: f64,
+    kn_mm: bool,
+    pushes: &[(&str, f64)],
+) -> unilateral_analysis::HistoryAnalysis {
+    use unilateral_contact::StageStatus;
+    let a = analyze_block_history(k, kn_mm, pushes)
         .unwrap_or_else(|e| panic!("k = {k}, kN·mm {kn_mm}: {e}"));
     let st = &a.history.stages;
     assert!(
@@ -828,15 +836,7 @@ fn a_frame_on_a_soft_spring_slides_alike_in_newtons_and_metres_and_in_kilonewton
 /// the stages recovered are those before the first that failed.
 #[test]
 fn a_stage_the_engine_failed_in_is_not_recovered() {
-    let text = steel_block_on_a_spring(300.0, false)
-        .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
-        .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]")
-        + "\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n\
-           \n[[history]]\nname = \"push\"\nfactors = { push = 1.6 }\n";
-    let p = read("h.toml", &text).unwrap();
-    let stages = p.history.clone().expect("a history");
-    let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let a = analyze_block_history(300.0, false, &[("push", 1.6)]).unwrap_or_else(|e| panic!("{e}"));
     let sound = a
         .history
         .stages
@@ -853,15 +853,7 @@ fn a_stage_the_engine_failed_in_is_not_recovered() {
 /// the stage's pseudo-time, which the user never wrote.
 #[test]
 fn a_history_that_cannot_be_resolved_names_the_stage() {
-    let text = steel_block_on_a_spring(10.0, false)
-        .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
-        .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]")
-        + "\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n\
-           \n[[history]]\nname = \"push\"\nfactors = { push = 1.0 }\n";
-    let p = read("h.toml", &text).unwrap();
-    let stages = p.history.clone().expect("a history");
-    let e = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
-        .expect_err("slips of 200 m");
+    let e = analyze_block_history(10.0, false, &[("push", 1.0)]).expect_err("slips of 200 m");
     let unilateral_analysis::AnalysisError::Unresolved { at, .. } = &e else {
         panic!("{e}");
     };
