@@ -658,6 +658,62 @@ fn steel_block_on_a_spring(k: f64, kn_mm: bool) -> String {
         )
 }
 
+/// The steel block on a soft spring pushed on past its heel's opening (target 1.8): its toe
+/// pairs open where they open on a stiff spring. Reference: by statics the forces do not depend
+/// on the spring once every pair slides (the spring carries `5000·p − 3000`), so the loads at
+/// which the pairs open are those of the same block on a spring of 1e5 N/m (slips of a few
+/// centimetres, a well-conditioned path): `g.1` at 0.998489, `g.3` at 1.550983, `g.2` at
+/// 1.561481. On 300 and 500 N/m (slips of 15 m, 1e9 times the block's strains) `g.3`'s normal
+/// force fell at a quarter of the largest force rate, which the condensed data read as
+/// round-off beside the slips' rates: the path passed its opening and opened `g.2` and `g.3`
+/// together at 1.56403, a turning point between them.
+#[test]
+fn a_block_on_a_soft_spring_opens_its_toe_pairs_where_a_stiff_one_does() {
+    let settings = SolveSettings {
+        target: 1.8,
+        ..settings()
+    };
+    let openings = |a: &unilateral_analysis::Analysis| -> Vec<(String, f64)> {
+        a.solution
+            .steps
+            .iter()
+            .flat_map(|s| {
+                s.events
+                    .iter()
+                    .filter(|e| e.kind == EventKind::Opens)
+                    .map(move |e| (e.name.clone(), s.p))
+            })
+            .collect()
+    };
+    let stiff = read("s.toml", &steel_block_on_a_spring(1e5, false)).unwrap();
+    let reference = openings(&analyze(&stiff.model, &settings).unwrap());
+    let names: Vec<&str> = reference.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["g.1", "g.3", "g.2"], "{reference:?}");
+    for ((_, p), by_hand) in reference.iter().zip([0.998489, 1.550983, 1.561481]) {
+        assert!((p - by_hand).abs() < 1e-6, "{reference:?}");
+    }
+    for k in [300.0, 500.0] {
+        for kn_mm in [false, true] {
+            let p = read("s.toml", &steel_block_on_a_spring(k, kn_mm)).unwrap();
+            let a = analyze(&p.model, &settings).unwrap_or_else(|e| panic!("k = {k}: {e}"));
+            let got = openings(&a);
+            assert_eq!(got.len(), 3, "k = {k}, kN·mm {kn_mm}: {got:?}");
+            for ((name, p), (want, p_ref)) in got.iter().zip(&reference) {
+                assert_eq!(name, want, "k = {k}, kN·mm {kn_mm}: {got:?}");
+                // the conditioning of slips 1e9 times the strains (measured: 2e-7 at most)
+                assert!(
+                    (p - p_ref).abs() < 3e-6 * p_ref,
+                    "k = {k}, kN·mm {kn_mm}: {got:?} against {reference:?}"
+                );
+            }
+            assert!(
+                a.solution.steps.iter().all(|s| !s.turning),
+                "k = {k}, kN·mm {kn_mm}: no turning point"
+            );
+        }
+    }
+}
+
 /// The steel block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 178 and 100
 /// N/m (in N·m and in kN·mm): 10⁻⁹ of the block's own stiffness, so that the load's rate
 /// while every pair slides is below what the condensed data can tell from round-off. It was
