@@ -814,6 +814,53 @@ fn analyze_block_history(
     unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
 }
 
+/// The steel block's history — its weight, then a push to 1.7 or 1.9 — on a stiff spring and on
+/// 1000 N/m: the push stage opens the heel and then the two toe pairs at the loads statics give
+/// the load path (`g.1` at 0.998489, `g.3` at 1.550983, `g.2` at 1.561481 of the push:
+/// [`a_block_on_a_soft_spring_opens_its_toe_pairs_where_a_stiff_one_does`], whatever the spring
+/// once every pair slides), and ends with the open pairs free of friction. The stage's values,
+/// formed at each breakpoint with the updated inverse alone, broke the friction relations by
+/// 1e-4 of the forces after the third opening: `g.2` ended open carrying 0.06 N of friction
+/// and the stage failed its check (a numerical failure). They are now refined once from the
+/// data at each breakpoint (`Pivoter::rebase`).
+#[test]
+fn a_block_pushed_past_its_toe_openings_in_a_history_opens_them_where_the_path_does() {
+    for k in [1e5, 1000.0] {
+        for f in [1.7, 1.9] {
+            let a = block_history(k, false, &[("push", f)]);
+            let st = &a.history.stages[1];
+            let opens: Vec<(String, f64)> = st
+                .steps
+                .iter()
+                .flat_map(|s| {
+                    s.events
+                        .iter()
+                        .filter(|e| e.kind == EventKind::Opens)
+                        .map(move |e| (e.name.clone(), s.s * f))
+                })
+                .collect();
+            let names: Vec<&str> = opens.iter().map(|(n, _)| n.as_str()).collect();
+            assert_eq!(names, ["g.1", "g.3", "g.2"], "k = {k}, push {f}: {opens:?}");
+            for ((_, p), by_hand) in opens.iter().zip([0.998489, 1.550983, 1.561481]) {
+                assert!((p - by_hand).abs() < 2e-6, "k = {k}, push {f}: {opens:?}");
+            }
+            for r in &st.pairs {
+                if r.state == PairState::Open {
+                    assert!(
+                        r.x_n == 0.0 && r.x_t.abs() < 1e-6 * 2000.0,
+                        "k = {k}, push {f}: {r:?}"
+                    );
+                }
+            }
+            assert!(
+                st.residual.max() <= 1e-8,
+                "k = {k}, push {f}: {:?}",
+                st.residual
+            );
+        }
+    }
+}
+
 /// [`analyze_block_history`]; every stage must complete.
 fn block_history(
     k: f64,
