@@ -964,8 +964,7 @@ impl<'a> Pivoter<'a> {
                 t[c] += b.abs();
             } else {
                 let (col, neg) = if c < 2 * n {
-                    let (col, neg) = cols.m_col(c - n);
-                    (col, neg)
+                    cols.m_col(c - n)
                 } else {
                     (&cols.g[..], false)
                 };
@@ -1150,12 +1149,13 @@ impl<'a> Pivoter<'a> {
     /// not move; the lexicographic order restarts from the current basis, which is the start
     /// of a new problem (its perturbation `B ε` is lexicographically positive there). The
     /// values moved are formed afresh from the data and, where they miss it beyond round-off,
-    /// refined once from it: the moved values become the right-hand side of the rest of the
-    /// stage, so an error of the updated inverse there stays in every later point. On a steel block on a 1e5 N/m spring pushed
-    /// to 1.7 after its weight (three toe pairs opening in turn), the values formed with the
-    /// updated inverse alone broke the friction relations `x_t+ + x_t− = 2f·x_n` by 1e-4 of
-    /// the forces after the third opening: an open pair ended the stage carrying a friction
-    /// force of 0.06 N and the state failed its check; refined, by 1e-10.
+    /// refined once from it ([`Pivoter::refine_values_beyond_round_off`]): the moved values
+    /// become the right-hand side of the rest of the stage, so an error of the updated inverse
+    /// there stays in every later point. On a steel block on a 1e5 N/m spring pushed to 1.7
+    /// after its weight (three toe pairs opening in turn), the values formed with the updated
+    /// inverse alone broke the friction relations `x_t+ + x_t− = 2f·x_n` by 1e-4 of the forces
+    /// after the third opening: an open pair ended the stage carrying a friction force of
+    /// 0.06 N and the state failed its check; refined, they hold them to 1e-10.
     pub fn rebase(&mut self, reset: &[bool], acc: &mut [f64]) {
         let n = self.cols.n;
         // Solves formed for the right-hand side before the move are not the new one's.
