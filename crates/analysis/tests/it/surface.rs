@@ -658,6 +658,36 @@ fn steel_block_on_a_spring(k: f64, kn_mm: bool) -> String {
         )
 }
 
+/// The pairs that open along a path or a history's stage, in order, each with the load at its
+/// step (`(load, events)` a step).
+fn openings<'a>(
+    steps: impl Iterator<Item = (f64, &'a [unilateral_contact::Event])>,
+) -> Vec<(String, f64)> {
+    steps
+        .flat_map(|(p, events)| {
+            events
+                .iter()
+                .filter(|e| e.kind == EventKind::Opens)
+                .map(move |e| (e.name.clone(), p))
+        })
+        .collect()
+}
+
+/// The steel block pushed past its heel's opening opens `g.1`, `g.3` and `g.2` at these loads
+/// of the push by statics, whatever the spring once every pair slides (the load path on a
+/// spring of 1e5 N/m, slips of a few centimetres).
+const TOE_OPENINGS: [(&str, f64); 3] = [("g.1", 0.998489), ("g.3", 1.550983), ("g.2", 1.561481)];
+
+/// `opens` are [`TOE_OPENINGS`], in order, each load within `tol`.
+fn assert_toe_openings(opens: &[(String, f64)], tol: f64, what: &str) {
+    let names: Vec<&str> = opens.iter().map(|(n, _)| n.as_str()).collect();
+    let want: Vec<&str> = TOE_OPENINGS.iter().map(|(n, _)| *n).collect();
+    assert_eq!(names, want, "{what}: {opens:?}");
+    for ((_, p), (_, by_hand)) in opens.iter().zip(TOE_OPENINGS) {
+        assert!((p - by_hand).abs() < tol, "{what}: {opens:?}");
+    }
+}
+
 /// The steel block on a soft spring pushed on past its heel's opening (target 1.8): its toe
 /// pairs open where they open on a stiff spring. Reference: by statics the forces do not depend
 /// on the spring once every pair slides (the spring carries `5000·p − 3000`), so the loads at
@@ -673,25 +703,12 @@ fn a_block_on_a_soft_spring_opens_its_toe_pairs_where_a_stiff_one_does() {
         target: 1.8,
         ..settings()
     };
-    let openings = |a: &unilateral_analysis::Analysis| -> Vec<(String, f64)> {
-        a.solution
-            .steps
-            .iter()
-            .flat_map(|s| {
-                s.events
-                    .iter()
-                    .filter(|e| e.kind == EventKind::Opens)
-                    .map(move |e| (e.name.clone(), s.p))
-            })
-            .collect()
+    let openings = |a: &unilateral_analysis::Analysis| {
+        openings(a.solution.steps.iter().map(|s| (s.p, s.events.as_slice())))
     };
     let stiff = read("s.toml", &steel_block_on_a_spring(1e5, false)).unwrap();
     let reference = openings(&analyze(&stiff.model, &settings).unwrap());
-    let names: Vec<&str> = reference.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, ["g.1", "g.3", "g.2"], "{reference:?}");
-    for ((_, p), by_hand) in reference.iter().zip([0.998489, 1.550983, 1.561481]) {
-        assert!((p - by_hand).abs() < 1e-6, "{reference:?}");
-    }
+    assert_toe_openings(&reference, 1e-6, "the stiff spring");
     for k in [300.0, 500.0] {
         for kn_mm in [false, true] {
             let p = read("s.toml", &steel_block_on_a_spring(k, kn_mm)).unwrap();
@@ -829,21 +846,8 @@ fn a_block_pushed_past_its_toe_openings_in_a_history_opens_them_where_the_path_d
         for f in [1.7, 1.9] {
             let a = block_history(k, false, &[("push", f)]);
             let st = &a.history.stages[1];
-            let opens: Vec<(String, f64)> = st
-                .steps
-                .iter()
-                .flat_map(|s| {
-                    s.events
-                        .iter()
-                        .filter(|e| e.kind == EventKind::Opens)
-                        .map(move |e| (e.name.clone(), s.s * f))
-                })
-                .collect();
-            let names: Vec<&str> = opens.iter().map(|(n, _)| n.as_str()).collect();
-            assert_eq!(names, ["g.1", "g.3", "g.2"], "k = {k}, push {f}: {opens:?}");
-            for ((_, p), by_hand) in opens.iter().zip([0.998489, 1.550983, 1.561481]) {
-                assert!((p - by_hand).abs() < 2e-6, "k = {k}, push {f}: {opens:?}");
-            }
+            let opens = openings(st.steps.iter().map(|s| (s.s * f, s.events.as_slice())));
+            assert_toe_openings(&opens, 2e-6, &format!("k = {k}, push {f}"));
             for r in &st.pairs {
                 if r.state == PairState::Open {
                     assert!(

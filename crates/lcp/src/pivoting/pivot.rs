@@ -931,60 +931,39 @@ impl<'a> Pivoter<'a> {
     }
 
     /// [`Pivoter::refine_values`] where the values miss some row of the data by more than
-    /// [`ROUNDOFF`] of the terms that form it (`O(n·k)` to find out), kept only where the
-    /// refined values miss it by less: values that meet the data to round-off are left as they
-    /// are, bit for bit, and so are those a refinement would not improve.
+    /// [`ROUNDOFF`] of the terms that form it, kept only where the refined values miss it by
+    /// less: values that meet the data to round-off are left as they are, bit for bit, and so
+    /// are those a refinement would not improve.
     fn refine_values_beyond_round_off(&mut self) {
-        let before = self.values_miss();
+        let (r, t) = self.values_residual(true);
+        let before = largest_miss(&r, &t);
         if before <= ROUNDOFF {
             return;
         }
-        let kept = self.beta.clone();
-        let since = self.since_values;
-        self.refine_values();
-        if self.values_miss() >= before {
-            self.beta = kept;
-            self.since_values = since;
+        let (kept, since) = (self.beta.clone(), self.since_values);
+        self.correct_values(&r);
+        let (r, t) = self.values_residual(true);
+        if largest_miss(&r, &t) >= before {
+            (self.beta, self.since_values) = (kept, since);
         }
-    }
-
-    /// The largest miss of the basic values on a row of the data, relative to the terms that
-    /// form that row (`O(n·k)`).
-    fn values_miss(&self) -> f64 {
-        let n = self.cols.n;
-        let cols = &*self.cols;
-        let mut r = cols.h.clone();
-        let mut t: Vec<f64> = cols.h.iter().map(|v| v.abs()).collect();
-        for (&c, &b) in self.basis.slot_var.iter().zip(&self.beta) {
-            if b == 0.0 {
-                continue;
-            }
-            if c < n {
-                r[c] -= b;
-                t[c] += b.abs();
-            } else {
-                let (col, neg) = if c < 2 * n {
-                    cols.m_col(c - n)
-                } else {
-                    (&cols.g[..], false)
-                };
-                let s = if neg { -b } else { b };
-                for ((ri, ti), &v) in r.iter_mut().zip(t.iter_mut()).zip(col) {
-                    *ri += s * v;
-                    *ti += (s * v).abs();
-                }
-            }
-        }
-        r.iter()
-            .zip(&t)
-            .map(|(ri, ti)| if *ti > 0.0 { ri.abs() / ti } else { 0.0 })
-            .fold(0.0f64, f64::max)
     }
 
     /// `β += B⁻¹(h − B β)`: the basic values refined once from the data (`O(n·k)`).
     fn refine_values(&mut self) {
+        let (r, _) = self.values_residual(false);
+        self.correct_values(&r);
+    }
+
+    /// `h − B β` by row (`O(n·k)`) and, with `terms`, the size of the terms that form each
+    /// row, `|h| + Σ |B β|` (empty without).
+    fn values_residual(&self, terms: bool) -> (Vec<f64>, Vec<f64>) {
         let mut r = self.cols.h.clone();
-        let terms: Vec<(usize, f64)> = self
+        let mut t: Vec<f64> = if terms {
+            r.iter().map(|v| v.abs()).collect()
+        } else {
+            Vec::new()
+        };
+        let parts: Vec<(usize, f64)> = self
             .basis
             .slot_var
             .iter()
@@ -996,22 +975,36 @@ impl<'a> Pivoter<'a> {
         let cols = &*self.cols;
         // `Columns::axpy_col` of each term in turn, row by row (`o − s·v` is `o + (−s)·v`
         // exactly: an `axpy`).
-        by_row_blocks(&mut r, &mut [], |a, r, _| {
+        by_row_blocks(&mut r, &mut t, |a, r, t| {
             let rows = a..a + r.len();
-            for &(c, s) in &terms {
-                if c < n {
+            for &(c, s) in &parts {
+                let (col, w) = if c < n {
                     if rows.contains(&c) {
                         r[c - a] += s;
+                        if !t.is_empty() {
+                            t[c - a] += s.abs();
+                        }
                     }
+                    continue;
                 } else if c < 2 * n {
                     let (col, neg) = cols.m_col(c - n);
-                    axpy(r, if neg { s } else { -s }, &col[rows.clone()]);
+                    (col, if neg { s } else { -s })
                 } else {
-                    axpy(r, -s, &cols.g[rows.clone()]);
+                    (&cols.g[..], -s)
+                };
+                let col = &col[rows.clone()];
+                axpy(r, w, col);
+                for (ti, v) in t.iter_mut().zip(col) {
+                    *ti += (w * v).abs();
                 }
             }
         });
-        let corr = self.basis.solve(&self.cols, &r);
+        (r, t)
+    }
+
+    /// `β += B⁻¹ r` for the values' residual `r` ([`Pivoter::values_residual`]).
+    fn correct_values(&mut self, r: &[f64]) {
+        let corr = self.basis.solve(&self.cols, r);
         self.beta.iter_mut().zip(&corr).for_each(|(b, c)| *b += c);
         self.since_values = 0;
     }
@@ -1636,6 +1629,14 @@ fn by_row_blocks(r: &mut [f64], t: &mut [f64], f: impl Fn(usize, &mut [f64], &mu
             .enumerate()
             .for_each(|(i, (r, t))| f(i * rows, r, t));
     }
+}
+
+/// The largest `|r_i|` relative to its terms `t_i` (rows without terms count zero).
+fn largest_miss(r: &[f64], t: &[f64]) -> f64 {
+    r.iter()
+        .zip(t)
+        .map(|(ri, ti)| if *ti > 0.0 { ri.abs() / ti } else { 0.0 })
+        .fold(0.0f64, f64::max)
 }
 
 pub(crate) fn max_abs(v: &[f64]) -> f64 {
