@@ -160,9 +160,10 @@ impl EvolutionSolver {
         }
         settings.validate(n)?;
         let prep = Prepared::new(&problem.m);
-        // For the ties of the judged steps only: the stages' own pivoting keeps its rules
-        // (with the relations throughout, three stiff-spring histories of a reviewer's sweep
-        // met a singular basis or a false mechanism).
+        // For the ties of the judged steps, and of a stage traced again after its own rules
+        // met a singular basis (`stage_judged`): the stages' own pivoting keeps its rules
+        // (with the relations throughout, stiff-spring histories of reviewers' sweeps met a
+        // singular basis or a false mechanism: 8 of 155 worse, 3 better).
         let relations = std::sync::Arc::new(crate::pivoting::relations::Relations::new(
             &prep,
             &settings.row_relations,
@@ -274,8 +275,36 @@ impl EvolutionSolver {
         if d.len() != n {
             return failed(StageEnding::Singular);
         }
+        self.settings.progress.next_stage();
+        let run = self.trace_stage(from, d, basis.clone(), judge.clone(), false);
+        if run.ending != StageEnding::Singular || self.relations.is_empty() {
+            return run;
+        }
+        // A singular basis met with the stage's own ties, traced again with the relations
+        // deciding them (see `trace_stage`); kept where that gets further than a singular
+        // basis.
+        let again = self.trace_stage(from, d, basis, judge, true);
+        if again.ending == StageEnding::Singular {
+            run
+        } else {
+            again
+        }
+    }
+
+    /// One trace of a stage from `from`'s basis `basis`. With `related_ties`, the row
+    /// relations decide the ties of every step ([`Pivoter::relations`], their `κ` taken as
+    /// zero: a stage's right-hand side carries the round-off of the slips it absorbed), not
+    /// only those of judged steps.
+    fn trace_stage(
+        &self,
+        from: &EvolutionState,
+        d: &[f64],
+        basis: crate::pivoting::basis::Basis,
+        judge: Option<std::sync::Arc<crate::StructureJudge>>,
+        related_ties: bool,
+    ) -> StageRun {
+        let n = self.n;
         let progress = &self.settings.progress;
-        progress.next_stage();
         let h = self.rhs_at(from);
         let cols = self.prep.columns(&h, d);
         let tol = self.tolerances();
@@ -286,6 +315,10 @@ impl EvolutionSolver {
             self.settings.priority(n),
             self.settings.refactor_interval,
         );
+        if related_ties {
+            piv.relations = self.relations.clone();
+            piv.zero_kappa = true;
+        }
         piv.restart_lex();
         piv.judge = judge
             .filter(|j| j.order() == n)

@@ -865,6 +865,112 @@ fn a_block_pushed_past_its_toe_openings_in_a_history_opens_them_where_the_path_d
     }
 }
 
+/// An 8×4 steel block (1 m × 0.5 m, 2000 N down at each of its 9 top nodes, W = 18 kN; f =
+/// 0.3) held by a 1000 N/m spring, in five stages: its weight, a push of 6 kN at the top right
+/// corner, back to 5 and to 1.5 kN, then on to 12.5 kN. By hand (a rigid block on a friction
+/// slider and the spring): the block slides once the push less the spring's force exceeds
+/// f·W = 5400 N, so the first push leaves a slip of 0.6 m, the unloading stages stick, and the
+/// last push slides it on from 6 kN to a slip of 7.1 m; the friction force at each stage's end
+/// is the push less the spring's force. Once every pair slides the normal forces depend on the
+/// load alone, so the last stage opens the heel pairs where the monotone load path does
+/// (`g.1` at 1.31398, `g.2` at 2.13128 of the push). At `g.2`'s opening its normal row and its
+/// friction part reach zero together; the stage's own tie-breaking let the friction part leave
+/// and the basis turned singular (a numerical failure): the stage is now traced again with the
+/// friction relations deciding its ties (`EvolutionSolver::stage_judged`).
+#[test]
+fn a_history_that_meets_a_singular_basis_at_a_tie_is_traced_again_by_the_relations() {
+    let model = "units = \"N, m\"\n\
+        [[materials]]\nname = \"steel\"\nE = 2.0e11\nnu = 0.3\nthickness = 1.0\n\
+        [[blocks]]\nname = \"blk\"\norigin = [0.0, 0.0]\nwidth = 1.0\nheight = 0.5\n\
+        nx = 8\nny = 4\nmaterial = \"steel\"\nanalysis = \"plane_stress\"\n\
+        [[contact]]\nname = \"g\"\nfrom = \"ground\"\nto = \"blk.bottom\"\n\
+        normal = [0.0, 1.0]\nfriction = 0.3\n\
+        [[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\nstiffness = 1000\n\
+        [[loads.constant.nodal]]\nnodes = \"blk.top\"\nfy = -2000.0\n\
+        [[loads.variable.nodal]]\nnodes = \"blk.top_right\"\nfx = 5000.0\n";
+    let path = read("p.toml", model).unwrap();
+    let end = SolveSettings {
+        target: 2.5,
+        ..settings()
+    };
+    let a = analyze(&path.model, &end).unwrap();
+    let reference = openings(a.solution.steps.iter().map(|s| (s.p, s.events.as_slice())));
+    let names: Vec<&str> = reference.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["g.1", "g.2"], "{reference:?}");
+    assert!((reference[0].1 - 1.31398).abs() < 1e-5, "{reference:?}");
+    assert!((reference[1].1 - 2.13128).abs() < 1e-5, "{reference:?}");
+
+    let pushes = [
+        ("push 1.2", 1.2),
+        ("push 1", 1.0),
+        ("back 0.3", 0.3),
+        ("push 2.5", 2.5),
+    ];
+    let mut text = model.to_string();
+    text.push_str("\n[[history]]\nname = \"dead\"\nfactors = { constant = 1.0 }\n");
+    for (name, f) in pushes {
+        text.push_str(&format!(
+            "\n[[history]]\nname = \"{name}\"\nfactors = {{ variable = {f} }}\n"
+        ));
+    }
+    let p = read("h.toml", &text).unwrap();
+    let stages = p.history.clone().expect("a history");
+    let h = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let st = &h.history.stages;
+    assert_eq!(st.len(), 5);
+    let (w, cap, k) = (18000.0, 5400.0, 1000.0);
+    let (mut slip, mut from) = (0.0f64, 0.0);
+    for (stage, (_, push)) in st[1..].iter().zip(pushes) {
+        assert_eq!(
+            stage.status,
+            unilateral_contact::StageStatus::Completed,
+            "{}: {:?}",
+            stage.name,
+            stage.reason
+        );
+        // the slider by hand: the spring's force k·slip, the friction within ±cap
+        let demand = 5000.0 * push - k * slip;
+        if demand > cap {
+            slip = (5000.0 * push - cap) / k;
+        }
+        let friction = -(5000.0 * push - k * slip);
+        let sn: f64 = stage.pairs.iter().map(|r| r.x_n).sum();
+        let st_: f64 = stage.pairs.iter().map(|r| r.x_t).sum();
+        assert!((sn - w).abs() < 1e-6 * w, "{}: Σ x_n = {sn}", stage.name);
+        assert!(
+            (st_ - friction).abs() < 1e-6 * w,
+            "{}: Σ x_t = {st_}, by hand {friction}",
+            stage.name
+        );
+        for r in &stage.pairs {
+            assert!((r.z_t - slip).abs() < 1e-5 * slip, "{}: {r:?}", stage.name);
+        }
+        if push > from {
+            // the pushes: where the stage's pairs open, on the push's scale
+            let opens = openings(
+                stage
+                    .steps
+                    .iter()
+                    .map(|s| (from + s.s * (push - from), s.events.as_slice())),
+            );
+            if push == 2.5 {
+                assert_eq!(opens.len(), 2, "{opens:?}");
+                for ((name, p), (want, p_ref)) in opens.iter().zip(&reference) {
+                    assert_eq!(name, want, "{opens:?}");
+                    assert!(
+                        (p - p_ref).abs() < 1e-6 * p_ref,
+                        "{opens:?} against {reference:?}"
+                    );
+                }
+            } else {
+                assert!(opens.is_empty(), "{}: {opens:?}", stage.name);
+            }
+        }
+        from = push;
+    }
+}
+
 /// [`analyze_block_history`]; every stage must complete.
 fn block_history(
     k: f64,

@@ -186,6 +186,10 @@ pub(crate) struct Pivoter<'a> {
     pub progress: crate::Progress,
     /// Rows the formulation ties exactly (none unless a caller sets them: the load path does).
     pub relations: std::sync::Arc<Relations>,
+    /// Whether the relations' `κ = λᵀh` are taken as zero, the data's, rather than read from
+    /// a right-hand side that carries round-off (a history's stage, whose right-hand side
+    /// absorbed its slips: [`Pivoter::related_candidates_by`]).
+    pub zero_kappa: bool,
     /// The column entering at the ratio test under way.
     entering: usize,
     /// For each column of the start basis, its slot's rank in the priority (`usize::MAX`: not
@@ -283,6 +287,7 @@ impl<'a> Pivoter<'a> {
             judged_load_segments: Vec::new(),
             progress: crate::Progress::default(),
             relations: Default::default(),
+            zero_kappa: false,
             entering: usize::MAX,
             lex_rank: Vec::new(),
             next_solve: None,
@@ -499,7 +504,7 @@ impl<'a> Pivoter<'a> {
 
     /// [`Pivoter::ratio_test`] over the given candidate slots (positive entries of `alpha`).
     fn ratio_test_over(&self, alpha: &[f64], cand: Vec<usize>) -> Option<(usize, f64)> {
-        self.ratio_test_over_by(&self.relations, alpha, cand, true)
+        self.ratio_test_over_by(&self.relations, alpha, cand, !self.zero_kappa)
     }
 
     /// [`Pivoter::ratio_test_over`] with the ties of related rows decided by `relations`
@@ -1335,7 +1340,7 @@ impl<'a> Pivoter<'a> {
         // zero: read from `h`, its round-off let the friction part leave in kN·mm.
         match self.judge.as_ref().and_then(|j| j.relations.as_ref()) {
             Some(r) if self.relations.is_empty() => self.ratio_test_over_by(r, alpha, cand, false),
-            _ => self.ratio_test_over_by(&self.relations, alpha, cand, true),
+            _ => self.ratio_test_over_by(&self.relations, alpha, cand, !self.zero_kappa),
         }
     }
 
