@@ -448,13 +448,46 @@ pub fn follow_history_judged(
             (lcp.d0, lcp.da) = sp.load_direction(&inc);
             std::sync::Arc::new(unilateral_lcp::StructureJudge::new(lcp))
         });
-        let run = solver.stage_judged(&state, &d, judge);
+        let run = solver.stage_judged(&state, &d, judge.clone());
         let factors_at = |s: f64| -> Vec<f64> {
             start
                 .iter()
                 .zip(end)
                 .map(|(a, b)| a + s * (b - a))
                 .collect()
+        };
+        // A mechanism met with the stage's own tie-breaking is checked by a second trace with
+        // the friction relations deciding every tie (`EvolutionSolver::stage_related`): where a
+        // sliding pair's normal force and friction part reached zero together, a tie split by
+        // round-off read a mechanism that the relations' trace carries to the stage's end. It
+        // is kept only where it completes the stage and its end passes the stage's check; a
+        // genuine mechanism, which the second trace meets too, stays as the first found it.
+        let run = match run.ending {
+            StageEnding::Mechanism(_) => {
+                let again = solver.stage_related(&state, &d, judge);
+                let passes = again.ending == StageEnding::Completed && {
+                    let inc = &again.last_increment;
+                    let pairs =
+                        reader.pairs(&again.end.x, &again.end.z, |i| (inc[m + i], inc[2 * m + i]));
+                    let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];
+                    chain.extend(
+                        again
+                            .points
+                            .iter()
+                            .map(|p| (p.x.as_slice(), p.z.as_slice())),
+                    );
+                    chain.push((&again.end.x, &again.end.z));
+                    let mut residual = reader.residual(&pairs, &factors_at(1.0), history, inc);
+                    residual.dissipation = reader.dissipation(&chain);
+                    residual.max() <= VERIFIED
+                };
+                if passes {
+                    again
+                } else {
+                    run
+                }
+            }
+            _ => run,
         };
         // States along the stage: start, every pivot, end (normalised x, z).
         let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];

@@ -291,6 +291,34 @@ impl EvolutionSolver {
         }
     }
 
+    /// [`EvolutionSolver::stage_judged`] traced with the row relations deciding every tie
+    /// (their `κ` taken as zero), in one trace: a second opinion for a caller that met a
+    /// mechanism, which it keeps only where this completes the stage and its end passes the
+    /// caller's check (the contact crate's history).
+    pub fn stage_related(
+        &self,
+        from: &EvolutionState,
+        d: &[f64],
+        judge: Option<std::sync::Arc<crate::StructureJudge>>,
+    ) -> StageRun {
+        match from.basis.clone() {
+            Some(basis) if d.len() == self.n && !self.relations.is_empty() => {
+                self.trace_stage(from, d, basis, judge, true)
+            }
+            _ => StageRun {
+                ending: StageEnding::Singular,
+                s_end: 0.0,
+                points: vec![],
+                end: EvolutionState {
+                    basis: None,
+                    ..from.clone()
+                },
+                last_increment: vec![0.0; self.n],
+                pivots: 0,
+            },
+        }
+    }
+
     /// One trace of a stage from `from`'s basis `basis`. With `related_ties`, the row
     /// relations decide the ties of every step ([`Pivoter::relations`], their `κ` taken as
     /// zero: a stage's right-hand side carries the round-off of the slips it absorbed), not
