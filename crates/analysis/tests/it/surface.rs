@@ -732,6 +732,37 @@ fn a_block_on_a_soft_spring_opens_its_toe_pairs_where_a_stiff_one_does() {
     }
 }
 
+/// The steel block on its heel's spring pushed past its tipping load: by hand it tips about
+/// its toe where the push's moment about the toe equals the weight's, 5000·p·0.5 = 10 000·0.5,
+/// at p = 2 (once the last pair but the toe has opened there, rotation about the toe moves the
+/// heel's spring only to second order: a mechanism). On 1000 N/m the step after the last
+/// opening had a load rate of 1.4e-9 of the column's largest (below its tolerance) that would
+/// carry the load from 2 to 4 while moving the values 9 times their size, below the 100 that
+/// made a step "runaway" and judged on the structure's equations: the path went on to the
+/// toe's opening at p = 4.01 and then to a singular basis (exit 1). A step is now judged from
+/// a runaway of 1 (`RUNAWAY`), and the path ends in the mechanism at 2 on every spring.
+#[test]
+fn a_block_pushed_past_its_tipping_load_is_a_mechanism_there_on_every_spring() {
+    let settings = SolveSettings {
+        target: 2.5,
+        ..settings()
+    };
+    for k in [300.0, 1000.0, 1e5] {
+        for kn_mm in [false, true] {
+            let p = read("s.toml", &steel_block_on_a_spring(k, kn_mm)).unwrap();
+            let a = analyze(&p.model, &settings)
+                .unwrap_or_else(|e| panic!("k = {k}, kN·mm {kn_mm}: {e}"));
+            let unilateral_analysis::Outcome::Mechanism { p_limit, .. } = a.solution.outcome else {
+                panic!("k = {k}, kN·mm {kn_mm}: {:?}", a.solution.outcome);
+            };
+            assert!(
+                (p_limit - 2.0).abs() < 2e-6,
+                "k = {k}, kN·mm {kn_mm}: p_lim = {p_limit}"
+            );
+        }
+    }
+}
+
 /// The steel block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 178 and 100
 /// N/m (in N·m and in kN·mm): 10⁻⁹ of the block's own stiffness, so that the load's rate
 /// while every pair slides is below what the condensed data can tell from round-off. It was
