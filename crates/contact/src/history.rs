@@ -456,39 +456,54 @@ pub fn follow_history_judged(
                 .map(|(a, b)| a + s * (b - a))
                 .collect()
         };
-        // A mechanism met with the stage's own tie-breaking is checked by a second trace with
-        // the friction relations deciding every tie (`EvolutionSolver::stage_related`): where a
-        // sliding pair's normal force and friction part reached zero together, a tie split by
-        // round-off read a mechanism that the relations' trace carries to the stage's end. It
-        // is kept only where it completes the stage and its end passes the stage's check; a
-        // genuine mechanism, which the second trace meets too, stays as the first found it.
-        let run = match run.ending {
-            StageEnding::Mechanism(_) => {
-                let again = solver.stage_related(&state, &d, judge);
-                let passes = again.ending == StageEnding::Completed && {
-                    let inc = &again.last_increment;
-                    let pairs =
-                        reader.pairs(&again.end.x, &again.end.z, |i| (inc[m + i], inc[2 * m + i]));
-                    let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];
-                    chain.extend(
-                        again
-                            .points
-                            .iter()
-                            .map(|p| (p.x.as_slice(), p.z.as_slice())),
-                    );
-                    chain.push((&again.end.x, &again.end.z));
-                    let mut residual = reader.residual(&pairs, &factors_at(1.0), history, inc);
-                    residual.dissipation = reader.dissipation(&chain);
-                    residual.max() <= VERIFIED
-                };
-                if passes {
-                    again
-                } else {
-                    run
+        // The pairs at a trace's end and the check of that state: a pair's state by its slip
+        // over the stage's last segment, or, where the stage ends in a mechanism (whose last
+        // breakpoint has no segment after it), by its rate in the mechanism's mode — the
+        // bearings that slide as the structure moves.
+        let assess = |run: &unilateral_lcp::StageRun| -> (Vec<PairResult>, HistoryResidual) {
+            let inc = &run.last_increment;
+            let pairs = match &run.ending {
+                StageEnding::Mechanism(mode) => {
+                    let dz = &mode.dz;
+                    let top = dz[m..].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                    let zmax = run.end.z.iter().fold(1.0f64, |a, b| a.max(b.abs()));
+                    let rate = |v: f64| if top > 0.0 { v / top * zmax } else { 0.0 };
+                    reader.pairs(&run.end.x, &run.end.z, |i| {
+                        (rate(dz[m + i]), rate(dz[2 * m + i]))
+                    })
                 }
-            }
-            _ => run,
+                _ => reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i])),
+            };
+            let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];
+            chain.extend(run.points.iter().map(|p| (p.x.as_slice(), p.z.as_slice())));
+            chain.push((&run.end.x, &run.end.z));
+            let mut residual = reader.residual(&pairs, &factors_at(run.s_end), history, inc);
+            residual.dissipation = reader.dissipation(&chain);
+            (pairs, residual)
         };
+        let failed = |run: &unilateral_lcp::StageRun, r: &HistoryResidual| {
+            run.ending == StageEnding::Singular || r.max() > VERIFIED
+        };
+        let (mut pairs, mut residual) = assess(&run);
+        // A stage whose trace failed (a singular basis, or an end that fails its check) or
+        // ended in a mechanism is traced again with the friction relations deciding every tie
+        // (`EvolutionSolver::stage_related`): where a sliding pair opens, its normal force and
+        // its friction part reach zero together, and the stage's own rule, on values that
+        // carry the round-off of the slips it absorbed, can let the friction part leave first
+        // (then the basis turns singular, or the trace reads a false mechanism, or its end
+        // leaves friction on an open pair). After a failure the second trace is kept where it
+        // passes the check, whatever its ending; after a mechanism only where it completes
+        // the stage and passes the check: a genuine mechanism, which the second trace meets
+        // too, stays as the first found it.
+        let mut run = run;
+        let first_failed = failed(&run, &residual);
+        if first_failed || matches!(run.ending, StageEnding::Mechanism(_)) {
+            let again = solver.stage_related(&state, &d, judge);
+            let (p2, r2) = assess(&again);
+            if !failed(&again, &r2) && (first_failed || again.ending == StageEnding::Completed) {
+                (run, pairs, residual) = (again, p2, r2);
+            }
+        }
         // States along the stage: start, every pivot, end (normalised x, z).
         let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];
         chain.extend(run.points.iter().map(|p| (p.x.as_slice(), p.z.as_slice())));
@@ -523,25 +538,6 @@ pub fn follow_history_judged(
                 pairs,
             });
         }
-        let inc = &run.last_increment;
-        // A pair's state at the end: by its slip over the stage's last segment, or, where the
-        // stage ends in a mechanism (whose last breakpoint has no segment after it), by its
-        // rate in the mechanism's mode — the bearings that slide as the structure moves.
-        let pairs = match &run.ending {
-            StageEnding::Mechanism(mode) => {
-                let dz = &mode.dz;
-                let top = dz[m..].iter().fold(0.0f64, |a, v| a.max(v.abs()));
-                let zmax = run.end.z.iter().fold(1.0f64, |a, b| a.max(b.abs()));
-                let rate = |v: f64| if top > 0.0 { v / top * zmax } else { 0.0 };
-                reader.pairs(&run.end.x, &run.end.z, |i| {
-                    (rate(dz[m + i]), rate(dz[2 * m + i]))
-                })
-            }
-            _ => reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i])),
-        };
-        let phi = factors_at(run.s_end);
-        let mut residual = reader.residual(&pairs, &phi, history, inc);
-        residual.dissipation = reader.dissipation(&chain);
         let (status, reason, mechanism) = match &run.ending {
             StageEnding::Completed => (StageStatus::Completed, None, None),
             StageEnding::Mechanism(mode) => {

@@ -276,25 +276,17 @@ impl EvolutionSolver {
             return failed(StageEnding::Singular);
         }
         self.settings.progress.next_stage();
-        let run = self.trace_stage(from, d, basis.clone(), judge.clone(), false);
-        if run.ending != StageEnding::Singular || self.relations.is_empty() {
-            return run;
-        }
-        // A singular basis met with the stage's own ties, traced again with the relations
-        // deciding them (see `trace_stage`); kept where that gets further than a singular
-        // basis.
-        let again = self.trace_stage(from, d, basis, judge, true);
-        if again.ending == StageEnding::Singular {
-            run
-        } else {
-            again
-        }
+        self.trace_stage(from, d, basis, judge, false)
     }
 
     /// [`EvolutionSolver::stage_judged`] traced with the row relations deciding every tie
-    /// (their `κ` taken as zero), in one trace: a second opinion for a caller that met a
-    /// mechanism, which it keeps only where this completes the stage and its end passes the
-    /// caller's check (the contact crate's history).
+    /// (their `κ` taken as zero, the data's), not only those of judged steps: a second opinion
+    /// for a caller whose first trace failed or read a mechanism. Where a sliding pair opens,
+    /// its normal row and its friction part reach zero together, a tie that a stage's own
+    /// rule decides on values carrying the round-off of the slips it absorbed; the relations
+    /// in every stage are no cure (in a reviewer's sweep of 155 histories they made 8 worse
+    /// and 3 better), so the caller (the contact crate's history) keeps this trace only by
+    /// its check of the two.
     pub fn stage_related(
         &self,
         from: &EvolutionState,
@@ -364,6 +356,10 @@ impl EvolutionSolver {
         // Incremental values absorbed into the right-hand side during this stage (columns' units).
         let mut acc = vec![0.0; n];
         let mut points = Vec::new();
+        // The last point reached by a step that moved the values, and whether pivots of no
+        // step (degenerate) followed it: their bases hold the same state in exact arithmetic.
+        let mut moved: Option<usize> = None;
+        let mut degenerate_since = false;
         let mut entering = driver;
         let point = |piv: &Pivoter, acc: &[f64]| -> (Vec<f64>, Vec<f64>) {
             let mut zc = acc.to_vec();
@@ -477,6 +473,9 @@ impl EvolutionSolver {
                     break StageEnding::Completed;
                 }
             }
+            if std::env::var_os("UNI_DBG").is_some() {
+                eprintln!("DBG stage related={related_ties} choose entering {entering} step {step:?} t_rate {t_rate:e} judged {judged} amax {amax:e}");
+            }
             let Some((slot, theta)) = step else {
                 if t_rate == 0.0 {
                     break StageEnding::Mechanism(mechanism_mode(
@@ -517,6 +516,9 @@ impl EvolutionSolver {
                 s_now
             };
             progress.step(s);
+            if std::env::var_os("UNI_DBG").is_some() {
+                eprintln!("DBG stage related={related_ties} pivot s={s} entering {entering} leaving {leaving} theta {theta:e} judged {judged} t_rate {t_rate:e}");
+            }
             let (x, z) = point(&piv, &acc);
             points.push(EvolutionPoint {
                 s,
@@ -525,6 +527,11 @@ impl EvolutionSolver {
                 x,
                 z,
             });
+            if theta > zero {
+                (moved, degenerate_since) = (Some(points.len() - 1), false);
+            } else {
+                degenerate_since = true;
+            }
             entering = piv
                 .cols
                 .complement(leaving)
@@ -544,7 +551,17 @@ impl EvolutionSolver {
             }
         }
         let last_increment = self.prep.scaling.unscale_z(&piv.cols.values(&last));
-        let (x, z) = point(&piv, &acc);
+        // A mechanism found after pivots of no step holds the state of the last step that
+        // moved: the values of the bases in between are formed anew on bases that turn
+        // singular as the mechanism nears (a block tipping about its toe in a stage: after its
+        // last pair but the toe opened, the toe's slip stopped at no step, and that basis's
+        // values had the block rotated by 8 mm, its check failing at 3.5e-3).
+        let (x, z) = match (&ending, moved) {
+            (StageEnding::Mechanism(_), Some(i)) if degenerate_since => {
+                (points[i].x.clone(), points[i].z.clone())
+            }
+            _ => point(&piv, &acc),
+        };
         let load = from
             .load
             .iter()
