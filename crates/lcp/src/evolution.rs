@@ -356,10 +356,9 @@ impl EvolutionSolver {
         // Incremental values absorbed into the right-hand side during this stage (columns' units).
         let mut acc = vec![0.0; n];
         let mut points = Vec::new();
-        // The last point reached by a step that moved the values, and whether pivots of no
-        // step (degenerate) followed it: their bases hold the same state in exact arithmetic.
+        // The last point reached by a step that moved the values (pivots of no step after it
+        // hold the same state in exact arithmetic).
         let mut moved: Option<usize> = None;
-        let mut degenerate_since = false;
         let mut entering = driver;
         let point = |piv: &Pivoter, acc: &[f64]| -> (Vec<f64>, Vec<f64>) {
             let mut zc = acc.to_vec();
@@ -473,9 +472,6 @@ impl EvolutionSolver {
                     break StageEnding::Completed;
                 }
             }
-            if std::env::var_os("UNI_DBG").is_some() {
-                eprintln!("DBG stage related={related_ties} choose entering {entering} step {step:?} t_rate {t_rate:e} judged {judged} amax {amax:e}");
-            }
             let Some((slot, theta)) = step else {
                 if t_rate == 0.0 {
                     break StageEnding::Mechanism(mechanism_mode(
@@ -516,9 +512,6 @@ impl EvolutionSolver {
                 s_now
             };
             progress.step(s);
-            if std::env::var_os("UNI_DBG").is_some() {
-                eprintln!("DBG stage related={related_ties} pivot s={s} entering {entering} leaving {leaving} theta {theta:e} judged {judged} t_rate {t_rate:e}");
-            }
             let (x, z) = point(&piv, &acc);
             points.push(EvolutionPoint {
                 s,
@@ -528,9 +521,7 @@ impl EvolutionSolver {
                 z,
             });
             if theta > zero {
-                (moved, degenerate_since) = (Some(points.len() - 1), false);
-            } else {
-                degenerate_since = true;
+                moved = Some(points.len() - 1);
             }
             entering = piv
                 .cols
@@ -551,15 +542,15 @@ impl EvolutionSolver {
             }
         }
         let last_increment = self.prep.scaling.unscale_z(&piv.cols.values(&last));
-        // A mechanism found after pivots of no step holds the state of the last step that
-        // moved: the values of the bases in between are formed anew on bases that turn
-        // singular as the mechanism nears (a block tipping about its toe in a stage: after its
-        // last pair but the toe opened, the toe's slip stopped at no step, and that basis's
-        // values had the block rotated by 8 mm, its check failing at 3.5e-3).
+        // A mechanism holds the state of the last step that moved, as that step formed it
+        // (after its rebase, refined from the data): judging the ray refactorises the basis and
+        // forms the values afresh without the refinement, and pivots of no step may follow
+        // whose bases turn singular in the mechanism's mode. A block tipping about its toe in
+        // a stage: after its last pair but the toe opened, the toe's slip increment stopped at
+        // no step and that basis's values had the block rotated by 8 mm (its check failing at
+        // 3.5e-3); in kN·mm, with no such pivot, the fresh values failed it.
         let (x, z) = match (&ending, moved) {
-            (StageEnding::Mechanism(_), Some(i)) if degenerate_since => {
-                (points[i].x.clone(), points[i].z.clone())
-            }
+            (StageEnding::Mechanism(_), Some(i)) => (points[i].x.clone(), points[i].z.clone()),
             _ => point(&piv, &acc),
         };
         let load = from
