@@ -7,7 +7,9 @@
 //! (`unilateral_lcp`), the accumulated slip carried from segment to segment like a
 //! tangential dislocation.
 
-use unilateral_lcp::{EvolutionProblem, EvolutionSolver, StageEnding, Var};
+use unilateral_lcp::{
+    EvolutionProblem, EvolutionSolver, EvolutionState, StageEnding, StageRun, Var,
+};
 
 use crate::lcp::ContactLcp;
 use crate::solution::{Event, EventKind, PairResult, PairState};
@@ -460,7 +462,7 @@ pub fn follow_history_judged(
         // over the stage's last segment, or, where the stage ends in a mechanism (whose last
         // breakpoint has no segment after it), by its rate in the mechanism's mode — the
         // bearings that slide as the structure moves.
-        let assess = |run: &unilateral_lcp::StageRun| -> (Vec<PairResult>, HistoryResidual) {
+        let assess = |run: &StageRun| -> (Vec<PairResult>, HistoryResidual) {
             let inc = &run.last_increment;
             let pairs = match &run.ending {
                 StageEnding::Mechanism(mode) => {
@@ -474,14 +476,11 @@ pub fn follow_history_judged(
                 }
                 _ => reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i])),
             };
-            let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];
-            chain.extend(run.points.iter().map(|p| (p.x.as_slice(), p.z.as_slice())));
-            chain.push((&run.end.x, &run.end.z));
             let mut residual = reader.residual(&pairs, &factors_at(run.s_end), history, inc);
-            residual.dissipation = reader.dissipation(&chain);
+            residual.dissipation = reader.dissipation(&stage_chain(&state, run));
             (pairs, residual)
         };
-        let failed = |run: &unilateral_lcp::StageRun, r: &HistoryResidual| {
+        let failed = |run: &StageRun, r: &HistoryResidual| {
             run.ending == StageEnding::Singular || r.max() > VERIFIED
         };
         let (mut pairs, mut residual) = assess(&run);
@@ -504,10 +503,7 @@ pub fn follow_history_judged(
                 (run, pairs, residual) = (again, p2, r2);
             }
         }
-        // States along the stage: start, every pivot, end (normalised x, z).
-        let mut chain: Vec<(&[f64], &[f64])> = vec![(&state.x, &state.z)];
-        chain.extend(run.points.iter().map(|p| (p.x.as_slice(), p.z.as_slice())));
-        chain.push((&run.end.x, &run.end.z));
+        let chain = stage_chain(&state, &run);
         let mut open = (0..m)
             .map(|i| reader.is_open(state.x[i], state.z[i]))
             .collect::<Vec<_>>();
@@ -847,6 +843,15 @@ impl Reader<'_> {
         }
         worst.max(0.0)
     }
+}
+
+/// The states along a stage's trace from `start`: the start, every pivot, the end (normalised
+/// `x`, `z`).
+fn stage_chain<'a>(start: &'a EvolutionState, run: &'a StageRun) -> Vec<(&'a [f64], &'a [f64])> {
+    let mut chain: Vec<(&[f64], &[f64])> = vec![(&start.x, &start.z)];
+    chain.extend(run.points.iter().map(|p| (p.x.as_slice(), p.z.as_slice())));
+    chain.push((&run.end.x, &run.end.z));
+    chain
 }
 
 /// The label of an engine variable in a history: the paper's names, `s` for the stage parameter.

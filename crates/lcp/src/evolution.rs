@@ -257,26 +257,13 @@ impl EvolutionSolver {
         d: &[f64],
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
     ) -> StageRun {
-        let n = self.n;
-        let failed = |ending| StageRun {
-            ending,
-            s_end: 0.0,
-            points: vec![],
-            end: EvolutionState {
-                basis: None,
-                ..from.clone()
-            },
-            last_increment: vec![0.0; n],
-            pivots: 0,
-        };
-        let Some(basis) = from.basis.clone() else {
-            return failed(StageEnding::Singular);
-        };
-        if d.len() != n {
-            return failed(StageEnding::Singular);
+        match from.basis.clone() {
+            Some(basis) if d.len() == self.n => {
+                self.settings.progress.next_stage();
+                self.trace_stage(from, d, basis, judge, false)
+            }
+            _ => self.not_started(from),
         }
-        self.settings.progress.next_stage();
-        self.trace_stage(from, d, basis, judge, false)
     }
 
     /// [`EvolutionSolver::stage_judged`] traced with the row relations deciding every tie
@@ -297,17 +284,23 @@ impl EvolutionSolver {
             Some(basis) if d.len() == self.n && !self.relations.is_empty() => {
                 self.trace_stage(from, d, basis, judge, true)
             }
-            _ => StageRun {
-                ending: StageEnding::Singular,
-                s_end: 0.0,
-                points: vec![],
-                end: EvolutionState {
-                    basis: None,
-                    ..from.clone()
-                },
-                last_increment: vec![0.0; self.n],
-                pivots: 0,
+            _ => self.not_started(from),
+        }
+    }
+
+    /// A stage that could not start from `from` (no basis, or a load of another order): a
+    /// singular basis at `s = 0`.
+    fn not_started(&self, from: &EvolutionState) -> StageRun {
+        StageRun {
+            ending: StageEnding::Singular,
+            s_end: 0.0,
+            points: vec![],
+            end: EvolutionState {
+                basis: None,
+                ..from.clone()
             },
+            last_increment: vec![0.0; self.n],
+            pivots: 0,
         }
     }
 
