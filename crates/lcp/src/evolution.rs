@@ -421,6 +421,22 @@ impl EvolutionSolver {
                     }
                 }
             }
+            // A direction that moves only displacements and takes the load back, judged on the
+            // structure's equations where they are at hand, as the load path judges it: its
+            // rate may be the condensation's round-off of a mechanism (blocks tipping in a
+            // stage turned back, or went on to a singular basis, at their tipping load).
+            if !judged
+                && entering != driver
+                && piv.near_mechanism_taking_load_back(entering, &alpha, t_rate, amax)
+            {
+                if let Some(j) = piv.judged_step_if(entering, step, t_rate, t_now, |_| true) {
+                    t_rate = match (j.genuine, ds) {
+                        (true, Some(ds)) => -j.alpha[ds],
+                        _ => 0.0,
+                    };
+                    (alpha, step, judged) = (j.alpha, j.step, true);
+                }
+            }
             if let Some(ds) = ds.filter(|_| !judged && t_rate == 0.0) {
                 if let Some(j) = piv.judged_step(entering, step, alpha[ds], t_now, amax) {
                     if j.genuine {

@@ -1056,6 +1056,79 @@ fn a_block_pushed_past_its_tipping_load_in_a_history_is_a_mechanism_there() {
     }
 }
 
+/// Two blocks of a reviewer's sweep (3 × 4 elements, 1 m × 0.5 m, 2000 N down at each of the
+/// 4 top nodes, W = 8 kN; a heel spring of 562 N/m; 5000 N·P at the top right corner), their
+/// weight and then a push past tipping, P_tip = W·b / (2·h·5000) = 1.6: friction 0.34 in
+/// N·m, 0.48 in kN·mm. By hand the stage ends in the mechanism at 1.6, the toe `g.4` carrying
+/// W and the friction limit f·W, the spring the rest (the block slid (8000 − f·W)/562 m).
+/// In N·m the stage met a singular basis at P = 0.95, in kN·mm at 1.13: on a direction that
+/// moved only displacements and took the load back, which the load path judges on the
+/// structure's equations and a stage now does too
+/// (`Pivoter::near_mechanism_taking_load_back`).
+#[test]
+fn a_block_tipping_in_a_history_on_a_soft_spring_is_the_mechanism_by_hand() {
+    use unilateral_contact::StageStatus;
+    for (f, push, kn_mm) in [(0.34, 2.1456, false), (0.48, 2.2208, true)] {
+        let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let text = format!(
+            "units = \"{units}\"\n\
+             [[materials]]\nname = \"steel\"\nE = {e:e}\nnu = 0.3\nthickness = {l:e}\n\
+             [[blocks]]\nname = \"blk\"\norigin = [0.0, 0.0]\nwidth = {l:e}\n\
+             height = {h:e}\nnx = 3\nny = 4\nmaterial = \"steel\"\n\
+             analysis = \"plane_stress\"\n\
+             [[contact]]\nname = \"g\"\nfrom = \"ground\"\nto = \"blk.bottom\"\n\
+             normal = [0.0, 1.0]\nfriction = {f}\n\
+             [[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\n\
+             stiffness = {k:e}\n\
+             [[loads.weight.nodal]]\nnodes = \"blk.top\"\nfy = {fy:e}\n\
+             [[loads.push.nodal]]\nnodes = \"blk.top_right\"\nfx = {fx:e}\n\
+             [[history]]\nname = \"weight\"\nfactors = {{ weight = 1.0 }}\n\
+             [[history]]\nname = \"push\"\nfactors = {{ push = {push} }}\n",
+            units = if kn_mm { "kN, mm" } else { "N, m" },
+            e = 2e11 * force / (length * length),
+            l = length,
+            h = 0.5 * length,
+            k = 562.0 * force / length,
+            fy = -2000.0 * force,
+            fx = 5000.0 * force,
+        );
+        let p = read("h.toml", &text).unwrap();
+        let stages = p.history.clone().expect("a history");
+        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+            .unwrap_or_else(|e| panic!("kN·mm {kn_mm}: {e}"));
+        let st = &a.history.stages[1];
+        assert_eq!(
+            st.status,
+            StageStatus::Mechanism,
+            "kN·mm {kn_mm}: {:?}",
+            st.reason
+        );
+        let tips = push * st.s_end;
+        assert!(
+            (tips - 1.6).abs() < 1e-6 * 1.6,
+            "kN·mm {kn_mm}: tips at {tips}"
+        );
+        let w = 8000.0 * force;
+        let slip = (8000.0 - f * 8000.0) / 562.0 * length;
+        for r in &st.pairs {
+            assert!((r.z_t - slip).abs() < 1e-5 * slip, "kN·mm {kn_mm}: {r:?}");
+            if r.name == "g.4" {
+                assert!((r.x_n - w).abs() < 1e-6 * w, "kN·mm {kn_mm}: the toe {r:?}");
+                assert!(
+                    (r.x_t + f * w).abs() < 1e-6 * w,
+                    "kN·mm {kn_mm}: the toe {r:?}"
+                );
+            } else {
+                assert_eq!(r.state, PairState::Open, "kN·mm {kn_mm}: {r:?}");
+                assert!(
+                    r.x_n == 0.0 && r.x_t.abs() < 1e-6 * w,
+                    "kN·mm {kn_mm}: {r:?}"
+                );
+            }
+        }
+    }
+}
+
 /// [`analyze_block_history`]; every stage must complete.
 fn block_history(
     k: f64,
