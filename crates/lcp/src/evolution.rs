@@ -445,6 +445,27 @@ impl EvolutionSolver {
                     (alpha, step, judged) = (j.alpha, j.step, true);
                 }
             }
+            // A total (not incremental) `z` entering at constant load — for contact, a pair's
+            // gap opening — blocked at once by a row at zero (an increment the last breakpoint
+            // absorbed), judged on the structure's equations where they are at hand: at a
+            // block's tipping its last pair but the toe opens, and the toe's slip increment
+            // read a rate of round-off in the rotation; the pivot took it and the next basis
+            // was singular (a numerical failure at the tipping load). On the structure the
+            // rotation is the mechanism. Only for a total variable: judged for any entering
+            // one, slip increments entering at constant load read false mechanisms (7 of a
+            // reviewer's 220 block histories).
+            let total = entering >= n && entering < driver && !reset[entering - n];
+            if total && !judged && t_rate == 0.0 {
+                let zero_step = tol.value * max_abs(&piv.beta).max(max_abs(&piv.cols.h));
+                if step.is_some_and(|(_, th)| th <= zero_step) {
+                    if let Some(j) = piv.judged_on_structure(entering) {
+                        if let (true, Some(ds)) = (j.genuine, ds) {
+                            t_rate = -j.alpha[ds];
+                        }
+                        (alpha, step, judged) = (j.alpha, j.step, true);
+                    }
+                }
+            }
             // A rate below the column's tolerance that was not judged still moves `s` by the
             // whole column at the pivot: where the step carries `s` a real way (1e-6 of the
             // stage) it counts, as on the load path (`Pivoter::run`) — read as zero, a sliding

@@ -1129,6 +1129,51 @@ fn a_block_tipping_in_a_history_on_a_soft_spring_is_the_mechanism_by_hand() {
     }
 }
 
+/// The steel block (4 × 2 elements, W = 10 kN, f = 0.3) on 1000 and 1e5 N/m, its weight and
+/// then a push to exactly its tipping load, 2 (N·m and kN·mm). By hand, at 2 the toe carries W
+/// and f·W, the spring the rest of the 10 kN push (slips of 7 m and 7 cm), every other pair
+/// open: the stage's end (completed) or its mechanism there are the same state. At the tipping
+/// the last pair but the toe opens at constant load, and the toe's slip increment, zero since
+/// the breakpoint, read a rate of round-off in the rotation: the pivot took it and the next
+/// basis was singular (a numerical failure in N·m). Such a step is now judged on the
+/// structure's equations, where the rotation is the mechanism.
+#[test]
+fn a_block_pushed_to_its_tipping_load_in_a_history_ends_there_by_hand() {
+    use unilateral_contact::StageStatus;
+    for k in [1000.0, 1e5] {
+        for kn_mm in [false, true] {
+            let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+            let a = analyze_block_history(k, kn_mm, &[("push", 2.0)])
+                .unwrap_or_else(|e| panic!("k = {k}, kN·mm {kn_mm}: {e}"));
+            let st = &a.history.stages[1];
+            assert!(
+                matches!(st.status, StageStatus::Completed | StageStatus::Mechanism),
+                "k = {k}, kN·mm {kn_mm}: {:?}",
+                st.reason
+            );
+            let reached = 2.0 * st.s_end;
+            assert!((reached - 2.0).abs() < 1e-6 * 2.0, "k = {k}: {reached}");
+            let w = 10000.0 * force;
+            let slip = 7000.0 / k * length;
+            for r in &st.pairs {
+                assert!(
+                    (r.z_t - slip).abs() < 1e-5 * slip,
+                    "k = {k}, kN·mm {kn_mm}: {r:?}"
+                );
+                if r.name == "g.5" {
+                    assert!((r.x_n - w).abs() < 1e-6 * w, "k = {k}: the toe {r:?}");
+                    assert!((r.x_t + 0.3 * w).abs() < 1e-6 * w, "k = {k}: the toe {r:?}");
+                } else {
+                    assert!(
+                        r.x_n.abs() < 1e-6 * w && r.x_t.abs() < 1e-6 * w,
+                        "k = {k}: {r:?}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 /// [`analyze_block_history`]; every stage must complete.
 fn block_history(
     k: f64,

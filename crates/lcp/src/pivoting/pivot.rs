@@ -1308,6 +1308,16 @@ impl<'a> Pivoter<'a> {
         if !carries || !doubtful(self) {
             return None;
         }
+        self.judged_on_structure(entering)
+    }
+
+    /// The direction of `entering` and its step judged on the structure's equations, where
+    /// they are at hand, whatever the condensed data's step ([`Pivoter::judged_step`] judges
+    /// only steps whose load rate the data cannot tell from round-off).
+    pub fn judged_on_structure(&self, entering: usize) -> Option<JudgedStep> {
+        if self.judge.is_none() || entering == self.cols.driver() {
+            return None;
+        }
         let (alpha, genuine) = self.judged_direction(entering)?;
         // With the load held, a block beyond double precision's reach of the values is none
         // (a mechanism). With the load moving, the step is as far as the load goes to it (a
