@@ -257,13 +257,7 @@ impl EvolutionSolver {
         d: &[f64],
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
     ) -> StageRun {
-        match from.basis.clone() {
-            Some(basis) if d.len() == self.n => {
-                self.settings.progress.next_stage();
-                self.trace_stage(from, d, basis, judge, false)
-            }
-            _ => self.not_started(from),
-        }
+        self.trace_from(from, d, judge, false)
     }
 
     /// [`EvolutionSolver::stage_judged`] traced with the row relations deciding every tie
@@ -280,27 +274,38 @@ impl EvolutionSolver {
         d: &[f64],
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
     ) -> StageRun {
-        match from.basis.clone() {
-            Some(basis) if d.len() == self.n && !self.relations.is_empty() => {
-                self.trace_stage(from, d, basis, judge, true)
-            }
-            _ => self.not_started(from),
-        }
+        self.trace_from(from, d, judge, true)
     }
 
-    /// A stage that could not start from `from` (no basis, or a load of another order): a
-    /// singular basis at `s = 0`.
-    fn not_started(&self, from: &EvolutionState) -> StageRun {
-        StageRun {
-            ending: StageEnding::Singular,
-            s_end: 0.0,
-            points: vec![],
-            end: EvolutionState {
-                basis: None,
-                ..from.clone()
+    /// [`EvolutionSolver::trace_stage`] from `from`'s basis, the first trace of a stage
+    /// counted as the next stage of the progress; a stage that cannot start (no basis, a load
+    /// of another order, or a second trace without relations to decide its ties) is a singular
+    /// basis at `s = 0`.
+    fn trace_from(
+        &self,
+        from: &EvolutionState,
+        d: &[f64],
+        judge: Option<std::sync::Arc<crate::StructureJudge>>,
+        related_ties: bool,
+    ) -> StageRun {
+        match from.basis.clone() {
+            Some(basis) if d.len() == self.n && !(related_ties && self.relations.is_empty()) => {
+                if !related_ties {
+                    self.settings.progress.next_stage();
+                }
+                self.trace_stage(from, d, basis, judge, related_ties)
+            }
+            _ => StageRun {
+                ending: StageEnding::Singular,
+                s_end: 0.0,
+                points: vec![],
+                end: EvolutionState {
+                    basis: None,
+                    ..from.clone()
+                },
+                last_increment: vec![0.0; self.n],
+                pivots: 0,
             },
-            last_increment: vec![0.0; self.n],
-            pivots: 0,
         }
     }
 
@@ -401,6 +406,8 @@ impl EvolutionSolver {
             // the condensed data at the limit).
             let mut judged = false;
             let mut t_rate = t_rate;
+            // A step of no length: below round-off of the values and the right-hand side.
+            let zero = tol.value * max_abs(&piv.beta).max(max_abs(&piv.cols.h));
             // Rows of `x` that the ratio test passed over (rates below the column's tolerance)
             // and that would reach zero before the segment ends, judged on the structure's
             // equations where they are at hand and `s` moves there: a block sliding on in a
@@ -430,18 +437,13 @@ impl EvolutionSolver {
                 && piv.near_mechanism_taking_load_back(entering, &alpha, t_rate, amax)
             {
                 if let Some(j) = piv.judged_step_if(entering, step, t_rate, t_now, |_| true) {
-                    t_rate = match (j.genuine, ds) {
-                        (true, Some(ds)) => -j.alpha[ds],
-                        _ => 0.0,
-                    };
+                    t_rate = j.load_rate(ds);
                     (alpha, step, judged) = (j.alpha, j.step, true);
                 }
             }
             if let Some(ds) = ds.filter(|_| !judged && t_rate == 0.0) {
                 if let Some(j) = piv.judged_step(entering, step, alpha[ds], t_now, amax) {
-                    if j.genuine {
-                        t_rate = -j.alpha[ds];
-                    }
+                    t_rate = j.load_rate(Some(ds));
                     (alpha, step, judged) = (j.alpha, j.step, true);
                 }
             }
@@ -455,15 +457,10 @@ impl EvolutionSolver {
             // one, slip increments entering at constant load read false mechanisms (7 of a
             // reviewer's 220 block histories).
             let total = entering >= n && entering < driver && !reset[entering - n];
-            if total && !judged && t_rate == 0.0 {
-                let zero_step = tol.value * max_abs(&piv.beta).max(max_abs(&piv.cols.h));
-                if step.is_some_and(|(_, th)| th <= zero_step) {
-                    if let Some(j) = piv.judged_on_structure(entering) {
-                        if let (true, Some(ds)) = (j.genuine, ds) {
-                            t_rate = -j.alpha[ds];
-                        }
-                        (alpha, step, judged) = (j.alpha, j.step, true);
-                    }
+            if total && !judged && t_rate == 0.0 && step.is_some_and(|(_, th)| th <= zero) {
+                if let Some(j) = piv.judged_on_structure(entering) {
+                    t_rate = j.load_rate(ds);
+                    (alpha, step, judged) = (j.alpha, j.step, true);
                 }
             }
             // A rate below the column's tolerance that was not judged still moves `s` by the
@@ -510,7 +507,6 @@ impl EvolutionSolver {
                 }
                 break StageEnding::TurnsBack;
             };
-            let zero = tol.value * max_abs(&piv.beta).max(max_abs(&piv.cols.h));
             if t_rate < 0.0 && theta > zero {
                 break StageEnding::TurnsBack;
             }

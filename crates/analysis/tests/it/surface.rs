@@ -1002,6 +1002,34 @@ fn a_history_that_meets_a_singular_basis_at_a_tie_is_traced_again_by_the_relatio
     }
 }
 
+/// The pairs of a block tipped about its toe, by hand: every pair slid `slip`; the toe `toe`
+/// carries the weight `w` and the friction limit `f·w`; every other pair carries nothing — and,
+/// with `open`, reads open with no normal force at all (a mechanism's state; at the end of a
+/// completed stage the forces alone are checked).
+fn assert_tipped(
+    pairs: &[unilateral_contact::PairResult],
+    toe: &str,
+    (w, f, slip): (f64, f64, f64),
+    open: bool,
+    what: &str,
+) {
+    for r in pairs {
+        assert!((r.z_t - slip).abs() < 1e-5 * slip, "{what}: {r:?}");
+        if r.name == toe {
+            assert!((r.x_n - w).abs() < 1e-6 * w, "{what}: the toe {r:?}");
+            assert!((r.x_t + f * w).abs() < 1e-6 * w, "{what}: the toe {r:?}");
+        } else if open {
+            assert_eq!(r.state, PairState::Open, "{what}: {r:?}");
+            assert!(r.x_n == 0.0 && r.x_t.abs() < 1e-6 * w, "{what}: {r:?}");
+        } else {
+            assert!(
+                r.x_n.abs() < 1e-6 * w && r.x_t.abs() < 1e-6 * w,
+                "{what}: {r:?}"
+            );
+        }
+    }
+}
+
 /// The steel block on a 1e5 N/m spring, its weight and then a push to 2.5 in a history: by
 /// hand (as on the load path, `a_block_pushed_past_its_tipping_load_is_a_mechanism_there_on_every_spring`)
 /// it tips about its toe at a push of 2, the toe carrying the weight and the friction limit
@@ -1034,25 +1062,8 @@ fn a_block_pushed_past_its_tipping_load_in_a_history_is_a_mechanism_there() {
             st.residual
         );
         let w = 10000.0 * force;
-        for r in &st.pairs {
-            assert!(
-                (r.z_t - 0.07 * length).abs() < 1e-5 * 0.07 * length,
-                "kN·mm {kn_mm}: {r:?}"
-            );
-            if r.name == "g.5" {
-                assert!((r.x_n - w).abs() < 1e-6 * w, "kN·mm {kn_mm}: the toe {r:?}");
-                assert!(
-                    (r.x_t + 0.3 * w).abs() < 1e-6 * w,
-                    "kN·mm {kn_mm}: the toe {r:?}"
-                );
-            } else {
-                assert_eq!(r.state, PairState::Open, "kN·mm {kn_mm}: {r:?}");
-                assert!(
-                    r.x_n == 0.0 && r.x_t.abs() < 1e-6 * w,
-                    "kN·mm {kn_mm}: {r:?}"
-                );
-            }
-        }
+        let what = format!("kN·mm {kn_mm}");
+        assert_tipped(&st.pairs, "g.5", (w, 0.3, 0.07 * length), true, &what);
     }
 }
 
@@ -1110,22 +1121,8 @@ fn a_block_tipping_in_a_history_on_a_soft_spring_is_the_mechanism_by_hand() {
         );
         let w = 8000.0 * force;
         let slip = (8000.0 - f * 8000.0) / 562.0 * length;
-        for r in &st.pairs {
-            assert!((r.z_t - slip).abs() < 1e-5 * slip, "kN·mm {kn_mm}: {r:?}");
-            if r.name == "g.4" {
-                assert!((r.x_n - w).abs() < 1e-6 * w, "kN·mm {kn_mm}: the toe {r:?}");
-                assert!(
-                    (r.x_t + f * w).abs() < 1e-6 * w,
-                    "kN·mm {kn_mm}: the toe {r:?}"
-                );
-            } else {
-                assert_eq!(r.state, PairState::Open, "kN·mm {kn_mm}: {r:?}");
-                assert!(
-                    r.x_n == 0.0 && r.x_t.abs() < 1e-6 * w,
-                    "kN·mm {kn_mm}: {r:?}"
-                );
-            }
-        }
+        let what = format!("kN·mm {kn_mm}");
+        assert_tipped(&st.pairs, "g.4", (w, f, slip), true, &what);
     }
 }
 
@@ -1155,21 +1152,8 @@ fn a_block_pushed_to_its_tipping_load_in_a_history_ends_there_by_hand() {
             assert!((reached - 2.0).abs() < 1e-6 * 2.0, "k = {k}: {reached}");
             let w = 10000.0 * force;
             let slip = 7000.0 / k * length;
-            for r in &st.pairs {
-                assert!(
-                    (r.z_t - slip).abs() < 1e-5 * slip,
-                    "k = {k}, kN·mm {kn_mm}: {r:?}"
-                );
-                if r.name == "g.5" {
-                    assert!((r.x_n - w).abs() < 1e-6 * w, "k = {k}: the toe {r:?}");
-                    assert!((r.x_t + 0.3 * w).abs() < 1e-6 * w, "k = {k}: the toe {r:?}");
-                } else {
-                    assert!(
-                        r.x_n.abs() < 1e-6 * w && r.x_t.abs() < 1e-6 * w,
-                        "k = {k}: {r:?}"
-                    );
-                }
-            }
+            let what = format!("k = {k}, kN·mm {kn_mm}");
+            assert_tipped(&st.pairs, "g.5", (w, 0.3, slip), false, &what);
         }
     }
 }

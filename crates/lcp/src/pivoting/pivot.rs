@@ -40,6 +40,17 @@ pub(crate) struct JudgedStep {
     pub genuine: bool,
 }
 
+impl JudgedStep {
+    /// The load's rate on the judged direction (the driver's in slot `ds`, the negated rate of
+    /// its value): `alpha`'s where it is genuine, zero where the load is held.
+    pub fn load_rate(&self, ds: Option<usize>) -> f64 {
+        match (self.genuine, ds) {
+            (true, Some(ds)) => -self.alpha[ds],
+            _ => 0.0,
+        }
+    }
+}
+
 /// One pivot as recorded on the path.
 #[derive(Debug, Clone)]
 pub(crate) struct PivotRecord {
@@ -1545,10 +1556,7 @@ impl<'a> Pivoter<'a> {
                     self.judged_step(entering, step, t_rate, t_now, amax)
                 };
                 if let Some(j) = j {
-                    let rate = match (j.genuine, self.driver_slot()) {
-                        (true, Some(ds)) => -j.alpha[ds],
-                        _ => 0.0,
-                    };
+                    let rate = j.load_rate(self.driver_slot());
                     judged = Some(std::mem::replace(&mut alpha, j.alpha));
                     (step, t_rate) = (j.step, rate);
                     if rate > 0.0 {
