@@ -21,7 +21,8 @@
 //!   contact pair to the beam; dead weight, a variable load from down to up along the beam and a
 //!   sideways load (bearings lift and slide in turn: the long path), `solve --trace end`;
 //! * `beam+out`: the same with `--csv` and `--report`, `beam+vtk` with `--vtk` (its default
-//!   format, ascii), `beam+vtkb` and `beam+vtkz` with `--vtk-format binary` and `compressed`, for
+//!   format, ascii), `beam+vtkb`, `beam+vtkz` and `beam+vtkl` with `--vtk-format binary`,
+//!   `compressed` (zlib) and `lz4`, for
 //!   sizes up to `UNILATERAL_BENCH_REPORT_MAX` (the path without tightening: its tables and
 //!   charts read the path's breakpoints; every ParaView frame is a recovered structure), and
 //!   `beam+bp` with `--json-breakpoints` (every pair at every breakpoint in the JSON, formed and
@@ -449,6 +450,7 @@ fn main() {
             ("beam+vtk", "avtk", None),
             ("beam+vtkb", "bvtk", Some("binary")),
             ("beam+vtkz", "zvtk", Some("compressed")),
+            ("beam+vtkl", "lvtk", Some("lz4")),
         ] {
             if m > report_max() || !selected(case) {
                 continue;

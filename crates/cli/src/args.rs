@@ -40,8 +40,11 @@ pub(crate) enum VtkFormatArg {
     Ascii,
     /// Raw little-endian bytes appended to the file: exact, smaller, faster to read.
     Binary,
-    /// The binary arrays zlib-compressed (smallest).
+    /// The binary arrays zlib-compressed (smallest; read by every VTK reader).
     Compressed,
+    /// The binary arrays compressed by LZ4 (a tenth larger than zlib's, much faster to write
+    /// and to read; ParaView from 5.5, not meshio).
+    Lz4,
 }
 
 impl VtkFormatArg {
@@ -51,6 +54,7 @@ impl VtkFormatArg {
             VtkFormatArg::Ascii => unilateral_output::VtkFormat::Ascii,
             VtkFormatArg::Binary => unilateral_output::VtkFormat::Binary,
             VtkFormatArg::Compressed => unilateral_output::VtkFormat::Compressed,
+            VtkFormatArg::Lz4 => unilateral_output::VtkFormat::Lz4,
         }
     }
 }

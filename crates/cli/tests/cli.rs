@@ -2247,13 +2247,16 @@ fn vtk_format_binary_and_compressed_through_the_binary() {
     let ascii = run("a", None);
     let binary = run("b", Some("binary"));
     let compressed = run("z", Some("compressed"));
+    let lz4 = run("l", Some("lz4"));
     let names = |f: &[(String, Vec<u8>)]| f.iter().map(|x| x.0.clone()).collect::<Vec<_>>();
     assert_eq!(names(&ascii), names(&binary));
     assert_eq!(names(&ascii), names(&compressed));
+    assert_eq!(names(&ascii), names(&lz4));
     let find = |f: &[(String, Vec<u8>)], n: &str| f.iter().find(|x| x.0 == n).unwrap().1.clone();
     let pvd = "unilateral.pvd";
     assert_eq!(find(&ascii, pvd), find(&binary, pvd));
     assert_eq!(find(&ascii, pvd), find(&compressed, pvd));
+    assert_eq!(find(&ascii, pvd), find(&lz4, pvd));
     let contains = |b: &[u8], s: &str| b.windows(s.len()).any(|w| w == s.as_bytes());
     for (name, bytes) in &ascii {
         if name.ends_with(".vtu") {
@@ -2267,12 +2270,15 @@ fn vtk_format_binary_and_compressed_through_the_binary() {
             assert!(contains(bytes, "<AppendedData encoding=\"raw\">"), "{name}");
         }
     }
-    for (name, bytes) in &compressed {
-        if name.ends_with(".vtu") {
-            assert!(
-                contains(bytes, "compressor=\"vtkZLibDataCompressor\""),
-                "{name}"
-            );
+    for (files, compressor) in [
+        (&compressed, "vtkZLibDataCompressor"),
+        (&lz4, "vtkLZ4DataCompressor"),
+    ] {
+        for (name, bytes) in files {
+            if name.ends_with(".vtu") {
+                let tag = format!("compressor=\"{compressor}\"");
+                assert!(contains(bytes, &tag), "{name}");
+            }
         }
     }
     // The points of a pairs file, from the text and from the appended bytes.
@@ -2318,9 +2324,9 @@ fn vtk_format_binary_and_compressed_through_the_binary() {
     assert!(out.stderr.contains("--vtk-format"), "{}", out.stderr);
 }
 
-/// A history's ParaView files in the compressed format: the same names and collection as in
-/// ascii, each `.vtu` with zlib blocks (reference: the ascii run; the values are compared in
-/// `crates/output/tests/it/vtk_binary.rs`).
+/// A history's ParaView files in the compressed formats: the same names and collection as in
+/// ascii, each `.vtu` with zlib blocks (`compressed`) or LZ4 blocks (`lz4`) (reference: the
+/// ascii run; the values are compared in `crates/output/tests/it/vtk_binary.rs`).
 #[test]
 fn history_vtk_format_compressed() {
     let file = root().join("examples/deck-bearings-temperature.toml");
@@ -2338,6 +2344,15 @@ fn history_vtk_format_compressed() {
     assert_eq!(pvd_a, pvd_z);
     let vtu = std::fs::read(z.path("z/history_mesh_001.vtu")).unwrap();
     let s = "compressor=\"vtkZLibDataCompressor\"";
+    assert!(vtu.windows(s.len()).any(|w| w == s.as_bytes()));
+    let l = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--vtk", "l", "--vtk-format", "lz4"]);
+    assert_eq!(l.run().code, 0);
+    let pvd_l = std::fs::read_to_string(l.path("l/history.pvd")).unwrap();
+    assert_eq!(pvd_a, pvd_l);
+    let vtu = std::fs::read(l.path("l/history_mesh_001.vtu")).unwrap();
+    let s = "compressor=\"vtkLZ4DataCompressor\"";
     assert!(vtu.windows(s.len()).any(|w| w == s.as_bytes()));
 }
 

@@ -10,7 +10,8 @@
 //! data `state` (0 open, 1 stick, 2 slip+, 3 slip−), `x_n`, `x_t`, `z_n`, `z_t` (the
 //! accumulated slip), `pair`), and [`HISTORY_PVD`]. Each `.vtu` carries its pseudo-time as
 //! the field `TimeValue` and its stage as the field `stage`. The data arrays are text, raw
-//! appended binary or zlib-compressed ([`VtkFormat`], [`history_vtk_with`]), as the path's.
+//! appended binary, or compressed by zlib or LZ4 ([`VtkFormat`], [`history_vtk_with`]), as the
+//! path's.
 //!
 //! The writer of one state here is small on purpose: it holds what a history needs to be
 //! stepped through in ParaView. The full set of fields of `vtk.rs` (stresses, forces,

@@ -63,7 +63,7 @@ pub use summary::{
     structural_summary_detail, structural_summary_with, tableau_text, timings_summary, Detail,
     SUMMARY_LIST_PAIRS,
 };
-pub use vtk::{write_vtk, write_vtk_for, write_vtk_with, VtkFormat, PVD_FILE, ZLIB_BLOCK};
+pub use vtk::{write_vtk, write_vtk_for, write_vtk_with, VtkFormat, COMPRESSED_BLOCK, PVD_FILE};
 pub use zone_file::zone_toml;
 
 pub use chart::{event_word, samples, step_label, ChartKind, PathSamples};

@@ -1,7 +1,7 @@
 //! ParaView output: the mesh and the contact pairs as VTK XML unstructured grids, one pair of
 //! files per state of the load path, and a `.pvd` collection to step through them. The data
-//! arrays are text, raw appended binary or zlib-compressed appended binary ([`VtkFormat`]);
-//! the files hold the same arrays with the same values in every format.
+//! arrays are text, raw appended binary, or appended binary compressed by zlib or LZ4
+//! ([`VtkFormat`]); the files hold the same arrays with the same values in every format.
 //!
 //! Files written into the output directory (`NNN` = 0-based snapshot number, zero-padded):
 //!
@@ -1214,14 +1214,18 @@ pub(crate) fn num(s: &mut String, x: f64) {
 ///   sheet pile wall's path take 2.5 MB against 4.4 MB of text; a file of many exact zeros and
 ///   small integers can be larger than its text).
 /// * [`VtkFormat::Compressed`] — the same, each array zlib-compressed in blocks of
-///   [`ZLIB_BLOCK`] bytes (`compressor="vtkZLibDataCompressor"`: a `UInt64` header of the
-///   block count, the block size, the size of a partial last block (0 when it is full) and
-///   the compressed size of every block, then the compressed blocks). The fastest level of
-///   `zlib-rs` (a zlib in Rust), one compressor a thread: the 1000-bearing beam's frames take
-///   743 MB, 35 % of the binary files. Speed was chosen over size: on the 300-bearing beam's
-///   arrays `miniz_oxide`'s fastest level made files 14 % smaller in 2.2 times the time (7
-///   times with a compressor set up for each block, as before round 31), and its default
-///   level is a seventh of that speed again (`docs/performance.md`, round 31).
+///   [`COMPRESSED_BLOCK`] bytes (`compressor="vtkZLibDataCompressor"`: a `UInt64` header of
+///   the block count, the block size, the size of a partial last block (0 when it is full)
+///   and the compressed size of every block, then the compressed blocks). Read by every VTK
+///   reader (meshio too). The fastest level of `zlib-rs` (a zlib in Rust), one compressor a
+///   thread: the 1000-bearing beam's frames take 743 MB, 35 % of the binary files
+///   (`miniz_oxide`'s fastest level made files 14 % smaller in 2.2 times the time; its
+///   default level is a seventh of that speed again: `docs/performance.md`, round 31).
+/// * [`VtkFormat::Lz4`] — the same blocks compressed by LZ4 (`compressor="vtkLZ4DataCompressor"`,
+///   each block as VTK's `LZ4_decompress_safe` reads it): read by VTK from 8.1 on (ParaView
+///   5.5, 2018), not by meshio 5.3. On the 300-bearing beam's arrays LZ4 (`lz4_flex`) takes
+///   0.074 s where zlib's fastest level takes 0.20 s, for files 11 % larger (39 MB against
+///   35 MB of 116 MB), and is inflated several times faster (`docs/performance.md`, round 34).
 ///
 /// The small field data of a file (`TimeValue`, `reported`, `stage`) stays text in every
 /// format.
@@ -1234,10 +1238,19 @@ pub enum VtkFormat {
     Binary,
     /// Zlib-compressed appended binary.
     Compressed,
+    /// LZ4-compressed appended binary.
+    Lz4,
+}
+
+impl VtkFormat {
+    /// Whether the arrays are compressed (LZ4 or zlib).
+    fn compressed(self) -> bool {
+        matches!(self, VtkFormat::Compressed | VtkFormat::Lz4)
+    }
 }
 
 /// The uncompressed size of a compressed block (VTK's own default).
-pub const ZLIB_BLOCK: usize = 32768;
+pub const COMPRESSED_BLOCK: usize = 32768;
 
 /// The XML of a `.vtu` file being written and, in a binary format, its appended data: each
 /// binary array's `offset` attribute is filled in when the file is finished, so that pieces
@@ -1311,6 +1324,10 @@ impl Body {
                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
                  header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
             }
+            VtkFormat::Lz4 => {
+                "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
+                 header_type=\"UInt64\" compressor=\"vtkLZ4DataCompressor\">\n"
+            }
         }
     }
 
@@ -1335,7 +1352,7 @@ impl Body {
         };
         // Raw: the values go straight after their byte count (filled in once they are all
         // there); compressed: into a buffer of their own, compressed by blocks.
-        let raw_format = self.format != VtkFormat::Compressed;
+        let raw_format = !self.format.compressed();
         let start = self.data.len();
         let mut own = Vec::new();
         let raw = if raw_format {
@@ -1363,14 +1380,20 @@ impl Body {
         }
         let raw = own;
         {
-            let blocks: Vec<Vec<u8>> = match raw.chunks(ZLIB_BLOCK).map(zlib).collect() {
+            let compress = if self.format == VtkFormat::Lz4 {
+                lz4
+            } else {
+                zlib
+            };
+            let chunks = raw.chunks(COMPRESSED_BLOCK);
+            let blocks: Vec<Vec<u8>> = match chunks.map(compress).collect() {
                 Ok(b) => b,
                 Err(e) => {
                     self.failed.get_or_insert(e);
                     Vec::new()
                 }
             };
-            let mut head = vec![blocks.len(), ZLIB_BLOCK, raw.len() % ZLIB_BLOCK];
+            let mut head = vec![blocks.len(), COMPRESSED_BLOCK, raw.len() % COMPRESSED_BLOCK];
             head.extend(blocks.iter().map(Vec::len));
             u64s(&mut self.data, &head);
             for b in &blocks {
@@ -1506,6 +1529,12 @@ fn encode(
     bad
 }
 
+/// One block as an LZ4 block (no frame: the raw block that VTK's `LZ4_decompress_safe` reads,
+/// its size in the header before the blocks).
+fn lz4(bytes: &[u8]) -> io::Result<Vec<u8>> {
+    Ok(lz4_flex::block::compress(bytes))
+}
+
 /// One block's zlib stream at the fastest level. A thread's compressor is made once and reset
 /// for each block: setting one up costs more than compressing a frame's small array (with
 /// `miniz_oxide`, a compressor a block was two thirds of the 1000-bearing beam's deflating).
@@ -1628,7 +1657,7 @@ mod tests {
             text.contains("Name=\"k\" format=\"appended\" offset=\"24\"/>"),
             "{text}"
         );
-        for format in [VtkFormat::Compressed, VtkFormat::Binary] {
+        for format in [VtkFormat::Compressed, VtkFormat::Lz4, VtkFormat::Binary] {
             let mut b = Body::new(format);
             b.binary_array(
                 "<DataArray type=\"Float64\" Name=\"u\"",

@@ -1,7 +1,8 @@
-//! The binary ParaView files (`VtkFormat::Binary`, `VtkFormat::Compressed`) decoded by a
+//! The binary ParaView files (`VtkFormat::Binary`, `Compressed` by zlib, `Lz4`) decoded by a
 //! reader written here from the VTK XML file format (the `offset` of each appended array, its
-//! `UInt64` byte count or zlib block header, the little-endian values, inflated by
-//! `miniz_oxide`: another implementation than the writer's `zlib-rs`)
+//! `UInt64` byte count or compressed block header, the little-endian values; zlib blocks
+//! inflated by `miniz_oxide`, another implementation than the writer's `zlib-rs`, LZ4 blocks
+//! by [`lz4_block`], written here from the LZ4 block format, not the writer's `lz4_flex`)
 //! and compared value for value with the ascii files of the same run — the reference: the
 //! ascii writer's numbers read back to the same `f64` (Rust's shortest round trip), checked
 //! against the analysis by `vtk.rs`.
@@ -11,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 use unilateral_analysis::{analyze, analyze_history};
 use unilateral_io::{read_problem, Problem, StructuralProblem};
-use unilateral_output::{history_vtk_with, write_vtk_with, VtkFormat, ZLIB_BLOCK};
+use unilateral_output::{history_vtk_with, write_vtk_with, VtkFormat, COMPRESSED_BLOCK};
 
 fn problem(name: &str) -> StructuralProblem {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -21,6 +22,51 @@ fn problem(name: &str) -> StructuralProblem {
         panic!("{name} is not a structural model");
     };
     p
+}
+
+/// An LZ4 block decoded, from the block format's description (lz4's `lz4_Block_format.md`):
+/// sequences of a token (literal count in the high four bits, match length − 4 in the low
+/// four, each 15 continued by bytes up to a byte below 255), the literals, and a two-byte
+/// little-endian offset back into the output; the last sequence has literals only. Panics on
+/// a malformed block (a test's failure).
+fn lz4_block(src: &[u8], expect: usize) -> Vec<u8> {
+    let mut out: Vec<u8> = Vec::with_capacity(expect);
+    let mut i = 0;
+    let length = |i: &mut usize, mut n: usize| {
+        if n == 15 {
+            loop {
+                let b = src[*i];
+                *i += 1;
+                n += usize::from(b);
+                if b != 255 {
+                    break;
+                }
+            }
+        }
+        n
+    };
+    loop {
+        let token = src[i];
+        i += 1;
+        let literals = length(&mut i, usize::from(token >> 4));
+        out.extend_from_slice(&src[i..i + literals]);
+        i += literals;
+        if i == src.len() {
+            break;
+        }
+        let offset = usize::from(u16::from_le_bytes([src[i], src[i + 1]]));
+        i += 2;
+        assert!(offset > 0 && offset <= out.len(), "offset {offset}");
+        let len = length(&mut i, usize::from(token & 15)) + 4;
+        // Byte by byte: a match may overlap the bytes it copies.
+        let from = out.len() - offset;
+        for k in 0..len {
+            let b = out[from + k];
+            out.push(b);
+        }
+    }
+    assert_eq!(out.len(), expect);
+    out
 }
 
 /// The value of attribute `key` in the tag text `tag` (`<DataArray type="…" …`).
@@ -49,7 +95,8 @@ fn arrays(bytes: &[u8]) -> BTreeMap<String, Vec<f64>> {
         &[]
     };
     let header = xml.lines().nth(1).unwrap();
-    let compressed = attr(header, "compressor") == Some("vtkZLibDataCompressor");
+    let compressor = attr(header, "compressor");
+    let compressed = compressor.is_some();
     if !data.is_empty() {
         assert_eq!(attr(header, "header_type"), Some("UInt64"), "{header}");
     }
@@ -80,19 +127,23 @@ fn arrays(bytes: &[u8]) -> BTreeMap<String, Vec<f64>> {
                 let raw = if compressed {
                     let blocks = u64_at(at);
                     let (size, partial) = (u64_at(at + 8), u64_at(at + 16));
-                    assert_eq!(size, ZLIB_BLOCK);
+                    assert_eq!(size, COMPRESSED_BLOCK);
                     let mut start = at + 24 + 8 * blocks;
                     let mut raw = Vec::new();
                     for b in 0..blocks {
                         let csize = u64_at(at + 24 + 8 * b);
-                        let block = miniz_oxide::inflate::decompress_to_vec_zlib(
-                            &data[start..start + csize],
-                        )
-                        .unwrap();
                         let expect = if b + 1 == blocks && partial > 0 {
                             partial
                         } else {
                             size
+                        };
+                        let bytes = &data[start..start + csize];
+                        let block = match compressor {
+                            Some("vtkZLibDataCompressor") => {
+                                miniz_oxide::inflate::decompress_to_vec_zlib(bytes).unwrap()
+                            }
+                            Some("vtkLZ4DataCompressor") => lz4_block(bytes, expect),
+                            c => panic!("compressor {c:?}"),
                         };
                         assert_eq!(block.len(), expect, "{key}: block {b}");
                         raw.extend(block);
@@ -126,13 +177,13 @@ fn arrays(bytes: &[u8]) -> BTreeMap<String, Vec<f64>> {
     out
 }
 
-/// The files of the three formats agree: the same names, and every `.vtu` holds the same
+/// The files of the four formats agree: the same names, and every `.vtu` holds the same
 /// arrays with the same values (bit for bit); the `.pvd` is the same text. Returns the number
 /// of `.vtu` files compared.
 fn same_in_every_format(files: &dyn Fn(VtkFormat) -> Vec<(String, Vec<u8>)>) -> usize {
     let ascii = files(VtkFormat::Ascii);
     let mut compared = 0;
-    for format in [VtkFormat::Binary, VtkFormat::Compressed] {
+    for format in [VtkFormat::Binary, VtkFormat::Compressed, VtkFormat::Lz4] {
         let other = files(format);
         let names = |f: &[(String, Vec<u8>)]| f.iter().map(|x| x.0.clone()).collect::<Vec<_>>();
         assert_eq!(names(&ascii), names(&other));
@@ -180,7 +231,7 @@ fn read_dir(dir: &Path, files: &[PathBuf]) -> Vec<(String, Vec<u8>)> {
 
 /// The path of the cantilever on its plane-element foundation (frames, plane elements,
 /// pairs: every kind of array), the sheet pile wall and the cylinder on its foundation (pairs
-/// whose A point lies on a segment, between two nodes), in the three formats.
+/// whose A point lies on a segment, between two nodes), in the four formats.
 #[test]
 fn binary_and_compressed_files_decode_to_the_ascii_values() {
     for name in [
@@ -200,7 +251,7 @@ fn binary_and_compressed_files_decode_to_the_ascii_values() {
     }
 }
 
-/// The deck on sliding bearings (a structural history), in the three formats.
+/// The deck on sliding bearings (a structural history), in the four formats.
 #[test]
 fn history_binary_files_decode_to_the_ascii_values() {
     let p = problem("deck-bearings-temperature.toml");
@@ -235,9 +286,10 @@ fn the_reported_state_is_marked() {
     assert!(marked.iter().all(|(_, t)| *t == reported), "{marked:?}");
 }
 
-/// An array longer than one zlib block is split into blocks with a partial last one (the
-/// header's third number), and decodes: the points of a beam of 1500 nodes (36 000 bytes, two
-/// blocks) are the model's coordinates. Reference: the model's own node list.
+/// An array longer than one compressed block is split into blocks with a partial last one (the
+/// header's third number), and decodes in both compressions: the points of a beam of 1500
+/// nodes (36 000 bytes, two blocks) are the model's coordinates. Reference: the model's own
+/// node list.
 #[test]
 fn long_arrays_span_several_compressed_blocks() {
     use unilateral_fem::{ContactPairSpec, FrameSection, Load, LoadGroup, Model};
@@ -264,16 +316,23 @@ fn long_arrays_span_several_compressed_blocks() {
         },
     );
     let a = analyze(&model, &Default::default()).unwrap();
-    assert!(24 * n > ZLIB_BLOCK && 24 * n % ZLIB_BLOCK != 0);
-    let tmp = tempfile::tempdir().unwrap();
-    let written = write_vtk_with(&a, tmp.path(), VtkFormat::Compressed).unwrap();
-    let mesh = std::fs::read(&written[0]).unwrap();
-    let v = arrays(&mesh);
-    let points = &v["Points/Points"];
-    assert_eq!(points.len(), 3 * n);
-    for (i, xy) in model.nodes().iter().enumerate() {
-        assert_eq!(points[3 * i], xy[0]);
-        assert_eq!(points[3 * i + 1], xy[1]);
-        assert_eq!(points[3 * i + 2], 0.0);
+    assert!(24 * n > COMPRESSED_BLOCK && 24 * n % COMPRESSED_BLOCK != 0);
+    for (format, compressor) in [
+        (VtkFormat::Compressed, "vtkZLibDataCompressor"),
+        (VtkFormat::Lz4, "vtkLZ4DataCompressor"),
+    ] {
+        let tmp = tempfile::tempdir().unwrap();
+        let written = write_vtk_with(&a, tmp.path(), format).unwrap();
+        let mesh = std::fs::read(&written[0]).unwrap();
+        let tag = format!("compressor=\"{compressor}\"");
+        assert!(mesh.windows(tag.len()).any(|w| w == tag.as_bytes()));
+        let v = arrays(&mesh);
+        let points = &v["Points/Points"];
+        assert_eq!(points.len(), 3 * n);
+        for (i, xy) in model.nodes().iter().enumerate() {
+            assert_eq!(points[3 * i], xy[0]);
+            assert_eq!(points[3 * i + 1], xy[1]);
+            assert_eq!(points[3 * i + 2], 0.0);
+        }
     }
 }
