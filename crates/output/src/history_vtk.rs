@@ -223,9 +223,9 @@ struct Num(f64);
 
 impl std::fmt::Display for Num {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut s = String::new();
+        let mut s = Vec::new();
         crate::vtk::num(&mut s, self.0);
-        f.write_str(&s)
+        f.write_str(std::str::from_utf8(&s).unwrap_or("NaN"))
     }
 }
 
@@ -245,15 +245,16 @@ fn array(
         return;
     }
     let out = &mut b.xml;
-    let _ = write!(out, "{head} format=\"ascii\">");
+    out.extend_from_slice(head.as_bytes());
+    out.extend_from_slice(b" format=\"ascii\">");
     // The first non-finite value, refused by `Body::finish` (checked as written, as in the
     // binary arrays).
     let mut bad = None;
     for (k, v) in values.into_iter().enumerate() {
-        out.push_str(if k % components.max(1) == 0 {
-            "\n"
+        out.push(if k % components.max(1) == 0 {
+            b'\n'
         } else {
-            " "
+            b' '
         });
         if !v.is_finite() && bad.is_none() {
             bad = Some(v);
@@ -261,10 +262,10 @@ fn array(
         if ty == "Float64" {
             crate::vtk::num(out, v);
         } else {
-            let _ = write!(out, "{}", v as i64);
+            out.extend_from_slice(itoa::Buffer::new().format(v as i64).as_bytes());
         }
     }
-    out.push_str("\n        </DataArray>\n");
+    out.extend_from_slice(b"\n        </DataArray>\n");
     b.note_value(name, bad);
 }
 

@@ -352,7 +352,7 @@ fn write_file(dir: &Path, name: &str, text: &[u8]) -> io::Result<PathBuf> {
 
 fn dataset(pvd: &mut String, p: f64, part: usize, file: &str) {
     pvd.push_str("    <DataSet timestep=\"");
-    num(pvd, p);
+    num_text(pvd, p);
     let _ = writeln!(pvd, "\" group=\"\" part=\"{part}\" file=\"{file}\"/>");
 }
 
@@ -911,19 +911,10 @@ impl PairGeometry {
         let mut s = header(self.grid.format, snap, self.n_points, self.m, &self.size);
         let pairs = &snap.pairs[..];
         let have = pairs.len() == self.m && snap.results.is_some();
-        // Each pair's numbers are written at its points and at its cell: in ascii, formatted
-        // once.
-        let texts = PairTexts::new(self, if have && s.is_ascii() { pairs } else { &[] });
-        let at = |i: usize, k: usize, v: f64, negate: bool| Formatted {
-            v,
-            text: texts.get(i, k),
-            negate,
-        };
-        const ZERO: Formatted = Formatted {
-            v: 0.0,
-            text: "0",
-            negate: false,
-        };
+        // Points 0..m are the B points of pairs 0..m in order, where a pair's force is its
+        // force on B: in ascii each cell array's text is its point array's first m lines,
+        // copied whole (each number formatted once).
+        let mut lines: [std::ops::Range<usize>; 5] = Default::default();
         if let (true, Some(r)) = (have, snap.results.as_deref()) {
             s.push_str("      <PointData Scalars=\"state\" Vectors=\"force\">\n");
             let disp = |n: usize| r.displacements.get(n).copied().unwrap_or([0.0; 3]);
@@ -940,7 +931,7 @@ impl PairGeometry {
                     ]
                 }),
             );
-            f64_array(
+            lines[4] = f64_array_lines(
                 &mut s,
                 "force",
                 &["fx", "fy", "fz"],
@@ -949,9 +940,9 @@ impl PairGeometry {
                     .zip(&self.point_sign)
                     .map(|(&i, &sign)| {
                         let f = self.force(i, &pairs[i]);
-                        let minus = sign < 0.0;
-                        [at(i, 4, f[0], minus), at(i, 5, f[1], minus), ZERO]
+                        [sign * f[0], sign * f[1], 0.0]
                     }),
+                self.m,
             );
             int_array(
                 &mut s,
@@ -959,15 +950,10 @@ impl PairGeometry {
                 "state",
                 self.point_pair.iter().map(|&i| state_code(pairs[i].state)),
             );
-            let per_point = |k: usize, f: fn(&PairResult) -> f64| {
-                self.point_pair
-                    .iter()
-                    .map(move |&i| [at(i, k, f(&pairs[i]), false)])
-            };
-            f64_array(&mut s, "x_n", &[], per_point(0, |r| r.x_n));
-            f64_array(&mut s, "x_t", &[], per_point(1, |r| r.x_t));
-            f64_array(&mut s, "z_n", &[], per_point(2, |r| r.z_n));
-            f64_array(&mut s, "z_t", &[], per_point(3, |r| r.z_t));
+            for (k, (name, f)) in PAIR_FIELDS.into_iter().enumerate() {
+                let values = self.point_pair.iter().map(|&i| [f(&pairs[i])]);
+                lines[k] = f64_array_lines(&mut s, name, &[], values, self.m);
+            }
             s.append(&self.point_ids);
             s.push_str("      </PointData>\n");
         }
@@ -980,25 +966,21 @@ impl PairGeometry {
                 "state",
                 pairs.iter().map(|r| state_code(r.state)),
             );
-            let per_cell = |k: usize, f: fn(&PairResult) -> f64| {
-                pairs
-                    .iter()
-                    .enumerate()
-                    .map(move |(i, r)| [at(i, k, f(r), false)])
-            };
-            f64_array(&mut s, "x_n", &[], per_cell(0, |r| r.x_n));
-            f64_array(&mut s, "x_t", &[], per_cell(1, |r| r.x_t));
-            f64_array(&mut s, "z_n", &[], per_cell(2, |r| r.z_n));
-            f64_array(&mut s, "z_t", &[], per_cell(3, |r| r.z_t));
-            f64_array(
-                &mut s,
-                "force",
-                &["fx", "fy", "fz"],
-                pairs.iter().enumerate().map(|(i, r)| {
-                    let f = self.force(i, r);
-                    [at(i, 4, f[0], false), at(i, 5, f[1], false), ZERO]
-                }),
-            );
+            let ascii = s.is_ascii();
+            for (k, (name, f)) in PAIR_FIELDS.into_iter().enumerate() {
+                if ascii {
+                    copied_array(&mut s, name, &[], 1, lines[k].clone());
+                } else {
+                    f64_array(&mut s, name, &[], pairs.iter().map(|r| [f(r)]));
+                }
+            }
+            let names = ["fx", "fy", "fz"];
+            if ascii {
+                copied_array(&mut s, "force", &names, 3, lines[4].clone());
+            } else {
+                let forces = pairs.iter().enumerate().map(|(i, r)| self.force(i, r));
+                f64_array(&mut s, "force", &names, forces);
+            }
         }
         s.append(&self.cell_constants);
         s.push_str("      </CellData>\n");
@@ -1007,40 +989,16 @@ impl PairGeometry {
     }
 }
 
-/// The text of each pair's `x_n, x_t, z_n, z_t` and force components `fx, fy` (in that order),
-/// made once for a frame's ascii pairs file; none for a binary one (whose arrays take the
-/// values).
-struct PairTexts {
-    text: String,
-    /// Where each text ends (six a pair).
-    ends: Vec<usize>,
-}
+/// A scalar number of a pair, by its array's name.
+type PairField = (&'static str, fn(&PairResult) -> f64);
 
-impl PairTexts {
-    const FIELDS: usize = 6;
-
-    fn new(g: &PairGeometry, pairs: &[PairResult]) -> Self {
-        let mut text = String::with_capacity(pairs.len() * Self::FIELDS * 20);
-        let mut ends = Vec::with_capacity(pairs.len() * Self::FIELDS);
-        for (i, r) in pairs.iter().enumerate() {
-            let f = g.force(i, r);
-            for v in [r.x_n, r.x_t, r.z_n, r.z_t, f[0], f[1]] {
-                num(&mut text, v);
-                ends.push(text.len());
-            }
-        }
-        Self { text, ends }
-    }
-
-    /// Field `k` of pair `i` (empty when none were made).
-    fn get(&self, i: usize, k: usize) -> &str {
-        let j = i * Self::FIELDS + k;
-        match self.ends.get(j) {
-            Some(&end) => &self.text[if j == 0 { 0 } else { self.ends[j - 1] }..end],
-            None => "",
-        }
-    }
-}
+/// The scalar numbers of a pair written at its points and at its cell, in file order.
+const PAIR_FIELDS: [PairField; 4] = [
+    ("x_n", |r| r.x_n),
+    ("x_t", |r| r.x_t),
+    ("z_n", |r| r.z_n),
+    ("z_t", |r| r.z_t),
+];
 
 /// 0 open, 1 stick, 2 slip+, 3 slip−.
 fn state_code(s: PairState) -> i64 {
@@ -1065,7 +1023,7 @@ fn header(format: VtkFormat, snap: &Snapshot, points: usize, cells: usize, size:
          \x20     <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" \
          format=\"ascii\">",
     );
-    num(&mut s, snap.p);
+    num_text(&mut s, snap.p);
     b.note_value("TimeValue", Some(snap.p).filter(|p| !p.is_finite()));
     let _ = write!(
         s,
@@ -1081,89 +1039,84 @@ fn header(format: VtkFormat, snap: &Snapshot, points: usize, cells: usize, size:
 /// The end of an unstructured grid (the [`Body`] adds the appended data and `</VTKFile>`).
 const FOOTER: &str = "    </Piece>\n  </UnstructuredGrid>\n";
 
-/// A value of a `Float64` array: its number, and how an ascii file writes it.
-trait Value: Copy {
-    fn value(self) -> f64;
-    fn push_text(self, s: &mut String);
-}
-
-impl Value for f64 {
-    fn value(self) -> f64 {
-        self
-    }
-    fn push_text(self, s: &mut String) {
-        num(s, self)
-    }
-}
-
-/// A value whose text [`num`] made once for several arrays (a pair's forces and displacements
-/// appear at its points and at its cell), negated where `negate`: the text of `−v` is that of
-/// `v` with its sign changed (`0` stays `0`).
-#[derive(Clone, Copy)]
-struct Formatted<'a> {
-    v: f64,
-    text: &'a str,
-    negate: bool,
-}
-
-impl Value for Formatted<'_> {
-    fn value(self) -> f64 {
-        if self.negate {
-            -self.v
-        } else {
-            self.v
-        }
-    }
-    fn push_text(self, s: &mut String) {
-        let t = self.text;
-        if !self.negate || t.as_bytes() == b"0" {
-            s.push_str(t);
-        } else if let Some(rest) = t.strip_prefix('-') {
-            s.push_str(rest);
-        } else {
-            s.push('-');
-            s.push_str(t);
-        }
-    }
-}
-
 /// A `Float64` data array, one tuple a line, not indented (the indentation was a third of
 /// an ascii frame's bytes); `names` are the component names (none for a
 /// scalar or for unnamed components).
-fn f64_array<const N: usize, V: Value>(
+fn f64_array<const N: usize>(
     b: &mut Body,
     name: &str,
     names: &[&str],
-    tuples: impl Iterator<Item = [V; N]>,
+    tuples: impl Iterator<Item = [f64; N]>,
 ) {
-    let mut head =
-        format!("        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{N}\"");
+    f64_array_lines(b, name, names, tuples, 0);
+}
+
+/// The start of a `Float64` data array's tag, up to its format.
+fn f64_head(name: &str, names: &[&str], components: usize) -> String {
+    let mut head = format!(
+        "        <DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{components}\""
+    );
     for (k, c) in names.iter().enumerate() {
         let _ = write!(head, " ComponentName{k}=\"{c}\"");
     }
+    head
+}
+
+/// [`f64_array`], returning in ascii where the text of its first `first` lines lies in the
+/// body's XML (for [`copied_array`]; empty in a binary format).
+fn f64_array_lines<const N: usize>(
+    b: &mut Body,
+    name: &str,
+    names: &[&str],
+    tuples: impl Iterator<Item = [f64; N]>,
+    first: usize,
+) -> std::ops::Range<usize> {
+    let head = f64_head(name, names, N);
     if !b.is_ascii() {
-        b.binary_array(&head, name, "Float64", tuples.flatten().map(V::value));
-        return;
+        b.binary_array(&head, name, "Float64", tuples.flatten());
+        return 0..0;
     }
     let s = &mut b.xml;
-    s.push_str(&head);
-    s.push_str(" format=\"ascii\">\n");
+    s.extend_from_slice(head.as_bytes());
+    s.extend_from_slice(b" format=\"ascii\">\n");
+    let start = s.len();
+    let mut end = None;
     let mut bad = None;
-    for t in tuples {
+    for (j, t) in tuples.enumerate() {
+        if j == first {
+            end = Some(s.len());
+        }
         for (k, v) in t.into_iter().enumerate() {
             if k > 0 {
-                s.push(' ');
+                s.push(b' ');
             }
-            v.push_text(s);
-            let v = v.value();
+            num(s, v);
             if !v.is_finite() && bad.is_none() {
                 bad = Some(v);
             }
         }
-        s.push('\n');
+        s.push(b'\n');
     }
-    s.push_str("        </DataArray>\n");
+    let end = end.unwrap_or(s.len());
+    s.extend_from_slice(b"        </DataArray>\n");
     b.note_value(name, bad);
+    start..end
+}
+
+/// An ascii `Float64` array of `components` components whose lines are the text at `lines`
+/// in the body's XML, made by [`f64_array_lines`] (its numbers were checked there).
+fn copied_array(
+    b: &mut Body,
+    name: &str,
+    names: &[&str],
+    components: usize,
+    lines: std::ops::Range<usize>,
+) {
+    let s = &mut b.xml;
+    s.extend_from_slice(f64_head(name, names, components).as_bytes());
+    s.extend_from_slice(b" format=\"ascii\">\n");
+    s.extend_from_within(lines);
+    s.extend_from_slice(b"        </DataArray>\n");
 }
 
 /// An integer data array of VTK type `ty`, twelve values a line.
@@ -1174,12 +1127,14 @@ fn int_array(b: &mut Body, ty: &str, name: &str, values: impl IntoIterator<Item 
         return;
     }
     let s = &mut b.xml;
-    let _ = write!(s, "{head} format=\"ascii\">");
+    s.extend_from_slice(head.as_bytes());
+    s.extend_from_slice(b" format=\"ascii\">");
+    let mut text = itoa::Buffer::new();
     for (k, v) in values.into_iter().enumerate() {
-        s.push_str(if k % 12 == 0 { "\n          " } else { " " });
-        crate::decimal::push_int(s, v);
+        s.extend_from_slice(if k % 12 == 0 { b"\n          " } else { b" " });
+        s.extend_from_slice(text.format(v).as_bytes());
     }
-    s.push_str("\n        </DataArray>\n");
+    s.extend_from_slice(b"\n        </DataArray>\n");
 }
 
 /// A number as the shortest text that reads back as the same `f64`: `zmij`'s (in zmij 1.0,
@@ -1191,16 +1146,53 @@ fn int_array(b: &mut Body, ty: &str, name: &str, values: impl IntoIterator<Item 
 /// `--vtk` run's writing, and `zmij`'s text as it comes is a fraction of the cost of laying
 /// its digits out again. A non-finite value (refused before the file is written) is written
 /// as the standard library writes it.
-pub(crate) fn num(s: &mut String, x: f64) {
+pub(crate) fn num(s: &mut Vec<u8>, x: f64) {
     if x == 0.0 {
-        s.push('0');
+        s.push(b'0');
     } else if x.is_finite() {
         let mut b = zmij::Buffer::new();
         let t = b.format_finite(x);
-        s.push_str(t.strip_suffix(".0").unwrap_or(t));
+        push_short(s, t.strip_suffix(".0").unwrap_or(t).as_bytes());
     } else {
-        let _ = write!(s, "{x}");
+        s.extend_from_slice(x.to_string().as_bytes());
     }
+}
+
+/// [`num`] into a `String`.
+fn num_text(s: &mut String, x: f64) {
+    let mut t = Vec::with_capacity(32);
+    num(&mut t, x);
+    s.push_str(std::str::from_utf8(&t).unwrap_or("NaN"));
+}
+
+/// Appends `t`, at most 32 bytes (a number's text), by copies of fixed sizes that the compiler
+/// makes inline: `extend_from_slice` calls the C library's `memcpy` for a length it does not
+/// know, which for a number's 20 bytes cost more than formatting it (the ascii frames of the
+/// 300-bearing beam spent a seventh of their time in those calls).
+#[inline]
+fn push_short(s: &mut Vec<u8>, t: &[u8]) {
+    let n = t.len();
+    if n > 32 {
+        s.extend_from_slice(t);
+        return;
+    }
+    let at = s.len();
+    s.extend_from_slice(&[0u8; 32]);
+    let d = &mut s[at..at + 32];
+    // Two copies of a fixed size that overlap where the text is shorter than both together.
+    if n >= 16 {
+        d[..16].copy_from_slice(&t[..16]);
+        d[n - 16..n].copy_from_slice(&t[n - 16..]);
+    } else if n >= 8 {
+        d[..8].copy_from_slice(&t[..8]);
+        d[n - 8..n].copy_from_slice(&t[n - 8..]);
+    } else if n >= 4 {
+        d[..4].copy_from_slice(&t[..4]);
+        d[n - 4..n].copy_from_slice(&t[n - 4..]);
+    } else {
+        d[..n].copy_from_slice(t);
+    }
+    s.truncate(at + n);
 }
 
 /// How the data arrays of the `.vtu` files are written (`--vtk-format`).
@@ -1257,7 +1249,7 @@ pub const COMPRESSED_BLOCK: usize = 32768;
 /// made once (the geometry, which does not change along the path) can be put into every file.
 pub(crate) struct Body {
     format: VtkFormat,
-    pub(crate) xml: String,
+    pub(crate) xml: Vec<u8>,
     data: Vec<u8>,
     /// `(place in xml, offset in data)` of every binary array's `offset` attribute.
     marks: Vec<(usize, usize)>,
@@ -1271,7 +1263,7 @@ impl Body {
     pub(crate) fn new(format: VtkFormat) -> Self {
         Self {
             format,
-            xml: String::new(),
+            xml: Vec::new(),
             data: Vec::new(),
             marks: Vec::new(),
             bad: None,
@@ -1280,7 +1272,7 @@ impl Body {
     }
 
     pub(crate) fn push_str(&mut self, s: &str) {
-        self.xml.push_str(s);
+        self.xml.extend_from_slice(s.as_bytes());
     }
 
     /// Records the first non-finite value written to a data array (`value`: one found in the
@@ -1296,7 +1288,7 @@ impl Body {
         let (x, d) = (self.xml.len(), self.data.len());
         self.marks
             .extend(other.marks.iter().map(|&(a, b)| (a + x, b + d)));
-        self.xml.push_str(&other.xml);
+        self.xml.extend_from_slice(&other.xml);
         self.data.extend_from_slice(&other.data);
         if self.bad.is_none() {
             self.bad.clone_from(&other.bad);
@@ -1341,10 +1333,11 @@ impl Body {
         ty: &str,
         values: impl IntoIterator<Item = f64>,
     ) {
-        self.xml.push_str(head);
-        self.xml.push_str(" format=\"appended\" offset=\"");
+        self.xml.extend_from_slice(head.as_bytes());
+        self.xml
+            .extend_from_slice(b" format=\"appended\" offset=\"");
         self.marks.push((self.xml.len(), self.data.len()));
-        self.xml.push_str("\"/>\n");
+        self.xml.extend_from_slice(b"\"/>\n");
         let u64s = |out: &mut Vec<u8>, vs: &[usize]| {
             for &v in vs {
                 out.extend_from_slice(&(v as u64).to_le_bytes());
@@ -1427,16 +1420,16 @@ impl Body {
         let mut head = if self.marks.is_empty() {
             // Nothing to fill in (an ascii file is all XML): its bytes as they are, not a
             // copy of a megabyte a frame.
-            self.xml.into_bytes()
+            self.xml
         } else {
             let mut head = Vec::with_capacity(self.xml.len() + 2 * self.marks.len() + 64);
             let mut at = 0;
             for &(place, offset) in &self.marks {
-                head.extend_from_slice(&self.xml.as_bytes()[at..place]);
+                head.extend_from_slice(&self.xml[at..place]);
                 head.extend_from_slice(itoa::Buffer::new().format(offset).as_bytes());
                 at = place;
             }
-            head.extend_from_slice(&self.xml.as_bytes()[at..]);
+            head.extend_from_slice(&self.xml[at..]);
             head
         };
         let tail: &'static [u8] = if ascii {
@@ -1564,11 +1557,11 @@ fn zlib(bytes: &[u8]) -> io::Result<Vec<u8>> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_numbers, num, Body, Formatted, Value, VtkFormat};
+    use super::{check_numbers, num_text as num, push_short, Body, VtkFormat};
 
     /// The ascii text of a number reads back as the number (`0` for both zeros, no `.0` after
-    /// a whole number), and a text negated as text is the text of the negated number: on
-    /// numbers of every size and kind (a fixed sequence of bits, replayable).
+    /// a whole number), and the text of a negated number is the text with its sign changed:
+    /// on numbers of every size and kind (a fixed sequence of bits, replayable).
     #[test]
     fn ascii_numbers_read_back_and_negate_as_text() {
         let mut state = 7u64;
@@ -1612,26 +1605,31 @@ mod tests {
             assert_eq!(back, x, "{t} for {:#018x}", x.to_bits());
             assert!(x != 0.0 || t == "0", "{t} for a zero");
             assert!(!t.ends_with(".0"), "{t}");
-            let mut minus = String::new();
-            Formatted {
-                v: x,
-                text: &t,
-                negate: true,
-            }
-            .push_text(&mut minus);
             let mut direct = String::new();
             num(&mut direct, -x);
+            let minus = match t.strip_prefix('-') {
+                _ if t == "0" => t.clone(),
+                Some(rest) => rest.to_string(),
+                None => format!("-{t}"),
+            };
             assert_eq!(minus, direct, "the negated text of {t}");
-            assert_eq!(
-                Formatted {
-                    v: x,
-                    text: &t,
-                    negate: true
-                }
-                .value()
-                .to_bits(),
-                (-x).to_bits()
-            );
+        }
+    }
+
+    /// A short text is appended as it is, at every length (the fixed-size copies overlap
+    /// differently at each), after text already there and with a buffer that must grow.
+    #[test]
+    fn short_texts_are_appended_whole() {
+        let text: Vec<u8> = (0..40u8).map(|k| b'a' + k % 26).collect();
+        for n in 0..=40 {
+            for before in [0, 1, 7, 100] {
+                let mut s = vec![b'x'; before];
+                s.shrink_to_fit();
+                push_short(&mut s, &text[..n]);
+                let mut want = vec![b'x'; before];
+                want.extend_from_slice(&text[..n]);
+                assert_eq!(s, want, "{n} after {before}");
+            }
         }
     }
 
