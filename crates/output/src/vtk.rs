@@ -156,13 +156,17 @@ fn write_frames(
         // Both files made (and their numbers checked) before either is written; a file of
         // this frame written before a failure is removed.
         let mut parts = Vec::with_capacity(2);
+        // The pairs' points at nodes take the text of the nodes' displacements (ascii).
+        let mut node_lines = Vec::new();
+        let mesh_body = mesh.vtu(model, snap, Some(&mut node_lines));
+        let pairs_body = (pairs.m > 0).then(|| pairs.vtu(snap, (&mesh_body.xml, &node_lines)));
         let name = name_of(0, i, planned_width);
-        let file = mesh.vtu(model, snap).finish_parts(&name)?;
+        let file = mesh_body.finish_parts(&name)?;
         mesh.size.note(&file);
         parts.push((name, file));
-        if pairs.m > 0 {
+        if let Some(body) = pairs_body {
             let name = name_of(1, i, planned_width);
-            let file = pairs.vtu(snap).finish_parts(&name)?;
+            let file = body.finish_parts(&name)?;
             pairs.size.note(&file);
             parts.push((name, file));
         }
@@ -682,7 +686,9 @@ impl MeshGeometry {
         }
     }
 
-    fn vtu(&self, model: &Model, snap: &Snapshot) -> Body {
+    /// The mesh file of `snap`; in ascii, where each node's displacement line starts in its
+    /// XML (and where the last ends) into `node_lines`.
+    fn vtu(&self, model: &Model, snap: &Snapshot, node_lines: Option<&mut Vec<usize>>) -> Body {
         let mut s = header(
             self.grid.format,
             snap,
@@ -691,7 +697,7 @@ impl MeshGeometry {
             &self.size,
         );
         if let Some(r) = snap.results.as_deref() {
-            point_results(&mut s, r, self.kinds);
+            point_results(&mut s, r, self.kinds, node_lines);
         }
         s.append(&self.grid);
         s.push_str("      <CellData Scalars=\"kind\">\n");
@@ -711,13 +717,19 @@ fn section_key(s: &unilateral_fem::FrameSection) -> Vec<f64> {
     vec![s.e, s.area, s.inertia, s.depth, s.alpha]
 }
 
-fn point_results(s: &mut Body, r: &Results, kinds: ElementKinds) {
+fn point_results(
+    s: &mut Body,
+    r: &Results,
+    kinds: ElementKinds,
+    node_lines: Option<&mut Vec<usize>>,
+) {
     s.push_str("      <PointData Vectors=\"displacement\">\n");
-    f64_array(
+    f64_array_at(
         s,
         "displacement",
         &["ux", "uy", "uz"],
         r.displacements.iter().map(|d| [d[0], d[1], 0.0]),
+        node_lines,
     );
     f64_array(s, "rotation", &[], r.displacements.iter().map(|d| [d[2]]));
     if !kinds.plane {
@@ -897,6 +909,41 @@ impl PairGeometry {
         }
     }
 
+    /// The points' displacements: a point at a node (`ξ = 0`) has its node's, `(1 − 0)·d + 0·d`
+    /// = `d` to the bit (a zero of either sign written `0`), so in ascii its line is the mesh
+    /// file's line of that node, copied; a point between two nodes is interpolated.
+    fn displacements(&self, s: &mut Body, r: &Results, (text, starts): (&[u8], &[usize])) {
+        let disp = |n: usize| r.displacements.get(n).copied().unwrap_or([0.0; 3]);
+        let at = |&(n1, n2, xi): &(usize, usize, f64)| {
+            let (d1, d2) = (disp(n1), disp(n2));
+            [
+                (1.0 - xi) * d1[0] + xi * d2[0],
+                (1.0 - xi) * d1[1] + xi * d2[1],
+                0.0,
+            ]
+        };
+        let names = ["ux", "uy", "uz"];
+        if !s.is_ascii() || starts.len() != r.displacements.len() + 1 {
+            f64_array(s, "displacement", &names, self.point_node.iter().map(at));
+            return;
+        }
+        let out = &mut s.xml;
+        out.extend_from_slice(f64_head("displacement", &names, 3).as_bytes());
+        out.extend_from_slice(b" format=\"ascii\">\n");
+        // The copied lines' numbers were checked in the mesh file.
+        let mut bad = None;
+        for point in &self.point_node {
+            match *point {
+                (n1, n2, xi) if n1 == n2 && xi == 0.0 && n1 + 1 < starts.len() => {
+                    out.extend_from_slice(&text[starts[n1]..starts[n1 + 1]]);
+                }
+                _ => push_tuple(out, at(point), &mut bad),
+            }
+        }
+        out.extend_from_slice(b"        </DataArray>\n");
+        s.note_value("displacement", bad);
+    }
+
     /// Force of pair `i` on its node B.
     fn force(&self, i: usize, r: &PairResult) -> [f64; 3] {
         let (n, t) = (self.normals[i], self.tangents[i]);
@@ -907,7 +954,9 @@ impl PairGeometry {
         ]
     }
 
-    fn vtu(&self, snap: &Snapshot) -> Body {
+    /// The pairs file of `snap`; `node_lines` = the mesh file's XML and where each node's
+    /// displacement line starts in it ([`MeshGeometry::vtu`]; none in binary).
+    fn vtu(&self, snap: &Snapshot, node_lines: (&[u8], &[usize])) -> Body {
         let mut s = header(self.grid.format, snap, self.n_points, self.m, &self.size);
         let pairs = &snap.pairs[..];
         let have = pairs.len() == self.m && snap.results.is_some();
@@ -917,20 +966,7 @@ impl PairGeometry {
         let mut lines: [std::ops::Range<usize>; 5] = Default::default();
         if let (true, Some(r)) = (have, snap.results.as_deref()) {
             s.push_str("      <PointData Scalars=\"state\" Vectors=\"force\">\n");
-            let disp = |n: usize| r.displacements.get(n).copied().unwrap_or([0.0; 3]);
-            f64_array(
-                &mut s,
-                "displacement",
-                &["ux", "uy", "uz"],
-                self.point_node.iter().map(|&(n1, n2, xi)| {
-                    let (d1, d2) = (disp(n1), disp(n2));
-                    [
-                        (1.0 - xi) * d1[0] + xi * d2[0],
-                        (1.0 - xi) * d1[1] + xi * d2[1],
-                        0.0,
-                    ]
-                }),
-            );
+            self.displacements(&mut s, r, node_lines);
             lines[4] = f64_array_lines(
                 &mut s,
                 "force",
@@ -1048,7 +1084,7 @@ fn f64_array<const N: usize>(
     names: &[&str],
     tuples: impl Iterator<Item = [f64; N]>,
 ) {
-    f64_array_lines(b, name, names, tuples, 0);
+    f64_array_at(b, name, names, tuples, None);
 }
 
 /// The start of a `Float64` data array's tag, up to its format.
@@ -1071,36 +1107,59 @@ fn f64_array_lines<const N: usize>(
     tuples: impl Iterator<Item = [f64; N]>,
     first: usize,
 ) -> std::ops::Range<usize> {
+    let mut starts = Vec::new();
+    f64_array_at(b, name, names, tuples, Some(&mut starts));
+    match (starts.first(), starts.get(first).or(starts.last())) {
+        (Some(&a), Some(&z)) => a..z,
+        _ => 0..0,
+    }
+}
+
+/// [`f64_array`], recording in ascii into `starts` where each line's text starts in the body's
+/// XML, and where the last one ends (nothing in a binary format).
+fn f64_array_at<const N: usize>(
+    b: &mut Body,
+    name: &str,
+    names: &[&str],
+    tuples: impl Iterator<Item = [f64; N]>,
+    mut starts: Option<&mut Vec<usize>>,
+) {
     let head = f64_head(name, names, N);
     if !b.is_ascii() {
         b.binary_array(&head, name, "Float64", tuples.flatten());
-        return 0..0;
+        return;
     }
     let s = &mut b.xml;
     s.extend_from_slice(head.as_bytes());
     s.extend_from_slice(b" format=\"ascii\">\n");
-    let start = s.len();
-    let mut end = None;
     let mut bad = None;
-    for (j, t) in tuples.enumerate() {
-        if j == first {
-            end = Some(s.len());
+    for t in tuples {
+        if let Some(v) = starts.as_deref_mut() {
+            v.push(s.len());
         }
-        for (k, v) in t.into_iter().enumerate() {
-            if k > 0 {
-                s.push(b' ');
-            }
-            num(s, v);
-            if !v.is_finite() && bad.is_none() {
-                bad = Some(v);
-            }
-        }
-        s.push(b'\n');
+        push_tuple(s, t, &mut bad);
     }
-    let end = end.unwrap_or(s.len());
+    if let Some(v) = starts {
+        v.push(s.len());
+    }
     s.extend_from_slice(b"        </DataArray>\n");
     b.note_value(name, bad);
-    start..end
+}
+
+/// One line of an ascii array: the tuple's numbers separated by spaces; the first non-finite
+/// one kept in `bad`.
+#[inline]
+fn push_tuple<const N: usize>(s: &mut Vec<u8>, t: [f64; N], bad: &mut Option<f64>) {
+    for (k, v) in t.into_iter().enumerate() {
+        if k > 0 {
+            s.push(b' ');
+        }
+        num(s, v);
+        if !v.is_finite() && bad.is_none() {
+            *bad = Some(v);
+        }
+    }
+    s.push(b'\n');
 }
 
 /// An ascii `Float64` array of `components` components whose lines are the text at `lines`
