@@ -2219,10 +2219,11 @@ fn history_outputs_carry_units_and_title() {
 // The structure picture and binary VTK (issue 14, "Pictures" and "VTK").
 
 /// `--vtk-format`: the same files in every format, the same collection; `binary` appends raw
-/// arrays (`header_type="UInt64"`), `compressed` zlib blocks; the default is ascii. Reference:
-/// the ascii run of the same problem — the points of the pairs' file decoded from the binary
-/// one (an 8-byte count, then little-endian doubles) are the ascii file's numbers; the full
-/// decoding of every array, compressed too, is `crates/output/tests/it/vtk_binary.rs`.
+/// arrays (`header_type="UInt64"`), `compressed` zlib blocks, `lz4` LZ4 blocks; the default is
+/// ascii. Reference: the ascii run of the same problem — the points of the pairs' file decoded
+/// from the binary one (an 8-byte count, then little-endian doubles) are the ascii file's
+/// numbers; the full decoding of every array, compressed too, is
+/// `crates/output/tests/it/vtk_binary.rs`.
 #[test]
 fn vtk_format_binary_and_compressed_through_the_binary() {
     let file = root().join("examples/example2-cantilever.toml");
