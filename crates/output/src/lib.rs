@@ -63,6 +63,8 @@ pub use summary::{
     structural_summary_detail, structural_summary_with, tableau_text, timings_summary, Detail,
     SUMMARY_LIST_PAIRS,
 };
+#[allow(deprecated)]
+pub use vtk::ZLIB_BLOCK;
 pub use vtk::{write_vtk, write_vtk_for, write_vtk_with, VtkFormat, COMPRESSED_BLOCK, PVD_FILE};
 pub use zone_file::zone_toml;
 

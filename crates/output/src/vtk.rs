@@ -930,12 +930,17 @@ impl PairGeometry {
         let out = &mut s.xml;
         out.extend_from_slice(f64_head("displacement", &names, 3).as_bytes());
         out.extend_from_slice(b" format=\"ascii\">\n");
-        // The copied lines' numbers were checked in the mesh file.
+        // A copied line's numbers are checked here too (its text is the mesh file's), so that
+        // this file refuses them whatever is done with the mesh file.
         let mut bad = None;
         for point in &self.point_node {
             match *point {
                 (n1, n2, xi) if n1 == n2 && xi == 0.0 && n1 + 1 < starts.len() => {
                     out.extend_from_slice(&text[starts[n1]..starts[n1 + 1]]);
+                    let d = disp(n1);
+                    if let Some(&v) = d[..2].iter().find(|v| !v.is_finite()) {
+                        bad = bad.or(Some(v));
+                    }
                 }
                 _ => push_tuple(out, at(point), &mut bad),
             }
@@ -1302,6 +1307,10 @@ impl VtkFormat {
 
 /// The uncompressed size of a compressed block (VTK's own default).
 pub const COMPRESSED_BLOCK: usize = 32768;
+
+/// The uncompressed size of a zlib block: [`COMPRESSED_BLOCK`], its name before LZ4 blocks.
+#[deprecated(note = "the block size of both compressions: use COMPRESSED_BLOCK")]
+pub const ZLIB_BLOCK: usize = COMPRESSED_BLOCK;
 
 /// The XML of a `.vtu` file being written and, in a binary format, its appended data: each
 /// binary array's `offset` attribute is filled in when the file is finished, so that pieces
@@ -1807,6 +1816,41 @@ mod block_tests {
             panic!("a structural model");
         };
         unilateral_analysis::analyze(&problem.model, &problem.settings).unwrap()
+    }
+
+    /// A pairs file refuses a non-finite displacement at a pair's node by itself, naming its
+    /// own array and file, in every format (in ascii the lines of its points at nodes are the
+    /// mesh file's text, copied: the mesh file refuses them too, but the pairs file does not
+    /// lean on it). Reference: the NaN put into the first pair's node B by hand.
+    #[test]
+    fn a_pairs_file_refuses_a_non_finite_displacement_by_itself() {
+        let a = sheet_pile_wall();
+        let model = a.condensed.model();
+        let mut r = a.results.clone().expect("results");
+        let node = model.pairs()[0].b.0;
+        r.displacements[node][1] = f64::NAN;
+        for format in [VtkFormat::Ascii, VtkFormat::Binary, VtkFormat::Lz4] {
+            let mesh = MeshGeometry::new(model, format);
+            let pairs = PairGeometry::new(model, &a, format);
+            let snap = Snapshot {
+                p: 0.5,
+                pairs: Cow::Borrowed(&a.solution.pairs),
+                results: Some(Cow::Borrowed(&r)),
+                reported: false,
+                pending: false,
+            };
+            let mut lines = Vec::new();
+            let body = mesh.vtu(model, &snap, Some(&mut lines));
+            let e = pairs
+                .vtu(&snap, (&body.xml, &lines))
+                .finish_parts("pairs_000.vtu")
+                .err()
+                .unwrap_or_else(|| panic!("{format:?}: the pairs file was not refused"));
+            let n = crate::NonFiniteOutput::in_io_error(&e).expect("a NonFiniteOutput");
+            assert_eq!(n.field, "the data array \"displacement\" in pairs_000.vtu");
+            assert!(n.value.is_nan(), "{format:?}");
+            assert!(body.finish_parts("mesh_000.vtu").is_err(), "{format:?}");
+        }
     }
 
     /// The blocks of frames cover every frame once, in order: a small first one, then blocks
