@@ -445,7 +445,7 @@ fn main() {
             a.extend(["--csv", "bcsv", "--report", "brep"]);
             row("beam+out", &run(&a, d));
         }
-        // `--vtk` in each of its formats: the default (ascii), binary and compressed.
+        // `--vtk` in each of its formats: the default (ascii), binary, compressed (zlib) and lz4.
         for (case, dir, format) in [
             ("beam+vtk", "avtk", None),
             ("beam+vtkb", "bvtk", Some("binary")),
