@@ -928,8 +928,7 @@ impl PairGeometry {
             return;
         }
         let out = &mut s.xml;
-        out.extend_from_slice(f64_head("displacement", &names, 3).as_bytes());
-        out.extend_from_slice(b" format=\"ascii\">\n");
+        ascii_open(out, "displacement", &names, 3);
         // A copied line's numbers are checked here too (its text is the mesh file's), so that
         // this file refuses them whatever is done with the mesh file.
         let mut bad = None;
@@ -945,7 +944,7 @@ impl PairGeometry {
                 _ => push_tuple(out, at(point), &mut bad),
             }
         }
-        out.extend_from_slice(b"        </DataArray>\n");
+        out.extend_from_slice(ASCII_CLOSE);
         s.note_value("displacement", bad);
     }
 
@@ -1092,6 +1091,18 @@ fn f64_array<const N: usize>(
     f64_array_at(b, name, names, tuples, None);
 }
 
+/// The end of an ascii array's tag, after its name and components.
+const ASCII_FORMAT: &[u8] = b" format=\"ascii\">\n";
+
+/// The end of an ascii array, after its lines.
+const ASCII_CLOSE: &[u8] = b"        </DataArray>\n";
+
+/// Opens an ascii `Float64` array: its tag up to its first line.
+fn ascii_open(s: &mut Vec<u8>, name: &str, names: &[&str], components: usize) {
+    s.extend_from_slice(f64_head(name, names, components).as_bytes());
+    s.extend_from_slice(ASCII_FORMAT);
+}
+
 /// The start of a `Float64` data array's tag, up to its format.
 fn f64_head(name: &str, names: &[&str], components: usize) -> String {
     let mut head = format!(
@@ -1136,7 +1147,7 @@ fn f64_array_at<const N: usize>(
     }
     let s = &mut b.xml;
     s.extend_from_slice(head.as_bytes());
-    s.extend_from_slice(b" format=\"ascii\">\n");
+    s.extend_from_slice(ASCII_FORMAT);
     let mut bad = None;
     for t in tuples {
         if let Some(v) = starts.as_deref_mut() {
@@ -1147,7 +1158,7 @@ fn f64_array_at<const N: usize>(
     if let Some(v) = starts {
         v.push(s.len());
     }
-    s.extend_from_slice(b"        </DataArray>\n");
+    s.extend_from_slice(ASCII_CLOSE);
     b.note_value(name, bad);
 }
 
@@ -1177,10 +1188,9 @@ fn copied_array(
     lines: std::ops::Range<usize>,
 ) {
     let s = &mut b.xml;
-    s.extend_from_slice(f64_head(name, names, components).as_bytes());
-    s.extend_from_slice(b" format=\"ascii\">\n");
+    ascii_open(s, name, names, components);
     s.extend_from_within(lines);
-    s.extend_from_slice(b"        </DataArray>\n");
+    s.extend_from_slice(ASCII_CLOSE);
 }
 
 /// An integer data array of VTK type `ty`, twelve values a line.

@@ -848,13 +848,29 @@ fn analyze_block_history(
     kn_mm: bool,
     pushes: &[(&str, f64)],
 ) -> Result<unilateral_analysis::HistoryAnalysis, unilateral_analysis::AnalysisError> {
-    let mut text = steel_block_on_a_spring(k, kn_mm)
+    let text = steel_block_on_a_spring(k, kn_mm)
         .replace("[[loads.constant.nodal]]", "[[loads.weight.nodal]]")
         .replace("[[loads.variable.nodal]]", "[[loads.push.nodal]]");
-    text.push_str("\n[[history]]\nname = \"weight\"\nfactors = { weight = 1.0 }\n");
+    analyze_with_history(&text, ("weight", "weight"), "push", pushes)
+}
+
+/// The model `model` (a model file's text) with a history, analysed: a first stage
+/// `first.0` of its load group `first.1` at 1, then the stages `pushes` (`(stage name,
+/// factor)`) of the load group `group`.
+fn analyze_with_history(
+    model: &str,
+    first: (&str, &str),
+    group: &str,
+    pushes: &[(&str, f64)],
+) -> Result<unilateral_analysis::HistoryAnalysis, unilateral_analysis::AnalysisError> {
+    let (stage, loads) = first;
+    let mut text = model.to_string();
+    text.push_str(&format!(
+        "\n[[history]]\nname = \"{stage}\"\nfactors = {{ {loads} = 1.0 }}\n"
+    ));
     for (name, f) in pushes {
         text.push_str(&format!(
-            "\n[[history]]\nname = \"{name}\"\nfactors = {{ push = {f} }}\n"
+            "\n[[history]]\nname = \"{name}\"\nfactors = {{ {group} = {f} }}\n"
         ));
     }
     let p = read("h.toml", &text).unwrap();
@@ -937,16 +953,7 @@ fn a_history_that_meets_a_singular_basis_at_a_tie_is_traced_again_by_the_relatio
         ("back 0.3", 0.3),
         ("push 2.5", 2.5),
     ];
-    let mut text = model.to_string();
-    text.push_str("\n[[history]]\nname = \"dead\"\nfactors = { constant = 1.0 }\n");
-    for (name, f) in pushes {
-        text.push_str(&format!(
-            "\n[[history]]\nname = \"{name}\"\nfactors = {{ variable = {f} }}\n"
-        ));
-    }
-    let p = read("h.toml", &text).unwrap();
-    let stages = p.history.clone().expect("a history");
-    let h = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+    let h = analyze_with_history(model, ("dead", "constant"), "variable", &pushes)
         .unwrap_or_else(|e| panic!("{e}"));
     let st = &h.history.stages;
     assert_eq!(st.len(), 5);
