@@ -965,16 +965,23 @@ impl PairGeometry {
         let pairs = &snap.pairs[..];
         let have = pairs.len() == self.m && snap.results.is_some();
         // Points 0..m are the B points of pairs 0..m in order, where a pair's force is its
-        // force on B: in ascii each cell array's text is its point array's first m lines,
-        // copied whole (each number formatted once).
+        // force on B, and the points after them are A points, whose numbers are their pair's
+        // (the force negated): in ascii each number is formatted once, at its B point; an A
+        // point's line and each cell array's text are copies of B points' lines.
         let mut lines: [std::ops::Range<usize>; 5] = Default::default();
         if let (true, Some(r)) = (have, snap.results.as_deref()) {
             s.push_str("      <PointData Scalars=\"state\" Vectors=\"force\">\n");
             self.displacements(&mut s, r, node_lines);
-            lines[4] = f64_array_lines(
+            let names = ["fx", "fy", "fz"];
+            let again = &self.point_pair[self.m..];
+            lines[4] = pair_point_array(
                 &mut s,
-                "force",
-                &["fx", "fy", "fz"],
+                ("force", &names),
+                (0..self.m).map(|i| {
+                    let f = self.force(i, &pairs[i]);
+                    [f[0], f[1], 0.0]
+                }),
+                (again, true),
                 self.point_pair
                     .iter()
                     .zip(&self.point_sign)
@@ -982,7 +989,6 @@ impl PairGeometry {
                         let f = self.force(i, &pairs[i]);
                         [sign * f[0], sign * f[1], 0.0]
                     }),
-                self.m,
             );
             int_array(
                 &mut s,
@@ -991,8 +997,13 @@ impl PairGeometry {
                 self.point_pair.iter().map(|&i| state_code(pairs[i].state)),
             );
             for (k, (name, f)) in PAIR_FIELDS.into_iter().enumerate() {
-                let values = self.point_pair.iter().map(|&i| [f(&pairs[i])]);
-                lines[k] = f64_array_lines(&mut s, name, &[], values, self.m);
+                lines[k] = pair_point_array(
+                    &mut s,
+                    (name, &[]),
+                    pairs.iter().map(|r| [f(r)]),
+                    (again, false),
+                    self.point_pair.iter().map(|&i| [f(&pairs[i])]),
+                );
             }
             s.append(&self.point_ids);
             s.push_str("      </PointData>\n");
@@ -1114,21 +1125,71 @@ fn f64_head(name: &str, names: &[&str], components: usize) -> String {
     head
 }
 
-/// [`f64_array`], returning in ascii where the text of its first `first` lines lies in the
-/// body's XML (for [`copied_array`]; empty in a binary format).
-fn f64_array_lines<const N: usize>(
+/// A point array of a pairs file: in ascii the lines of the B points (`b_points`, one a pair
+/// in order), then each A point's line copied from its pair's (`again`: the pair of each A
+/// point), each number negated where `negate`; returns where the B points' lines lie in the
+/// body's XML (for [`copied_array`]). In a binary format the array is `all` (every point's
+/// tuple in order) and the range is empty.
+fn pair_point_array<const N: usize>(
     b: &mut Body,
-    name: &str,
-    names: &[&str],
-    tuples: impl Iterator<Item = [f64; N]>,
-    first: usize,
+    (name, names): (&str, &[&str]),
+    b_points: impl Iterator<Item = [f64; N]>,
+    (again, negate): (&[usize], bool),
+    all: impl Iterator<Item = [f64; N]>,
 ) -> std::ops::Range<usize> {
-    let mut starts = Vec::new();
-    f64_array_at(b, name, names, tuples, Some(&mut starts));
-    match (starts.first(), starts.get(first).or(starts.last())) {
-        (Some(&a), Some(&z)) => a..z,
-        _ => 0..0,
+    if !b.is_ascii() {
+        f64_array(b, name, names, all);
+        return 0..0;
     }
+    let mut starts = Vec::new();
+    let s = &mut b.xml;
+    ascii_open(s, name, names, N);
+    let mut bad = None;
+    for t in b_points {
+        starts.push(s.len());
+        push_tuple(s, t, &mut bad);
+    }
+    starts.push(s.len());
+    let mut line = Vec::new();
+    for &i in again {
+        // (a pair's number is below m: `starts` has m + 1 entries)
+        let (Some(&a), Some(&z)) = (starts.get(i), starts.get(i + 1)) else {
+            continue;
+        };
+        if negate {
+            line.clear();
+            line.extend_from_slice(&s[a..z]);
+            push_negated(s, &line);
+        } else {
+            s.extend_from_within(a..z);
+        }
+    }
+    s.extend_from_slice(ASCII_CLOSE);
+    b.note_value(name, bad);
+    starts[0]..starts[starts.len() - 1]
+}
+
+/// Appends an ascii line of numbers (as [`num`] writes them, separated by spaces) with each
+/// number negated: [`num`]'s text of `−x` is `-` and its text of `x` (the digits of a number
+/// do not depend on its sign), and both zeros are `0`.
+fn push_negated(s: &mut Vec<u8>, line: &[u8]) {
+    for (k, word) in line.split(|&c| c == b' ' || c == b'\n').enumerate() {
+        if word.is_empty() {
+            continue;
+        }
+        if k > 0 {
+            s.push(b' ');
+        }
+        match word {
+            [b'-', rest @ ..] => s.extend_from_slice(rest),
+            b"0" => s.push(b'0'),
+            _ => {
+                s.push(b'-');
+                s.extend_from_slice(word);
+            }
+        }
+    }
+    s.push(b'\n');
 }
 
 /// [`f64_array`], recording in ascii into `starts` where each line's text starts in the body's
@@ -1179,7 +1240,7 @@ fn push_tuple<const N: usize>(s: &mut Vec<u8>, t: [f64; N], bad: &mut Option<f64
 }
 
 /// An ascii `Float64` array of `components` components whose lines are the text at `lines`
-/// in the body's XML, made by [`f64_array_lines`] (its numbers were checked there).
+/// in the body's XML, made by [`pair_point_array`] (its numbers were checked there).
 fn copied_array(
     b: &mut Body,
     name: &str,
@@ -1635,7 +1696,9 @@ fn zlib(bytes: &[u8]) -> io::Result<Vec<u8>> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_numbers, num_text as num, push_short, Body, VtkFormat};
+    use super::{
+        check_numbers, num_text as num, push_negated, push_short, push_tuple, Body, VtkFormat,
+    };
 
     /// The ascii text of a number reads back as the number (`0` for both zeros, no `.0` after
     /// a whole number), and the text of a negated number is the text with its sign changed:
@@ -1683,14 +1746,20 @@ mod tests {
             assert_eq!(back, x, "{t} for {:#018x}", x.to_bits());
             assert!(x != 0.0 || t == "0", "{t} for a zero");
             assert!(!t.ends_with(".0"), "{t}");
-            let mut direct = String::new();
-            num(&mut direct, -x);
-            let minus = match t.strip_prefix('-') {
-                _ if t == "0" => t.clone(),
-                Some(rest) => rest.to_string(),
-                None => format!("-{t}"),
+            // A pairs file's A points negate their B points' lines as text.
+            let line = |v: [f64; 3]| {
+                let mut s = Vec::new();
+                push_tuple(&mut s, v, &mut None);
+                s
             };
-            assert_eq!(minus, direct, "the negated text of {t}");
+            let mut negated = Vec::new();
+            push_negated(&mut negated, &line([x, 1.5, 0.0]));
+            let direct = line([-x, -1.5, -0.0]);
+            assert_eq!(
+                String::from_utf8_lossy(&negated),
+                String::from_utf8_lossy(&direct),
+                "the negated text of {t}"
+            );
         }
     }
 

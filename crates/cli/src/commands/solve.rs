@@ -177,30 +177,39 @@ fn no_breakpoints_option(args: &SolveArgs) -> Result<(), Failure> {
 }
 
 /// The step every kind of problem shares: the summary on stdout (unless the JSON goes there)
-/// with the timings so far, the other files (`files`: CSV, ParaView, report), then the JSON
-/// document with `timings.write` = the time spent on all of these (present only when something
-/// was written before the JSON). The JSON is written even when writing the other files failed;
-/// the first failure is the one returned.
-pub(crate) fn write_outputs<'a, D: Into<unilateral_output::PathDocument<'a>>>(
+/// with the timings so far, the other files (`files`: CSV, ParaView, report) while the JSON
+/// document's values are formed beside them on the thread pool (`json`: nothing it forms
+/// depends on the files), then the JSON document written with `timings.write` = the time spent
+/// on the other files (present only when something was written before the JSON). The JSON is
+/// written even when writing the other files failed; the first failure is the one returned.
+pub(crate) fn write_outputs<'a, D: Into<unilateral_output::PathDocument<'a>> + Send>(
     args: &SolveArgs,
     mut timings: Timings,
     summary: impl FnOnce() -> Result<String, unilateral_output::NonFiniteOutput>,
-    json: impl FnOnce() -> Result<D, Failure>,
-    files: impl FnOnce() -> Result<(), Failure>,
+    json: impl FnOnce() -> Result<D, Failure> + Send,
+    files: impl FnOnce() -> Result<(), Failure> + Send,
 ) -> Result<(), Failure> {
     let started = Instant::now();
     let to_stdout = args.json.as_deref() == Some(Path::new("-"));
     if !to_stdout {
         crate::output::out(&format!("{}{}", summary()?, timings_summary(&timings)));
     }
-    let written = files();
+    let wanted = args.json.is_some();
+    let (written, doc) = rayon::join(
+        || {
+            let written = files();
+            (written, started.elapsed())
+        },
+        || wanted.then(json),
+    );
+    let (written, elapsed) = written;
     if !to_stdout || args.csv.is_some() || args.vtk.is_some() || args.report.is_some() {
-        timings.write = Some(started.elapsed());
+        timings.write = Some(elapsed);
     }
-    let json_written = match &args.json {
-        Some(out) => json()
+    let json_written = match (&args.json, doc) {
+        (Some(out), Some(doc)) => doc
             .and_then(|doc| write_document(out, doc.into().map(|doc| with_timings(doc, &timings)))),
-        None => Ok(()),
+        _ => Ok(()),
     };
     written.and(json_written)
 }
