@@ -491,15 +491,25 @@ pub fn follow_history_judged(
         // carry the round-off of the slips it absorbed, can let the friction part leave first
         // (then the basis turns singular, or the trace reads a false mechanism, or its end
         // leaves friction on an open pair). After a failure the second trace is kept where it
-        // passes the check, whatever its ending; after a mechanism only where it completes
-        // the stage and passes the check: a genuine mechanism, which the second trace meets
-        // too, stays as the first found it.
+        // passes the check, whatever its ending; after a mechanism only where it passes the
+        // check and completes the stage or goes beyond the mechanism's load: a genuine
+        // mechanism, which the second trace meets too, stays as the first found it.
         let mut run = run;
-        let first_failed = failed(&run, &residual);
+        // A mechanism in which nothing moves is the formulation's, not the structure's (an
+        // open pair's two friction parts growing together): the trace failed.
+        let first_failed = failed(&run, &residual) || moves_nothing(&run.ending, m);
         if first_failed || matches!(run.ending, StageEnding::Mechanism(_)) {
             let again = solver.stage_related(&state, &d, judge);
             let (p2, r2) = assess(&again);
-            if !failed(&again, &r2) && (first_failed || again.ending == StageEnding::Completed) {
+            let further = match (&run.ending, &again.ending) {
+                (_, StageEnding::Completed) => true,
+                // A state checked beyond the first trace's mechanism disproves it (a
+                // genuine one the second trace meets too, at the same load to round-off).
+                (StageEnding::Mechanism(_), _) => again.s_end > run.s_end + BEYOND,
+                _ => false,
+            };
+            if !failed(&again, &r2) && !moves_nothing(&again.ending, m) && (first_failed || further)
+            {
                 (run, pairs, residual) = (again, p2, r2);
             }
         }
@@ -595,10 +605,21 @@ pub fn follow_history_judged(
                 None,
             ),
         };
-        // A state that fails its own check is not an answer: the program's fault.
-        let (status, reason) = if residual.max() > VERIFIED
-            && status != StageStatus::NumericalFailure
-        {
+        // A state that fails its own check is not an answer: the program's fault; nor is a
+        // mechanism in which nothing moves.
+        let (status, reason) = if moves_nothing(&run.ending, m) {
+            (
+                StageStatus::NumericalFailure,
+                Some(format!(
+                    "at s = {} of stage {} (`{}`) the trace read a mechanism in which no pair \
+                     moves (an open pair's two friction parts growing together): not an \
+                     answer; the program's fault, not the model's",
+                    run.s_end,
+                    k + 1,
+                    stage.name
+                )),
+            )
+        } else if residual.max() > VERIFIED && status != StageStatus::NumericalFailure {
             (
                 StageStatus::NumericalFailure,
                 Some(format!(
@@ -633,6 +654,38 @@ pub fn follow_history_judged(
     }
     Ok(out)
 }
+
+/// Whether a stage's ending is a mechanism whose mode moves no pair: every normal rate `dz_n`
+/// and every net slip rate `dz_t+ − dz_t−` below [`NULL_MODE`] of the mode's largest rate.
+/// The structure's motion is a linear function of those rates, so such a mode moves nothing:
+/// it is the split of an open pair's friction into two parts, which can grow together
+/// without any force or motion changing (both `x_t±` are zero where `x_n` is), not a
+/// mechanism of the structure.
+fn moves_nothing(ending: &StageEnding, m: usize) -> bool {
+    let StageEnding::Mechanism(mode) = ending else {
+        return false;
+    };
+    let dz = &mode.dz;
+    if dz.len() != 3 * m {
+        return false;
+    }
+    let top = dz.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let moved = (0..m).fold(0.0f64, |a, i| {
+        a.max(dz[i].abs()).max((dz[m + i] - dz[2 * m + i]).abs())
+    });
+    moved <= NULL_MODE * top
+}
+
+/// How far (in the stage's `s`) a second trace's checked state must lie beyond the first
+/// trace's mechanism to disprove it: far above the round-off of a load where both traces meet
+/// the same mechanism (1e-9 of the stage seen), far below a false mechanism's distance from
+/// the load the structure carries.
+const BEYOND: f64 = 1e-6;
+
+/// The share of a mechanism mode's largest rate below which its pairs' motion is taken as
+/// none ([`moves_nothing`]): far above the round-off of a mode normalised to 1 (1e-9 seen where
+/// only the friction split grows), far below the motion of a genuine mechanism (of order 1).
+const NULL_MODE: f64 = 1e-6;
 
 /// Pairs whose own friction times normal–tangential coupling reaches their tangential
 /// stiffness, `f·max(|R_nt|, |R_tn|) ≥ R_tt` on the diagonal. For one pair that is where a

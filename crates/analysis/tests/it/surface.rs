@@ -1716,3 +1716,129 @@ gap = "geometry"
     assert!((xi - 0.5).abs() < 1e-15);
     assert!((pairs[1].gap - 0.3).abs() < 1e-15);
 }
+
+/// A steel block (`nx × ny` elements, `b` wide and `h` high in metres, E = 200 GPa, 1 m thick)
+/// on the ground with friction `f`, a spring of `k` N/m at its heel, its weight `w` N on its
+/// top nodes and a push at its top right corner as `(factor, tipping factor)`: the model's
+/// text with its history (the weight, then the push to `push.0` × 10 kN), in N·m or kN·mm.
+/// By hand it tips about its toe at `P = w·b/(2h)` (the spring acts at the base, with no
+/// moment about the toe), the push's factor `push.1`.
+fn block_history_text(
+    (nx, ny, b, h): (usize, usize, f64, f64),
+    (f, k, w): (f64, f64, f64),
+    push: f64,
+    kn_mm: bool,
+) -> String {
+    let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    format!(
+        "units = \"{units}\"\n\
+         [[materials]]\nname = \"steel\"\nE = {e:e}\nnu = 0.3\nthickness = {l:e}\n\
+         [[blocks]]\nname = \"blk\"\norigin = [0.0, 0.0]\nwidth = {b:e}\nheight = {h:e}\n\
+         nx = {nx}\nny = {ny}\nmaterial = \"steel\"\nanalysis = \"plane_stress\"\n\
+         [[contact]]\nname = \"g\"\nfrom = \"ground\"\nto = \"blk.bottom\"\n\
+         normal = [0.0, 1.0]\nfriction = {f}\n\
+         [[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
+         [[loads.weight.nodal]]\nnodes = \"blk.top\"\nfy = {fy:e}\n\
+         [[loads.push.nodal]]\nnodes = \"blk.top_right\"\nfx = {fx:e}\n\
+         [[history]]\nname = \"weight\"\nfactors = {{ weight = 1.0 }}\n\
+         [[history]]\nname = \"push\"\nfactors = {{ push = {push} }}\n",
+        units = if kn_mm { "kN, mm" } else { "N, m" },
+        e = 2e11 * force / (length * length),
+        l = length,
+        b = b * length,
+        h = h * length,
+        k = k * force / length,
+        fy = -w / (nx + 1) as f64 * force,
+        fx = 10_000.0 * force,
+    )
+}
+
+/// Blocks of a generated sweep of histories (2896 runs) that slide, the heel carrying the
+/// spring, until the heel opens and then tip about the toe. Where the heel opened, the
+/// stage's trace let the heel's friction part leave before its normal force and read a
+/// mechanism whose mode moved nothing (the heel's two friction parts growing together): the
+/// stage ended there as a mechanism at 0.34–0.65 of the tipping load, exit 0. Such a mode is
+/// now no mechanism: the stage is traced again with the friction relations deciding the ties
+/// and ends in the mechanism at the tipping load by hand — the toe carrying the weight and
+/// `f·W`, the spring the rest, every pair slid `(P − f·W)/k` and every other pair open — in
+/// N·m and in kN·mm.
+#[test]
+fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
+    use unilateral_contact::StageStatus;
+    // (mesh and size, friction, spring, weight, push, units): x1009, x0767, x1226k, x0869k
+    let cases = [
+        ((7, 3, 1.0, 0.5), (0.25, 1e4, 8000.0), 0.96, false),
+        ((3, 1, 2.0, 1.0), (0.34, 1e4, 9000.0), 1.35, false),
+        ((5, 1, 1.0, 1.0), (0.3, 1e4, 10_000.0), 0.75, true),
+        ((6, 2, 1.0, 0.5), (0.2, 1e5, 8000.0), 1.2, true),
+    ];
+    for (mesh, (f, k, w), push, kn_mm) in cases {
+        let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}, kN·mm {kn_mm}");
+        let text = block_history_text(mesh, (f, k, w), push, kn_mm);
+        let p = read("h.toml", &text).unwrap();
+        let stages = p.history.clone().expect("a history");
+        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let st = &a.history.stages[1];
+        assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
+        let (nx, _, b, h) = mesh;
+        let tipping = w * b / (2.0 * h);
+        let load = 10_000.0 * push * st.s_end;
+        assert!(
+            (load - tipping).abs() < 1e-6 * tipping,
+            "{what}: the mechanism at {load}, by hand {tipping}"
+        );
+        let force = if kn_mm { 1e-3 } else { 1.0 };
+        let length = if kn_mm { 1e3 } else { 1.0 };
+        let slip = (tipping - f * w) / k * length;
+        let toe = format!("g.{}", nx + 1);
+        assert_tipped(&st.pairs, &toe, (w * force, f, slip), true, &what);
+    }
+}
+
+/// Blocks of the same sweep whose stage read a mechanism that moved nothing where the heel
+/// opens, and whose second trace (the relations deciding the ties) fails its check at the
+/// tipping load: such a stage ended as a mechanism at 0.31 and 0.41 of the tipping load (exit
+/// 0, a wrong answer). It is now a numerical failure (the program's fault, exit 1) — or, once
+/// the trace is right, the mechanism at the tipping load by hand; never a mechanism short of it.
+#[test]
+fn a_mechanism_that_moves_nothing_is_never_a_stages_answer() {
+    use unilateral_contact::StageStatus;
+    // x1413 (a push exactly to tipping), x0789
+    let cases = [
+        ((7, 1, 2.0, 1.0), (0.2, 1e4, 8000.0), 0.8),
+        ((4, 4, 1.0, 1.0), (0.2, 1000.0, 9000.0), 1.08),
+    ];
+    for (mesh, (f, k, w), push) in cases {
+        let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}");
+        let text = block_history_text(mesh, (f, k, w), push, false);
+        let p = read("h.toml", &text).unwrap();
+        let stages = p.history.clone().expect("a history");
+        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let st = &a.history.stages[1];
+        let (_, _, b, h) = mesh;
+        let tipping = w * b / (2.0 * h);
+        let load = 10_000.0 * push * st.s_end;
+        match st.status {
+            StageStatus::Mechanism => {
+                assert!(
+                    (load - tipping).abs() < 1e-6 * tipping,
+                    "{what}: a mechanism at {load}, by hand {tipping}"
+                );
+                let mode = st.mechanism.as_deref().unwrap_or_default();
+                assert!(
+                    mode.iter().any(|&(n, t)| n.abs().max(t.abs()) > 0.5),
+                    "{what}: a mode that moves nothing {mode:?}"
+                );
+            }
+            StageStatus::Completed => assert!(
+                (load - tipping).abs() < 1e-6 * tipping
+                    && push * 10_000.0 <= tipping * (1.0 + 1e-9),
+                "{what}: completed at {load}, tipping by hand at {tipping}"
+            ),
+            StageStatus::NumericalFailure => {}
+            ref other => panic!("{what}: {other:?} {:?}", st.reason),
+        }
+    }
+}
