@@ -3,6 +3,7 @@
 
 mod bad_models;
 mod beam_bearings;
+mod block_sweep;
 mod example1;
 mod example2;
 mod example3;

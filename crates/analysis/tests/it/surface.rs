@@ -10,7 +10,7 @@ use unilateral_fem::{Endpoint, Model};
 use unilateral_io::read_model;
 
 /// Writes `text` as `name` in a fresh directory and reads it as a model file.
-fn read(name: &str, text: &str) -> Result<unilateral_io::StructuralProblem, String> {
+pub(crate) fn read(name: &str, text: &str) -> Result<unilateral_io::StructuralProblem, String> {
     let dir = tempfile::tempdir().unwrap();
     let path: PathBuf = dir.path().join(name);
     std::fs::write(&path, text).unwrap();
@@ -1719,14 +1719,14 @@ gap = "geometry"
 
 /// A steel block (`nx × ny` elements, `b` wide and `h` high in metres, E = 200 GPa, 1 m thick)
 /// on the ground with friction `f`, a spring of `k` N/m at its heel, its weight `w` N on its
-/// top nodes and a push at its top right corner as `(factor, tipping factor)`: the model's
-/// text with its history (the weight, then the push to `push.0` × 10 kN), in N·m or kN·mm.
-/// By hand it tips about its toe at `P = w·b/(2h)` (the spring acts at the base, with no
-/// moment about the toe), the push's factor `push.1`.
-fn block_history_text(
+/// top nodes and a push of 10 kN at its top right corner: the model's text with its history
+/// (the weight, then stages `push1`, `push2`, … taking the push's factor to each of `pushes`
+/// in turn), in N·m or kN·mm. By hand it tips about its toe at `P = w·b/(2h)` (the spring acts
+/// at the base, with no moment about the toe), and pushed back about its heel at `−P`.
+pub(crate) fn block_history_text(
     (nx, ny, b, h): (usize, usize, f64, f64),
     (f, k, w): (f64, f64, f64),
-    push: f64,
+    pushes: &[f64],
     kn_mm: bool,
 ) -> String {
     let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
@@ -1740,8 +1740,7 @@ fn block_history_text(
          [[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
          [[loads.weight.nodal]]\nnodes = \"blk.top\"\nfy = {fy:e}\n\
          [[loads.push.nodal]]\nnodes = \"blk.top_right\"\nfx = {fx:e}\n\
-         [[history]]\nname = \"weight\"\nfactors = {{ weight = 1.0 }}\n\
-         [[history]]\nname = \"push\"\nfactors = {{ push = {push} }}\n",
+         [[history]]\nname = \"weight\"\nfactors = {{ weight = 1.0 }}\n{stages}",
         units = if kn_mm { "kN, mm" } else { "N, m" },
         e = 2e11 * force / (length * length),
         l = length,
@@ -1750,6 +1749,16 @@ fn block_history_text(
         k = k * force / length,
         fy = -w / (nx + 1) as f64 * force,
         fx = 10_000.0 * force,
+        stages = pushes
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                format!(
+                    "[[history]]\nname = \"push{}\"\nfactors = {{ push = {p} }}\n",
+                    i + 1
+                )
+            })
+            .collect::<String>(),
     )
 }
 
@@ -1774,7 +1783,7 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
     ];
     for (mesh, (f, k, w), push, kn_mm) in cases {
         let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}, kN·mm {kn_mm}");
-        let text = block_history_text(mesh, (f, k, w), push, kn_mm);
+        let text = block_history_text(mesh, (f, k, w), &[push], kn_mm);
         let p = read("h.toml", &text).unwrap();
         let stages = p.history.clone().expect("a history");
         let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
@@ -1811,7 +1820,7 @@ fn a_mechanism_that_moves_nothing_is_never_a_stages_answer() {
     ];
     for (mesh, (f, k, w), push) in cases {
         let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}");
-        let text = block_history_text(mesh, (f, k, w), push, false);
+        let text = block_history_text(mesh, (f, k, w), &[push], false);
         let p = read("h.toml", &text).unwrap();
         let stages = p.history.clone().expect("a history");
         let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
