@@ -497,9 +497,10 @@ pub fn follow_history_judged(
         let mut run = run;
         // A mechanism in which nothing moves is the formulation's, not the structure's (an
         // open pair's two friction parts growing together): the trace failed.
-        let first_failed = failed(&run, &residual) || moves_nothing(&run.ending, m);
+        let null_at = moves_nothing(&run.ending, m).then_some(run.s_end);
+        let first_failed = failed(&run, &residual) || null_at.is_some();
         if first_failed || matches!(run.ending, StageEnding::Mechanism(_)) {
-            let again = solver.stage_related(&state, &d, judge);
+            let again = solver.stage_related(&state, &d, judge.clone());
             let (p2, r2) = assess(&again);
             let further = match (&run.ending, &again.ending) {
                 (_, StageEnding::Completed) => true,
@@ -511,6 +512,15 @@ pub fn follow_history_judged(
             if !failed(&again, &r2) && !moves_nothing(&again.ending, m) && (first_failed || further)
             {
                 (run, pairs, residual) = (again, p2, r2);
+            } else if let Some(s_null) = null_at {
+                // The relations decide the tie where the first trace read its null mode, the
+                // stage's own rule the rest (where a block tips about its toe, the second trace
+                // ran past the tipping or turned back out of balance).
+                let third = solver.stage_related_until(&state, &d, judge, s_null + BEYOND);
+                let (p3, r3) = assess(&third);
+                if !failed(&third, &r3) && !moves_nothing(&third.ending, m) {
+                    (run, pairs, residual) = (third, p3, r3);
+                }
             }
         }
         let chain = stage_chain(&state, &run);

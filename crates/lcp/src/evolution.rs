@@ -257,7 +257,7 @@ impl EvolutionSolver {
         d: &[f64],
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
     ) -> StageRun {
-        self.trace_from(from, d, judge, false)
+        self.trace_from(from, d, judge, None)
     }
 
     /// [`EvolutionSolver::stage_judged`] traced with the row relations deciding every tie
@@ -274,7 +274,22 @@ impl EvolutionSolver {
         d: &[f64],
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
     ) -> StageRun {
-        self.trace_from(from, d, judge, true)
+        self.trace_from(from, d, judge, Some(f64::INFINITY))
+    }
+
+    /// [`EvolutionSolver::stage_related`] with the relations deciding the ties only up to
+    /// `s = until`, the stage's own rule after it: a third opinion for a caller whose first
+    /// trace went wrong at `until` (a tie there decided against the relations) and whose
+    /// second went wrong later (where the stage's own rule, not the relations, finds its way:
+    /// a block tipping about its toe).
+    pub fn stage_related_until(
+        &self,
+        from: &EvolutionState,
+        d: &[f64],
+        judge: Option<std::sync::Arc<crate::StructureJudge>>,
+        until: f64,
+    ) -> StageRun {
+        self.trace_from(from, d, judge, Some(until))
     }
 
     /// [`EvolutionSolver::trace_stage`] from `from`'s basis, the first trace of a stage
@@ -286,14 +301,15 @@ impl EvolutionSolver {
         from: &EvolutionState,
         d: &[f64],
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
-        related_ties: bool,
+        related_until: Option<f64>,
     ) -> StageRun {
+        let related_ties = related_until.is_some();
         match from.basis.clone() {
             Some(basis) if d.len() == self.n && !(related_ties && self.relations.is_empty()) => {
                 if !related_ties {
                     self.settings.progress.next_stage();
                 }
-                self.trace_stage(from, d, basis, judge, related_ties)
+                self.trace_stage(from, d, basis, judge, related_until)
             }
             _ => StageRun {
                 ending: StageEnding::Singular,
@@ -309,18 +325,19 @@ impl EvolutionSolver {
         }
     }
 
-    /// One trace of a stage from `from`'s basis `basis`. With `related_ties`, the row
-    /// relations decide the ties of every step ([`Pivoter::relations`], their `κ` taken as
-    /// zero: a stage's right-hand side carries the round-off of the slips it absorbed), not
-    /// only those of judged steps.
+    /// One trace of a stage from `from`'s basis `basis`. With `related_until`, the row
+    /// relations decide the ties of every step up to that `s` ([`Pivoter::relations`], their
+    /// `κ` taken as zero: a stage's right-hand side carries the round-off of the slips it
+    /// absorbed), not only those of judged steps.
     fn trace_stage(
         &self,
         from: &EvolutionState,
         d: &[f64],
         basis: crate::pivoting::basis::Basis,
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
-        related_ties: bool,
+        related_until: Option<f64>,
     ) -> StageRun {
+        let related_ties = related_until.is_some();
         let n = self.n;
         let progress = &self.settings.progress;
         let h = self.rhs_at(from);
@@ -538,6 +555,10 @@ impl EvolutionSolver {
                 s_now
             };
             progress.step(s);
+            if related_until.is_some_and(|until| s > until) && !piv.relations.is_empty() {
+                piv.relations = Default::default();
+                piv.zero_kappa = false;
+            }
             let (x, z) = point(&piv, &acc);
             points.push(EvolutionPoint {
                 s,

@@ -1768,15 +1768,19 @@ pub(crate) fn block_history_text(
 /// mechanism whose mode moved nothing (the heel's two friction parts growing together): the
 /// stage ended there as a mechanism at 0.34–0.65 of the tipping load, exit 0. Such a mode is
 /// now no mechanism: the stage is traced again with the friction relations deciding the ties
-/// and ends in the mechanism at the tipping load by hand — the toe carrying the weight and
-/// `f·W`, the spring the rest, every pair slid `(P − f·W)/k` and every other pair open — in
-/// N·m and in kN·mm.
+/// (for the 4 × 4 block, whose second trace turned back out of balance at the tipping, a third
+/// time with them only up to the heel's opening) and ends in the mechanism at the tipping load
+/// by hand — the toe carrying the weight and `f·W`, the spring the rest, every pair slid
+/// `(P − f·W)/k` and every other pair open — in N·m and in kN·mm.
 #[test]
 fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
     use unilateral_contact::StageStatus;
-    // (mesh and size, friction, spring, weight, push, units): x1009, x0767, x1226k, x0869k
+    // (mesh and size, friction, spring, weight, push, units): x1009, x0767, x1226k, x0869k,
+    // x0789 (its second trace turned back out of balance at the tipping: the third, with the
+    // relations only up to the heel's opening, tips)
     let cases = [
         ((7, 3, 1.0, 0.5), (0.25, 1e4, 8000.0), 0.96, false),
+        ((4, 4, 1.0, 1.0), (0.2, 1000.0, 9000.0), 1.08, false),
         ((3, 1, 2.0, 1.0), (0.34, 1e4, 9000.0), 1.35, false),
         ((5, 1, 1.0, 1.0), (0.3, 1e4, 10_000.0), 0.75, true),
         ((6, 2, 1.0, 0.5), (0.2, 1e5, 8000.0), 1.2, true),
@@ -1806,17 +1810,19 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
 }
 
 /// Blocks of the same sweep whose stage read a mechanism that moved nothing where the heel
-/// opens, and whose second trace (the relations deciding the ties) fails its check at the
-/// tipping load: such a stage ended as a mechanism at 0.31 and 0.41 of the tipping load (exit
-/// 0, a wrong answer). It is now a numerical failure (the program's fault, exit 1) — or, once
-/// the trace is right, the mechanism at the tipping load by hand; never a mechanism short of it.
+/// opens, and whose second and third traces (the relations deciding the ties throughout, and
+/// only up to the heel's opening) fail their checks at the tipping load: such a stage ended
+/// as a mechanism at 0.31 and 0.65 of the tipping load (exit 0, a wrong answer), both pushed
+/// exactly to it. It is now a numerical failure (the program's fault, exit 1) — or, once a
+/// trace is right, the stage completed or the mechanism at the tipping load by hand; never a
+/// mechanism short of it.
 #[test]
 fn a_mechanism_that_moves_nothing_is_never_a_stages_answer() {
     use unilateral_contact::StageStatus;
-    // x1413 (a push exactly to tipping), x0789
+    // x1413 (a push exactly to tipping), x0527
     let cases = [
         ((7, 1, 2.0, 1.0), (0.2, 1e4, 8000.0), 0.8),
-        ((4, 4, 1.0, 1.0), (0.2, 1000.0, 9000.0), 1.08),
+        ((3, 3, 2.0, 1.0), (0.4, 1e4, 8000.0), 0.8),
     ];
     for (mesh, (f, k, w), push) in cases {
         let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}");
