@@ -491,35 +491,40 @@ pub fn follow_history_judged(
         // carry the round-off of the slips it absorbed, can let the friction part leave first
         // (then the basis turns singular, or the trace reads a false mechanism, or its end
         // leaves friction on an open pair). After a failure the second trace is kept where it
-        // passes the check, whatever its ending; after a mechanism only where it passes the
-        // check and completes the stage or goes beyond the mechanism's load: a genuine
-        // mechanism, which the second trace meets too, stays as the first found it.
+        // passes the check, whatever its ending; after a mechanism only where it completes
+        // the stage and passes the check: a genuine mechanism, which the second trace meets
+        // too, stays as the first found it.
         let mut run = run;
         // A mechanism in which nothing moves is the formulation's, not the structure's (an
         // open pair's two friction parts growing together): the trace failed.
         let null_at = moves_nothing(&run.ending, m).then_some(run.s_end);
         let first_failed = failed(&run, &residual) || null_at.is_some();
+        // What the traces after the first did, where none was kept (for the failure's reason).
+        let mut retraced = Vec::new();
         if first_failed || matches!(run.ending, StageEnding::Mechanism(_)) {
             let again = solver.stage_related(&state, &d, judge.clone());
             let (p2, r2) = assess(&again);
-            let further = match (&run.ending, &again.ending) {
-                (_, StageEnding::Completed) => true,
-                // A state checked beyond the first trace's mechanism disproves it (a
-                // genuine one the second trace meets too, at the same load to round-off).
-                (StageEnding::Mechanism(_), _) => again.s_end > run.s_end + BEYOND,
-                _ => false,
-            };
-            if !failed(&again, &r2) && !moves_nothing(&again.ending, m) && (first_failed || further)
+            let completed = again.ending == StageEnding::Completed;
+            if !failed(&again, &r2)
+                && !moves_nothing(&again.ending, m)
+                && (first_failed || completed)
             {
                 (run, pairs, residual) = (again, p2, r2);
             } else if let Some(s_null) = null_at {
+                retraced.push(retrace_note(
+                    "with the relations deciding every tie",
+                    &again,
+                    &r2,
+                ));
                 // The relations decide the tie where the first trace read its null mode, the
                 // stage's own rule the rest (where a block tips about its toe, the second trace
                 // ran past the tipping or turned back out of balance).
-                let third = solver.stage_related_until(&state, &d, judge, s_null + BEYOND);
+                let third = solver.stage_related_until(&state, &d, judge, s_null + PAST_NULL);
                 let (p3, r3) = assess(&third);
                 if !failed(&third, &r3) && !moves_nothing(&third.ending, m) {
                     (run, pairs, residual) = (third, p3, r3);
+                } else {
+                    retraced.push(retrace_note("with them only up to that load", &third, &r3));
                 }
             }
         }
@@ -617,17 +622,23 @@ pub fn follow_history_judged(
         };
         // A state that fails its own check is not an answer: the program's fault; nor is a
         // mechanism in which nothing moves.
-        let (status, reason) = if moves_nothing(&run.ending, m) {
+        let (status, reason, mechanism) = if moves_nothing(&run.ending, m) {
             (
                 StageStatus::NumericalFailure,
                 Some(format!(
                     "at s = {} of stage {} (`{}`) the trace read a mechanism in which no pair \
                      moves (an open pair's two friction parts growing together): not an \
-                     answer; the program's fault, not the model's",
+                     answer{}; the program's fault, not the model's",
                     run.s_end,
                     k + 1,
-                    stage.name
+                    stage.name,
+                    if retraced.is_empty() {
+                        String::new()
+                    } else {
+                        format!(" (traced again {})", retraced.join("; "))
+                    }
                 )),
+                None,
             )
         } else if residual.max() > VERIFIED && status != StageStatus::NumericalFailure {
             (
@@ -640,9 +651,10 @@ pub fn follow_history_judged(
                     stage.name,
                     residual.max()
                 )),
+                mechanism,
             )
         } else {
-            (status, reason)
+            (status, reason, mechanism)
         };
         out.stages.push(StageSolution {
             stage: k + 1,
@@ -686,11 +698,26 @@ fn moves_nothing(ending: &StageEnding, m: usize) -> bool {
     moved <= NULL_MODE * top
 }
 
-/// How far (in the stage's `s`) a second trace's checked state must lie beyond the first
-/// trace's mechanism to disprove it: far above the round-off of a load where both traces meet
-/// the same mechanism (1e-9 of the stage seen), far below a false mechanism's distance from
-/// the load the structure carries.
-const BEYOND: f64 = 1e-6;
+/// How far past the load of a first trace's null mode (in the stage's `s`) the third trace
+/// keeps the relations deciding its ties: past the round-off of the load where the traces
+/// meet the same tie (1e-9 of the stage seen), short of what follows it.
+const PAST_NULL: f64 = 1e-6;
+
+/// What a trace after a stage's first did, for the reason of a stage none of them answered.
+fn retrace_note(how: &str, run: &StageRun, r: &HistoryResidual) -> String {
+    let ending = match run.ending {
+        StageEnding::Completed => "completed the stage",
+        StageEnding::Mechanism(_) => "ended in a mechanism",
+        StageEnding::TurnsBack => "turned back",
+        StageEnding::IterationLimit => "reached the pivot cap",
+        StageEnding::Singular => "met a singular basis",
+    };
+    format!(
+        "{how}: {ending} at s = {}, largest relative residual {:.1e}",
+        run.s_end,
+        r.max()
+    )
+}
 
 /// The share of a mechanism mode's largest rate below which its pairs' motion is taken as
 /// none ([`moves_nothing`]): far above the round-off of a mode normalised to 1 (1e-9 seen where
