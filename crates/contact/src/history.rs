@@ -651,7 +651,7 @@ pub fn follow_history_judged(
                     stage.name,
                     residual.max()
                 )),
-                mechanism,
+                None,
             )
         } else {
             (status, reason, mechanism)
@@ -823,9 +823,16 @@ impl Reader<'_> {
         let xs: f64 = pairs.iter().fold(f64::MIN_POSITIVE, |a, p| {
             a.max(p.x_n.abs()).max(p.x_t.abs())
         });
+        // The mutual displacements' scale: the state's, or the last segment's slips where
+        // those are larger (a block slid back to where it started: its state's slips are the
+        // round-off of the centimetres it slid, the scale of their errors).
+        let zi = &self.units;
         let zs: f64 = pairs.iter().fold(f64::MIN_POSITIVE, |a, p| {
             a.max(p.z_n.abs()).max(p.z_t.abs())
         });
+        let zs = inc[m..]
+            .iter()
+            .fold(zs, |a, &d| a.max(zi.user_displacement(d).abs()));
         let mut equation = 0.0f64;
         // The sums of the terms that form each pair's normal and tangential force: a sign
         // condition is judged against their round-off too (below): an open pair's tangential
@@ -870,7 +877,6 @@ impl Reader<'_> {
         }
         let mut complementarity = 0.0f64;
         let mut feasibility = 0.0f64;
-        let zi = &self.units;
         for (i, p) in pairs.iter().enumerate() {
             let f = zone.friction[i];
             // Each force against the largest force, or where the terms that form it (`terms`,

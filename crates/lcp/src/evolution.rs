@@ -277,8 +277,9 @@ impl EvolutionSolver {
         self.trace_from(from, d, judge, Some(f64::INFINITY))
     }
 
-    /// [`EvolutionSolver::stage_related`] with the relations deciding the ties only up to
-    /// `s = until`, the stage's own rule after it: a third opinion for a caller whose first
+    /// [`EvolutionSolver::stage_related`] with the relations deciding the ties of the steps
+    /// that start at or before `s = until` (the landing of the step that crosses it too), the
+    /// stage's own rule after them: a third opinion for a caller whose first
     /// trace went wrong at `until` (a tie there decided against the relations) and whose
     /// second went wrong later (where the stage's own rule, not the relations, finds its way:
     /// a block tipping about its toe).

@@ -67,6 +67,12 @@ fn generated_block_histories_end_only_at_the_tipping_load() {
         let mut from = 0.0;
         for (st, &to) in a.history.stages[1..].iter().zip(&pushes) {
             let load = from + st.s_end * (to - from);
+            // Only a mechanism has a mode.
+            assert!(
+                st.status == StageStatus::Mechanism || st.mechanism.is_none(),
+                "{what}: {:?} with a mechanism's mode",
+                st.status
+            );
             let at_tipping = (load.abs() - tip).abs() <= 1e-5 * tip;
             match st.status {
                 StageStatus::Completed => {

@@ -1876,3 +1876,58 @@ fn a_mechanism_that_moves_nothing_is_never_a_stages_answer() {
         }
     }
 }
+
+/// A 2 × 1 block (2 m wide, 1 m high, W = 8 kN, friction 0.5) on a 1e5 N/m spring, pushed to
+/// 6.96 kN (it slides (6960 − 4000)/1e5 = 2.96 cm) and then back to −4 kN, where by hand it
+/// has slid back to where it started: the spring's force `P + f·W` is zero, and the pairs
+/// in contact carry W and slip back with their friction f·W = 4 kN in all. The stage's check
+/// judged the last segment's slips (2.96 cm) against the state's mutual displacements (1e-8
+/// m, the round-off of those centimetres) and failed it by 1.4e-6 (exit 1; 68 runs of a sweep
+/// of 2896 failed so, on stiff springs): the scale is now the larger of the two. In N·m and
+/// kN·mm.
+#[test]
+fn a_block_slid_back_to_where_it_started_passes_its_check() {
+    use unilateral_contact::StageStatus;
+    for kn_mm in [false, true] {
+        let what = format!("kN·mm {kn_mm}");
+        let text = block_history_text((2, 1, 2.0, 1.0), (0.5, 1e5, 8000.0), &[0.696, -0.4], kn_mm);
+        let p = read("h.toml", &text).unwrap();
+        let stages = p.history.clone().expect("a history");
+        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let pushed = &a.history.stages[1];
+        assert_eq!(
+            pushed.status,
+            StageStatus::Completed,
+            "{what}: {:?}",
+            pushed.reason
+        );
+        // The heel, which carries the spring, by balance; the other pairs within the block's
+        // strain of it.
+        let slid = 0.0296 * length;
+        for r in &pushed.pairs {
+            let within = if r.name == "g.1" { 1e-6 } else { 1e-4 };
+            assert!((r.z_t - slid).abs() < within * slid, "{what}: {r:?}");
+        }
+        let back = &a.history.stages[2];
+        assert_eq!(
+            back.status,
+            StageStatus::Completed,
+            "{what}: {:?}",
+            back.reason
+        );
+        let (w, fw) = (8000.0 * force, 4000.0 * force);
+        let n: f64 = back.pairs.iter().map(|r| r.x_n).sum();
+        let t: f64 = back.pairs.iter().map(|r| r.x_t).sum();
+        assert!((n - w).abs() < 1e-6 * w, "{what}: ΣN = {n}");
+        assert!((t - fw).abs() < 1e-6 * w, "{what}: Σx_t = {t}");
+        for r in &back.pairs {
+            assert!(r.z_t.abs() < 1e-6 * slid, "{what}: {r:?}");
+            assert!(
+                r.x_t <= 0.5 * r.x_n * (1.0 + 1e-9) + 1e-9 * w,
+                "{what}: {r:?}"
+            );
+        }
+    }
+}
