@@ -830,8 +830,9 @@ impl Reader<'_> {
         let zs: f64 = pairs.iter().fold(f64::MIN_POSITIVE, |a, p| {
             a.max(p.z_n.abs()).max(p.z_t.abs())
         });
-        let zs = inc[m..]
+        let zs = inc
             .iter()
+            .skip(m)
             .fold(zs, |a, &d| a.max(zi.user_displacement(d).abs()));
         let mut equation = 0.0f64;
         // The sums of the terms that form each pair's normal and tangential force: a sign
