@@ -118,6 +118,22 @@ pub struct StageRun {
     pub last_increment: Vec<f64>,
     /// Pivots spent.
     pub pivots: usize,
+    /// For a completed stage, its end refined once from the data (a second opinion: the values
+    /// at the end are moved there by hand along the last column).
+    pub refined: Option<RefinedEnd>,
+}
+
+/// The end of a completed stage with its values refined once from the data, the driver
+/// non-basic at the stage's end (`Pivoter::refine_with_driver_at`): the fields of a
+/// [`StageRun`] that change.
+#[derive(Debug, Clone)]
+pub struct RefinedEnd {
+    /// The `x` at the end.
+    pub x: Vec<f64>,
+    /// The `z` at the end.
+    pub z: Vec<f64>,
+    /// The increments of the last segment.
+    pub last_increment: Vec<f64>,
 }
 
 /// The evolution solver: the problem checked and equilibrated once.
@@ -322,6 +338,7 @@ impl EvolutionSolver {
                 },
                 last_increment: vec![0.0; self.n],
                 pivots: 0,
+                refined: None,
             },
         }
     }
@@ -583,13 +600,16 @@ impl EvolutionSolver {
             piv.cols.driver_real(piv.driver_value_scaled())
         };
         // The increments of the last segment: the incremental values since the last rebase.
-        let mut last = vec![0.0; n];
-        for (slot, &v) in piv.basis.slot_var.iter().enumerate() {
-            if v >= n && v < 2 * n && reset[v - n] {
-                last[v - n] = piv.beta[slot].max(0.0);
+        let increments = |piv: &Pivoter| {
+            let mut last = vec![0.0; n];
+            for (slot, &v) in piv.basis.slot_var.iter().enumerate() {
+                if v >= n && v < 2 * n && reset[v - n] {
+                    last[v - n] = piv.beta[slot].max(0.0);
+                }
             }
-        }
-        let last_increment = self.prep.scaling.unscale_z(&piv.cols.values(&last));
+            self.prep.scaling.unscale_z(&piv.cols.values(&last))
+        };
+        let last_increment = increments(&piv);
         // A mechanism holds the state of the last step that moved, as that step formed it
         // (after its rebase, refined from the data): judging the ray refactorises the basis and
         // forms the values afresh without the refinement, and pivots of no step may follow
@@ -608,6 +628,15 @@ impl EvolutionSolver {
             .map(|(l, di)| l + s_end * di)
             .collect();
         let basis = completed.then(|| piv.basis.clone());
+        let refined = completed.then(|| {
+            piv.refine_with_driver_at(target);
+            let (x, z) = point(&piv, &acc);
+            RefinedEnd {
+                x,
+                z,
+                last_increment: increments(&piv),
+            }
+        });
         StageRun {
             ending,
             s_end,
@@ -615,6 +644,7 @@ impl EvolutionSolver {
             end: EvolutionState { load, x, z, basis },
             last_increment,
             pivots: piv.pivots,
+            refined,
         }
     }
 }

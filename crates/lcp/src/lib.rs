@@ -58,7 +58,8 @@ mod var;
 
 pub use error::{LcpError, SettingsError};
 pub use evolution::{
-    EvolutionPoint, EvolutionProblem, EvolutionSolver, EvolutionState, StageEnding, StageRun,
+    EvolutionPoint, EvolutionProblem, EvolutionSolver, EvolutionState, RefinedEnd, StageEnding,
+    StageRun,
 };
 pub use lemke::solve_lcp;
 pub use path::{

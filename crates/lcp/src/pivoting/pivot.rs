@@ -1204,6 +1204,21 @@ impl<'a> Pivoter<'a> {
             .max(f64::MIN_POSITIVE);
     }
 
+    /// The basic values refined from the data with the driver non-basic at `t` (the columns'
+    /// units): the right-hand side becomes `h + t·g` (the driver's column is `−g`), and the
+    /// values are refined once where they miss it beyond round-off
+    /// ([`Pivoter::refine_values_beyond_round_off`]). For the end of a stage, whose values
+    /// were moved there by hand along the last column and whose driver then left the basis.
+    pub fn refine_with_driver_at(&mut self, t: f64) {
+        let cols = self.cols.to_mut();
+        for (h, g) in cols.h.iter_mut().zip(&cols.g) {
+            *h += t * g;
+        }
+        self.next_values = None;
+        self.next_solve = None;
+        self.refine_values_beyond_round_off();
+    }
+
     /// Restarts the lexicographic rule from the current basis: the perturbation becomes `B ε`,
     /// each basic variable perturbed by its own power of `ε` — the `x`'s in the order of the
     /// rows' priority, then the `z`'s in the same order, the driver last — which is
