@@ -1209,7 +1209,10 @@ impl<'a> Pivoter<'a> {
     /// values are refined once where they miss it beyond round-off
     /// ([`Pivoter::refine_values_beyond_round_off`]). For the end of a stage, whose values
     /// were moved there by hand along the last column and whose driver then left the basis.
+    /// The right-hand side then holds the driver's value: the tableau is for reading values
+    /// only (a further pivot would count the load twice).
     pub fn refine_with_driver_at(&mut self, t: f64) {
+        debug_assert!(self.driver_slot().is_none(), "the driver is non-basic");
         let cols = self.cols.to_mut();
         for (h, g) in cols.h.iter_mut().zip(&cols.g) {
             *h += t * g;
