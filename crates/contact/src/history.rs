@@ -523,6 +523,9 @@ pub fn follow_history_judged(
         // open pair's two friction parts growing together): the trace failed.
         let null_at = moves_nothing(&run.ending, m).then_some(run.s_end);
         let first_failed = failed(&run, &residual) || null_at.is_some();
+        // Where the first trace went wrong: a null mode's load, or the load of a singular
+        // basis (met after a pair's opening tie was decided for its friction part).
+        let wrong_at = null_at.or((run.ending == StageEnding::Singular).then_some(run.s_end));
         // What the traces after the first did, where none was kept (for the failure's reason).
         let mut retraced = Vec::new();
         if first_failed || matches!(run.ending, StageEnding::Mechanism(_)) {
@@ -534,16 +537,17 @@ pub fn follow_history_judged(
                 && (first_failed || completed)
             {
                 (run, pairs, residual) = (again, p2, r2);
-            } else if let Some(s_null) = null_at {
+            } else if let Some(s_wrong) = wrong_at {
                 retraced.push(retrace_note(
                     "with the relations deciding every tie",
                     &again,
                     &r2,
                 ));
-                // The relations decide the tie where the first trace read its null mode, the
-                // stage's own rule the rest (where a block tips about its toe, the second trace
-                // ran past the tipping or turned back out of balance).
-                let third = solver.stage_related_until(&state, &d, judge, s_null + PAST_NULL);
+                // The relations decide the ties up to where the first trace went wrong (its
+                // null mode, or its singular basis), the stage's own rule the rest (where a
+                // block tips about its toe, the second trace ran past the tipping or turned
+                // back out of balance).
+                let third = solver.stage_related_until(&state, &d, judge, s_wrong + PAST_NULL);
                 let (p3, r3) = assess(&third);
                 if !failed(&third, &r3) && !moves_nothing(&third.ending, m) {
                     (run, pairs, residual) = (third, p3, r3);

@@ -1777,10 +1777,12 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
     use unilateral_contact::StageStatus;
     // (mesh and size, friction, spring, weight, push, units): x1009, x0767, x1226k, x0869k,
     // x0789 (its second trace turned back out of balance at the tipping: the third, with the
-    // relations only up to the heel's opening, tips)
+    // relations only up to the heel's opening, tips), x0724k (its first trace met a singular
+    // basis, its second failed: the third tips)
     let cases = [
         ((7, 3, 1.0, 0.5), (0.25, 1e4, 8000.0), 0.96, false),
         ((4, 4, 1.0, 1.0), (0.2, 1000.0, 9000.0), 0.54, false),
+        ((7, 3, 2.0, 1.0), (0.34, 562.0, 10_000.0), 1.2, true),
         ((3, 1, 2.0, 1.0), (0.34, 1e4, 9000.0), 1.35, false),
         ((5, 1, 1.0, 1.0), (0.3, 1e4, 10_000.0), 0.75, true),
         ((6, 2, 1.0, 0.5), (0.2, 1e5, 8000.0), 1.2, true),
