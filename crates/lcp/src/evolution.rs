@@ -355,7 +355,6 @@ impl EvolutionSolver {
         judge: Option<std::sync::Arc<crate::StructureJudge>>,
         related_until: Option<f64>,
     ) -> StageRun {
-        let related_ties = related_until.is_some();
         let n = self.n;
         let progress = &self.settings.progress;
         let h = self.rhs_at(from);
@@ -368,7 +367,7 @@ impl EvolutionSolver {
             self.settings.priority(n),
             self.settings.refactor_interval,
         );
-        if related_ties {
+        if related_until.is_some() {
             piv.relations = self.relations.clone();
             piv.zero_kappa = true;
         }

@@ -4,7 +4,7 @@
 
 use unilateral_contact::StageStatus;
 
-use crate::surface::{block_history_text, read};
+use crate::surface::{analyze_history_text, block_history_text, read};
 
 /// A replayable sequence of numbers in `[0, 1)`.
 struct Sequence(u64);
@@ -21,6 +21,43 @@ impl Sequence {
     fn pick<T: Copy>(&mut self, of: &[T]) -> T {
         of[((self.next() * of.len() as f64) as usize).min(of.len() - 1)]
     }
+
+    /// The next generated block: meshes 2–8 × 1–4, three proportions, friction 0.2–0.5,
+    /// springs of 100 N/m to 1e5 N/m, weights of 8–10 kN.
+    fn block(&mut self) -> Block {
+        let mesh = (
+            2 + (self.next() * 7.0) as usize,
+            1 + (self.next() * 4.0) as usize,
+        );
+        let (b, h) = self.pick(&[(1.0, 0.5), (2.0, 1.0), (1.0, 1.0)]);
+        let f = ((0.2 + 0.3 * self.next()) * 100.0).round() / 100.0;
+        let k = self.pick(&[100.0, 178.0, 300.0, 562.0, 1000.0, 1e4, 1e5]);
+        let w = (8000.0 + 2000.0 * self.next()).round();
+        Block {
+            mesh,
+            size: (b, h),
+            f,
+            k,
+            w,
+            tip: w * b / (2.0 * h) / 10_000.0,
+        }
+    }
+}
+
+/// A generated steel block ([`block_history_text`]'s parameters).
+struct Block {
+    /// Elements along the base and up the height.
+    mesh: (usize, usize),
+    /// Width and height, m.
+    size: (f64, f64),
+    /// Friction coefficient.
+    f: f64,
+    /// The spring at the heel, N/m.
+    k: f64,
+    /// Weight, N.
+    w: f64,
+    /// The push's factor (of 10 kN) at which it tips by hand, `w·b/(2h)`.
+    tip: f64,
 }
 
 /// 600 steel blocks (meshes 2–8 × 1–4, three proportions, friction 0.2–0.5, springs of
@@ -36,15 +73,14 @@ fn generated_block_histories_end_only_at_the_tipping_load() {
     let mut seq = Sequence(35);
     let (mut answered, mut tipped, mut failed) = (0, 0, 0);
     for case in 0..600 {
-        let mesh = (
-            2 + (seq.next() * 7.0) as usize,
-            1 + (seq.next() * 4.0) as usize,
-        );
-        let (b, h) = seq.pick(&[(1.0, 0.5), (2.0, 1.0), (1.0, 1.0)]);
-        let f = ((0.2 + 0.3 * seq.next()) * 100.0).round() / 100.0;
-        let k = seq.pick(&[100.0, 178.0, 300.0, 562.0, 1000.0, 1e4, 1e5]);
-        let w = (8000.0 + 2000.0 * seq.next()).round();
-        let tip = w * b / (2.0 * h) / 10_000.0;
+        let Block {
+            mesh,
+            size: (b, h),
+            f,
+            k,
+            w,
+            tip,
+        } = seq.block();
         let push = tip * seq.pick(&[0.5, 0.93, 0.99, 1.0, 1.2, 1.5]);
         let third = seq.pick(&[None, Some(0.0), Some(-0.5 * tip)]);
         let kn_mm = case % 2 == 1;
@@ -54,10 +90,8 @@ fn generated_block_histories_end_only_at_the_tipping_load() {
              {pushes:?} (tipping at {tip}), kN·mm {kn_mm}"
         );
         let text = block_history_text((mesh.0, mesh.1, b, h), (f, k, w), &pushes, kn_mm);
-        let p = read("sweep.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"));
-        let stages = p.history.clone().expect("a history");
         // A refusal (slips beyond what double precision resolves) is no answer either.
-        let a = match unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine) {
+        let a = match analyze_history_text(&text) {
             Ok(a) => a,
             Err(_) => {
                 failed += 1;
@@ -117,15 +151,14 @@ fn generated_block_paths_end_only_at_the_tipping_load() {
     let mut seq = Sequence(3035);
     let (mut answered, mut failed) = (0, 0);
     for case in 0..300 {
-        let mesh = (
-            2 + (seq.next() * 7.0) as usize,
-            1 + (seq.next() * 4.0) as usize,
-        );
-        let (b, h) = seq.pick(&[(1.0, 0.5), (2.0, 1.0), (1.0, 1.0)]);
-        let f = ((0.2 + 0.3 * seq.next()) * 100.0).round() / 100.0;
-        let k = seq.pick(&[100.0, 178.0, 300.0, 562.0, 1000.0, 1e4, 1e5]);
-        let w = (8000.0 + 2000.0 * seq.next()).round();
-        let tip = w * b / (2.0 * h) / 10_000.0;
+        let Block {
+            mesh,
+            size: (b, h),
+            f,
+            k,
+            w,
+            tip,
+        } = seq.block();
         let target = tip * seq.pick(&[0.5, 0.93, 0.99, 1.0, 1.2, 1.5]);
         let follow = seq.pick(&[Follow::ToTarget, Follow::ToEnd]);
         let kn_mm = case % 2 == 1;

@@ -873,9 +873,7 @@ fn analyze_with_history(
             "\n[[history]]\nname = \"{name}\"\nfactors = {{ {group} = {f} }}\n"
         ));
     }
-    let p = read("h.toml", &text).unwrap();
-    let stages = p.history.clone().expect("a history");
-    unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+    analyze_history_text(&text)
 }
 
 /// The steel block's history — its weight, then a push to 1.7 or 1.9 — on a stiff spring and on
@@ -1762,6 +1760,30 @@ pub(crate) fn block_history_text(
     )
 }
 
+/// A model file's text with its history, read and analysed.
+pub(crate) fn analyze_history_text(
+    text: &str,
+) -> Result<unilateral_analysis::HistoryAnalysis, unilateral_analysis::AnalysisError> {
+    let p = read("h.toml", text).unwrap_or_else(|e| panic!("{e}"));
+    let stages = p.history.clone().expect("a history");
+    unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
+}
+
+/// A block's stage that pushed it back completed with its pairs carrying the weight `w` and,
+/// slipping back, the friction `fw` in all.
+fn assert_slid_back(st: &unilateral_contact::StageSolution, (w, fw): (f64, f64), what: &str) {
+    assert_eq!(
+        st.status,
+        unilateral_contact::StageStatus::Completed,
+        "{what}: {:?}",
+        st.reason
+    );
+    let n: f64 = st.pairs.iter().map(|r| r.x_n).sum();
+    let t: f64 = st.pairs.iter().map(|r| r.x_t).sum();
+    assert!((n - w).abs() < 1e-6 * w, "{what}: ΣN = {n}");
+    assert!((t - fw).abs() < 1e-6 * w, "{what}: Σx_t = {t}");
+}
+
 /// Blocks of a generated sweep of histories (2896 runs) that slide, the heel carrying the
 /// spring, until the heel opens and then tip about the toe. Where the heel opened, the
 /// stage's trace let the heel's friction part leave before its normal force and read a
@@ -1790,10 +1812,7 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
     for (mesh, (f, k, w), push, kn_mm) in cases {
         let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}, kN·mm {kn_mm}");
         let text = block_history_text(mesh, (f, k, w), &[push], kn_mm);
-        let p = read("h.toml", &text).unwrap();
-        let stages = p.history.clone().expect("a history");
-        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
         let st = &a.history.stages[1];
         assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
         let (nx, _, b, h) = mesh;
@@ -1846,10 +1865,7 @@ fn a_mechanism_that_moves_nothing_is_never_a_stages_answer() {
     for (mesh, (f, k, w), push) in cases {
         let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}");
         let text = block_history_text(mesh, (f, k, w), &[push], false);
-        let p = read("h.toml", &text).unwrap();
-        let stages = p.history.clone().expect("a history");
-        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
         let st = &a.history.stages[1];
         let (_, _, b, h) = mesh;
         let tipping = w * b / (2.0 * h);
@@ -1893,10 +1909,7 @@ fn a_block_slid_back_to_where_it_started_passes_its_check() {
     for kn_mm in [false, true] {
         let what = format!("kN·mm {kn_mm}");
         let text = block_history_text((2, 1, 2.0, 1.0), (0.5, 1e5, 8000.0), &[0.696, -0.4], kn_mm);
-        let p = read("h.toml", &text).unwrap();
-        let stages = p.history.clone().expect("a history");
-        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
         let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
         let pushed = &a.history.stages[1];
         assert_eq!(
@@ -1913,17 +1926,8 @@ fn a_block_slid_back_to_where_it_started_passes_its_check() {
             assert!((r.z_t - slid).abs() < within * slid, "{what}: {r:?}");
         }
         let back = &a.history.stages[2];
-        assert_eq!(
-            back.status,
-            StageStatus::Completed,
-            "{what}: {:?}",
-            back.reason
-        );
-        let (w, fw) = (8000.0 * force, 4000.0 * force);
-        let n: f64 = back.pairs.iter().map(|r| r.x_n).sum();
-        let t: f64 = back.pairs.iter().map(|r| r.x_t).sum();
-        assert!((n - w).abs() < 1e-6 * w, "{what}: ΣN = {n}");
-        assert!((t - fw).abs() < 1e-6 * w, "{what}: Σx_t = {t}");
+        let w = 8000.0 * force;
+        assert_slid_back(back, (w, 4000.0 * force), &what);
         for r in &back.pairs {
             assert!(r.z_t.abs() < 1e-6 * slid, "{what}: {r:?}");
             assert!(
@@ -1943,27 +1947,14 @@ fn a_block_slid_back_to_where_it_started_passes_its_check() {
 /// check is now checked again so (in N·m; in kN·mm the end passed as it was).
 #[test]
 fn a_block_pushed_back_past_its_start_ends_its_stage_by_hand() {
-    use unilateral_contact::StageStatus;
     for kn_mm in [false, true] {
         let what = format!("kN·mm {kn_mm}");
         let text = block_history_text((2, 3, 2.0, 1.0), (0.2, 1e5, 8000.0), &[0.688, -0.4], kn_mm);
-        let p = read("h.toml", &text).unwrap();
-        let stages = p.history.clone().expect("a history");
-        let a = unilateral_analysis::analyze_history(&p.model, &stages, &p.settings.engine)
-            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
         let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
         let back = &a.history.stages[2];
-        assert_eq!(
-            back.status,
-            StageStatus::Completed,
-            "{what}: {:?}",
-            back.reason
-        );
-        let (w, fw) = (8000.0 * force, 1600.0 * force);
-        let n: f64 = back.pairs.iter().map(|r| r.x_n).sum();
-        let t: f64 = back.pairs.iter().map(|r| r.x_t).sum();
-        assert!((n - w).abs() < 1e-6 * w, "{what}: ΣN = {n}");
-        assert!((t - fw).abs() < 1e-6 * w, "{what}: Σx_t = {t}");
+        let w = 8000.0 * force;
+        assert_slid_back(back, (w, 1600.0 * force), &what);
         let slid = -0.024 * length;
         for r in &back.pairs {
             let within = if r.name == "g.1" { 1e-6 } else { 1e-4 };
