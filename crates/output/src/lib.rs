@@ -33,6 +33,7 @@ use unilateral_fem::Model;
 mod chart;
 mod csv;
 mod decimal;
+pub mod deflate;
 mod finite;
 pub mod font;
 mod json;

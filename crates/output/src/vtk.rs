@@ -1344,15 +1344,17 @@ fn push_short(s: &mut Vec<u8>, t: &[u8]) {
 ///   [`COMPRESSED_BLOCK`] bytes (`compressor="vtkZLibDataCompressor"`: a `UInt64` header of
 ///   the block count, the block size, the size of a partial last block (0 when it is full)
 ///   and the compressed size of every block, then the compressed blocks). Read by every VTK
-///   reader (meshio too). The fastest level of `zlib-rs` (a zlib in Rust), one compressor a
-///   thread: the 1000-bearing beam's frames take 743 MB, 35 % of the binary files
-///   (`miniz_oxide`'s fastest level made files 14 % smaller in 2.2 times the time; its
-///   default level is a seventh of that speed again: `docs/performance.md`, round 31).
+///   reader (meshio too; VTK 9.7 checked). Each block is one zlib stream made by
+///   [`crate::deflate`], this crate's encoder (fixed Huffman codes, LZ4's way of finding
+///   matches, a hash table kept from stream to stream): about twice as fast as `zlib-rs` at its
+///   fastest level on a path's many small arrays, files as small (the 1000-bearing beam's
+///   frames take 751 MB, 35 % of the binary files; `docs/performance.md`, round 36).
 /// * [`VtkFormat::Lz4`] — the same blocks compressed by LZ4 (`compressor="vtkLZ4DataCompressor"`,
 ///   each block as VTK's `LZ4_decompress_safe` reads it): read by VTK from 8.1 on (ParaView
-///   5.5, 2018), not by meshio 5.3. On the 300-bearing beam's arrays LZ4 (`lz4_flex`) takes
-///   0.074 s where zlib's fastest level takes 0.20 s, for files 11 % larger (39 MB against
-///   35 MB of 116 MB), and is inflated several times faster (`docs/performance.md`, round 34).
+///   5.5, 2018), not by meshio 5.3. On the 300-bearing beam's arrays LZ4 (`lz4_flex`) took
+///   0.074 s where zlib-rs's fastest level took 0.20 s (round 34), for files 11 % larger, and
+///   is inflated several times faster; [`crate::deflate`] made the zlib files about as fast
+///   as LZ4's since round 36.
 ///
 /// The small field data of a file (`TimeValue`, `reported`, `stage`) stays text in every
 /// format.
@@ -1667,31 +1669,9 @@ fn lz4(bytes: &[u8]) -> io::Result<Vec<u8>> {
     Ok(lz4_flex::block::compress(bytes))
 }
 
-/// One block's zlib stream at the fastest level. A thread's compressor is made once and reset
-/// for each block: setting one up costs more than compressing a frame's small array (with
-/// `miniz_oxide`, a compressor a block was two thirds of the 1000-bearing beam's deflating).
+/// One block's zlib stream ([`crate::deflate`]).
 fn zlib(bytes: &[u8]) -> io::Result<Vec<u8>> {
-    use flate2::{Compress, Compression, FlushCompress, Status};
-    use std::cell::RefCell;
-    thread_local! {
-        static COMPRESSOR: RefCell<Compress> = RefCell::new(Compress::new(Compression::fast(), true));
-    }
-    COMPRESSOR.with(|c| {
-        let mut c = c.borrow_mut();
-        c.reset();
-        // Deflate's stored blocks add 5 bytes in 16 KB at worst, zlib 6 bytes in all.
-        let mut out = Vec::with_capacity(bytes.len() + bytes.len() / 1024 + 64);
-        loop {
-            let done = c.total_in() as usize;
-            let status = c
-                .compress_vec(&bytes[done..], &mut out, FlushCompress::Finish)
-                .map_err(io::Error::other)?;
-            match status {
-                Status::StreamEnd => return Ok(out),
-                Status::Ok | Status::BufError => out.reserve(out.capacity().max(64)),
-            }
-        }
-    })
+    Ok(crate::deflate::zlib(bytes))
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! The binary ParaView files (`VtkFormat::Binary`, `Compressed` by zlib, `Lz4`) decoded by a
 //! reader written here from the VTK XML file format (the `offset` of each appended array, its
 //! `UInt64` byte count or compressed block header, the little-endian values; zlib blocks
-//! inflated by `miniz_oxide`, another implementation than the writer's `zlib-rs`, LZ4 blocks
+//! inflated by `miniz_oxide`, another implementation than the writer's own encoder, LZ4 blocks
 //! by [`lz4_block`], written here from the LZ4 block format, not the writer's `lz4_flex`)
 //! and compared value for value with the ascii files of the same run — the reference: the
 //! ascii writer's numbers read back to the same `f64` (Rust's shortest round trip), checked
