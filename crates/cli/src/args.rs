@@ -42,8 +42,8 @@ pub(crate) enum VtkFormatArg {
     Binary,
     /// The binary arrays zlib-compressed (smallest; read by every VTK reader).
     Compressed,
-    /// The binary arrays compressed by LZ4 (a few per cent larger than zlib's, much faster to
-    /// write and to read; ParaView from 5.5, not meshio).
+    /// The binary arrays compressed by LZ4 (a few per cent larger than zlib's, a little faster
+    /// to write and much faster to read; ParaView from 5.5, not meshio).
     Lz4,
 }
 

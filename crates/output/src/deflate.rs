@@ -14,7 +14,7 @@
 //! The matches are found as LZ4 finds them: a hash of the next four bytes, one candidate,
 //! no chains; where no match is found for a while the search steps further at a time, so that
 //! data that does not compress costs little. A block that would come out larger than its
-//! bytes is stored instead.
+//! bytes in stored blocks (with their 5-byte headers) is stored instead.
 
 use std::cell::RefCell;
 
@@ -79,7 +79,7 @@ const LENGTHS: [(u32, u32); MAX_MATCH + 1] = {
     let mut t = [(0, 0); MAX_MATCH + 1];
     let mut len = 3;
     while len <= MAX_MATCH {
-        // The last symbol whose base is at most `len` (258 is symbol 285's alone).
+        // The last symbol whose base is at most `len`: 258 as symbol 285, as zlib writes it.
         let mut k = 28;
         while LENGTH_BASE[k] > len as u32 {
             k -= 1;
