@@ -489,9 +489,23 @@ impl EvolutionSolver {
             // was singular (a numerical failure at the tipping load). On the structure the
             // rotation is the mechanism. Only for a total variable: judged for any entering
             // one, slip increments entering at constant load read false mechanisms (7 of a
-            // reviewer's 220 block histories).
+            // reviewer's 220 block histories). The same where the step has a real length but
+            // its block is a displacement on a direction that moves displacements alone
+            // (`Pivoter::near_mechanism_blocked_by_displacement`): at the tipping of a block
+            // held by a spring of 1e5 N/m, the toe's slip increment fell at 2e-12 of the
+            // rotation's rate and stopped it after a step that moved the load by 5e-8 of
+            // itself, and the next basis was singular. Judged on the structure, 23 of 2896
+            // generated block histories (18 on springs of 1e4 and 1e5 N/m) tip at the load by
+            // hand instead of failing, none worse; blocked by a force, such steps are the
+            // structure's own (a pair opening as a block slides on a soft spring: judged there
+            // too, 13 answered histories failed).
             let total = entering >= n && entering < driver && !reset[entering - n];
-            if total && !judged && t_rate == 0.0 && step.is_some_and(|(_, th)| th <= zero) {
+            if total
+                && !judged
+                && t_rate == 0.0
+                && (step.is_some_and(|(_, th)| th <= zero)
+                    || piv.near_mechanism_blocked_by_displacement(entering, &alpha, amax, step))
+            {
                 if let Some(j) = piv.judged_on_structure(entering) {
                     t_rate = j.load_rate(ds);
                     (alpha, step, judged) = (j.alpha, j.step, true);

@@ -1831,6 +1831,49 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
     }
 }
 
+/// Blocks of the generated sweep pushed past their tipping load in a history, on springs of
+/// 1e4 and 1e5 N/m: where the last pair but the toe opened, the rotation about the toe entered
+/// with the load held, and the toe's slip increment, falling at a rate of round-off (2e-12 of
+/// the rotation's), blocked it after a step that moved the load by 5e-8 of itself; the next
+/// basis was singular (a numerical failure, exit 1, at the tipping load). Judged on the
+/// structure's equations, the rotation is the mechanism: the stage ends at the tipping load by
+/// hand, the toe carrying the weight and `f·W`, every pair slid `(P − f·W)/k`, the mode the
+/// rotation about the toe — in N·m and in kN·mm.
+#[test]
+fn a_block_pushed_past_its_tipping_load_in_a_history_tips_there() {
+    use unilateral_contact::StageStatus;
+    // x1166, x1226, x1369, x0467, x1125, x0650k (the loads as the helper writes them)
+    let cases = [
+        ((7, 2, 2.0, 1.0), (0.3, 1e5, 9000.0), 1.08, false),
+        ((5, 1, 1.0, 1.0), (0.3, 1e4, 10_000.0), 0.75, false),
+        ((4, 1, 1.0, 0.5), (0.4, 1e5, 8000.0), 0.96, false),
+        ((2, 2, 2.0, 1.0), (0.5, 1e4, 10_000.0), 1.5, false),
+        ((3, 3, 1.0, 1.0), (0.3, 1e4, 9000.0), 0.54, false),
+        ((3, 3, 1.0, 1.0), (0.25, 1e4, 10_000.0), 0.6, true),
+    ];
+    for (mesh, (f, k, w), push, kn_mm) in cases {
+        for kn_mm in [kn_mm, !kn_mm] {
+            let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}, kN·mm {kn_mm}");
+            let text = block_history_text(mesh, (f, k, w), &[push], kn_mm);
+            let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let st = &a.history.stages[1];
+            assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
+            let (nx, _, b, h) = mesh;
+            let tipping = w * b / (2.0 * h);
+            let load = 10_000.0 * push * st.s_end;
+            assert!(
+                (load - tipping).abs() < 1e-6 * tipping,
+                "{what}: the mechanism at {load}, by hand {tipping}"
+            );
+            let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+            let slip = (tipping - f * w) / k * length;
+            let toe = format!("g.{}", nx + 1);
+            assert_tipped(&st.pairs, &toe, (w * force, f, slip), true, &what);
+            assert_rotation_about_the_toe(st.mechanism.as_deref().unwrap_or_default(), nx, &what);
+        }
+    }
+}
+
 /// A mechanism's mode (`(dz_n, dz_t)` a pair, heel to toe, normalised to a largest rate of 1)
 /// is the rigid rotation about the toe of a block of `nx` elements along its base: each pair
 /// opens at a rate proportional to its distance from the toe, `(nx − i)/nx` of the heel's, and

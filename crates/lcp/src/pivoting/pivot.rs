@@ -1424,6 +1424,24 @@ impl<'a> Pivoter<'a> {
         Some(forces)
     }
 
+    /// Whether the direction `alpha` of the column of `entering` moves only displacements with
+    /// the load held ([`Pivoter::near_mechanism`] at a load rate of zero) and the ratio test's
+    /// `step` is blocked by a displacement (a basic `z`), where the structure's equations are
+    /// at hand to judge it: on a mechanism nothing but round-off of the displacements' rates
+    /// can block it.
+    pub fn near_mechanism_blocked_by_displacement(
+        &self,
+        entering: usize,
+        alpha: &[f64],
+        amax: f64,
+        step: Option<Choice>,
+    ) -> bool {
+        let n = self.cols.n;
+        self.judge.is_some()
+            && step.is_some_and(|(slot, _)| (n..2 * n).contains(&self.basis.slot_var[slot]))
+            && self.near_mechanism(entering, alpha, 0.0, amax).is_some()
+    }
+
     /// Whether rows of `x` that the ratio test passed over as round-off (rates below the
     /// column's pivot tolerance, [`Pivoter::suspects`]) would reach zero within `theta` at a
     /// rate of at least [`HIDDEN_X_RATE`] of the column's largest `x` rate, where the
