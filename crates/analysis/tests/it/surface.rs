@@ -1842,8 +1842,10 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
 #[test]
 fn a_block_pushed_past_its_tipping_load_in_a_history_tips_there() {
     use unilateral_contact::StageStatus;
-    // x1166, x1226, x1369, x0467, x1125, x0650k (the loads as the helper writes them)
+    // x1166, x1226, x1369, x0467, x1125, x0650k, x1364 (the loads as the helper writes
+    // them; the last with the load's rate in the rotation above the column's tolerance)
     let cases = [
+        ((2, 1, 1.0, 0.5), (0.2, 1e4, 8000.0), 1.2, false),
         ((7, 2, 2.0, 1.0), (0.3, 1e5, 9000.0), 1.08, false),
         ((5, 1, 1.0, 1.0), (0.3, 1e4, 10_000.0), 0.75, false),
         ((4, 1, 1.0, 0.5), (0.4, 1e5, 8000.0), 0.96, false),

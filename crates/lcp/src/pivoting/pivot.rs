@@ -1424,8 +1424,8 @@ impl<'a> Pivoter<'a> {
         Some(forces)
     }
 
-    /// Whether the direction `alpha` of the column of `entering` moves only displacements with
-    /// the load held ([`Pivoter::near_mechanism`] at a load rate of zero) and the ratio test's
+    /// Whether the direction `alpha` of the column of `entering`, the load's rate `rate` in it,
+    /// moves only displacements ([`Pivoter::near_mechanism`]) and the ratio test's
     /// `step` is blocked by a displacement (a basic `z`), where the structure's equations are
     /// at hand to judge it: on a mechanism nothing but round-off of the displacements' rates
     /// can block it.
@@ -1433,13 +1433,14 @@ impl<'a> Pivoter<'a> {
         &self,
         entering: usize,
         alpha: &[f64],
+        rate: f64,
         amax: f64,
         step: Option<Choice>,
     ) -> bool {
         let n = self.cols.n;
         self.judge.is_some()
             && step.is_some_and(|(slot, _)| (n..2 * n).contains(&self.basis.slot_var[slot]))
-            && self.near_mechanism(entering, alpha, 0.0, amax).is_some()
+            && self.near_mechanism(entering, alpha, rate, amax).is_some()
     }
 
     /// Whether rows of `x` that the ratio test passed over as round-off (rates below the
