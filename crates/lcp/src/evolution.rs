@@ -489,25 +489,28 @@ impl EvolutionSolver {
             // was singular (a numerical failure at the tipping load). On the structure the
             // rotation is the mechanism. Only for a total variable: judged for any entering
             // one, slip increments entering at constant load read false mechanisms (7 of a
-            // reviewer's 220 block histories). The same where the step has a real length but
-            // its block is a displacement on a direction that moves displacements alone
-            // (`Pivoter::near_mechanism_blocked_by_displacement`): at the tipping of a block
-            // held by a spring of 1e5 N/m, the toe's slip increment fell at 2e-12 of the
-            // rotation's rate and stopped it after a step that moved the load by 5e-8 of
-            // itself, and the next basis was singular; on a spring of 1e4 N/m the load's rate
-            // there was 2e-9 of the rotation's, above the column's tolerance, and the step took
-            // the load back by 2e-4 of itself to a state out of balance. Judged on the
-            // structure, 56 of 2896 generated block histories tip at the load by hand instead
-            // of failing (19 on springs of 1e4 and 1e5 N/m), none answered before fails;
-            // blocked by a force, such steps are the structure's own (a pair opening as a block
-            // slides on a soft spring: judged there too, 13 answered histories failed).
+            // reviewer's 220 block histories). The same with the load's rate zero on a
+            // direction that moves displacements alone (`Pivoter::near_mechanism_at`), blocked
+            // after a real step by a slip increment (`Pivoter::blocked_by_increment`): at the
+            // tipping of a block held by a spring of 1e5 N/m, the toe's slip increment fell at
+            // 2e-12 of the rotation's rate and stopped it after a step that moved the load by
+            // 5e-8 of itself, and the next basis was singular. Judged on the structure, 23 of
+            // 2896 generated block histories (18 on springs of 1e4 and 1e5 N/m) tip at the load
+            // by hand instead of failing, none worse. Blocked by a force or a gap, such steps
+            // are the structure's own: a pair opening as a block slides on a soft spring
+            // (judged there too, 13 answered histories failed), a block rotating until its
+            // corner meets a wall (judged, two of a reviewer's 1664 histories failed their
+            // checks). Judging also a load rate just above the column's tolerance, or a step
+            // blocked at once by a force, answered 46 more of the blocks but failed 49 of the
+            // reviewer's blocks that tip against a wall and are unloaded.
             let total = entering >= n && entering < driver && !reset[entering - n];
+            let at_once = step.is_some_and(|(_, th)| th <= zero);
             if total
                 && !judged
-                && ((t_rate == 0.0 && step.is_some_and(|(_, th)| th <= zero))
-                    || piv.near_mechanism_blocked_by_displacement(
-                        entering, &alpha, t_rate, amax, step,
-                    ))
+                && t_rate == 0.0
+                && (at_once
+                    || (piv.near_mechanism_at(entering, &alpha, 0.0, amax)
+                        && piv.blocked_by_increment(step, reset)))
             {
                 if let Some(j) = piv.judged_on_structure(entering) {
                     t_rate = j.load_rate(ds);

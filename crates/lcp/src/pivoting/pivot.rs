@@ -1425,22 +1425,20 @@ impl<'a> Pivoter<'a> {
     }
 
     /// Whether the direction `alpha` of the column of `entering`, the load's rate `rate` in it,
-    /// moves only displacements ([`Pivoter::near_mechanism`]) and the ratio test's
-    /// `step` is blocked by a displacement (a basic `z`), where the structure's equations are
-    /// at hand to judge it: on a mechanism nothing but round-off of the displacements' rates
-    /// can block it.
-    pub fn near_mechanism_blocked_by_displacement(
-        &self,
-        entering: usize,
-        alpha: &[f64],
-        rate: f64,
-        amax: f64,
-        step: Option<Choice>,
-    ) -> bool {
+    /// moves only displacements ([`Pivoter::near_mechanism`]), where the structure's equations
+    /// are at hand to judge it.
+    pub fn near_mechanism_at(&self, entering: usize, alpha: &[f64], rate: f64, amax: f64) -> bool {
+        self.judge.is_some() && self.near_mechanism(entering, alpha, rate, amax).is_some()
+    }
+
+    /// Whether the ratio test's `step` is blocked by one of the `z` that `incremental` marks (a
+    /// slip increment: the values the stage accumulates, not a gap).
+    pub fn blocked_by_increment(&self, step: Option<Choice>, incremental: &[bool]) -> bool {
         let n = self.cols.n;
-        self.judge.is_some()
-            && step.is_some_and(|(slot, _)| (n..2 * n).contains(&self.basis.slot_var[slot]))
-            && self.near_mechanism(entering, alpha, rate, amax).is_some()
+        step.is_some_and(|(slot, _)| {
+            let v = self.basis.slot_var[slot];
+            (n..2 * n).contains(&v) && incremental[v - n]
+        })
     }
 
     /// Whether rows of `x` that the ratio test passed over as round-off (rates below the
