@@ -229,10 +229,7 @@ impl Table {
         let n = bytes.len();
         if n > (u32::MAX / 4) as usize {
             // Positions would not fit the table's counts (never met: a block is 32 KB).
-            let mut out = Vec::with_capacity(stored_len(n) + 4);
-            stored_into(&mut out, bytes);
-            out.extend_from_slice(&adler32(bytes).to_be_bytes());
-            return out;
+            return stored(bytes);
         }
         // The fixed codes take at most 9 bits a byte.
         let mut out = Vec::with_capacity(n + n / 8 + 16);
@@ -252,8 +249,7 @@ impl Table {
         w.put(end, len);
         let mut out = w.finish();
         if out.len() > stored_len(n) {
-            out.clear();
-            stored_into(&mut out, bytes);
+            return stored(bytes);
         }
         out.extend_from_slice(&adler32(bytes).to_be_bytes());
         out
@@ -317,8 +313,9 @@ fn stored_len(n: usize) -> usize {
     2 + n + 5 * n.div_ceil(65_535).max(1)
 }
 
-/// `bytes` as stored blocks after the zlib header.
-fn stored_into(out: &mut Vec<u8>, bytes: &[u8]) {
+/// `bytes` as one zlib stream of stored blocks.
+fn stored(bytes: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(stored_len(bytes.len()) + 4);
     out.extend_from_slice(&[0x78, 0x01]);
     let mut chunks = bytes.chunks(65_535).peekable();
     if chunks.peek().is_none() {
@@ -332,6 +329,8 @@ fn stored_into(out: &mut Vec<u8>, bytes: &[u8]) {
         out.extend_from_slice(&(!len).to_le_bytes());
         out.extend_from_slice(c);
     }
+    out.extend_from_slice(&adler32(bytes).to_be_bytes());
+    out
 }
 
 /// The Adler-32 checksum of `bytes` (RFC 1950, 8.2).
