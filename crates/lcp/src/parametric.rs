@@ -534,8 +534,9 @@ pub(crate) fn basis_point_on_segment(
         }
     }
     let q_real: Vec<f64> = solver.q_at(p);
+    let terms = solver.q_terms_at(p);
     let evaluated = match slots {
-        Some(slots) => remove_tightening(prep, &q_real, slots, c0, cov, settings),
+        Some(slots) => remove_tightening(prep, (&q_real, &terms), slots, c0, cov, settings),
         None => Err(BasisVerdict::Singular),
     };
     match evaluated {
@@ -630,10 +631,13 @@ fn fresh_solution(solver: &PathSolver, p: f64) -> Result<PathPoint, Option<LcpSt
 
 /// Evaluates the complementary basis `slots` at `x = q + M z` (no tightening). If it is not
 /// feasible, drives the tightening `c` from `c0` down to zero by complementary pivots at fixed
-/// load. Returns unscaled `(x, z)` and the pivots spent, or what went wrong.
+/// load. Returns unscaled `(x, z)` and the pivots spent, or what went wrong. `terms` are the
+/// sizes of the terms that formed `q` (`|q0| + |p·d|` a row): where they cancel — a beam lifted
+/// off both its bearings at once by a load that takes their reactions to zero together — `q`
+/// and the values are round-off, judged against the terms, not against themselves.
 fn remove_tightening(
     prep: &Prepared,
-    q: &[f64],
+    (q, terms): (&[f64], &[f64]),
     slots: Vec<usize>,
     c0: f64,
     cov: &[f64],
@@ -644,7 +648,12 @@ fn remove_tightening(
     let cols = prep.columns(q, &zero_g);
     let basis = Basis::from_slots(&cols, slots.clone()).map_err(|_| BasisVerdict::Singular)?;
     let beta = basis.solve_refined(&cols, &cols.h);
-    let hmax = max_abs(&cols.h).max(max_abs(&beta)).max(f64::MIN_POSITIVE);
+    // The terms on the scale of `h` (its rows equilibrated, then by the power of two `2^eh`).
+    let terms = crate::binary::ldexp(max_abs(&prep.scaling.scale_rows(terms)), -cols.eh);
+    let hmax = max_abs(&cols.h)
+        .max(max_abs(&beta))
+        .max(terms)
+        .max(f64::MIN_POSITIVE);
     if beta.iter().all(|&b| b >= -1e-12 * hmax) {
         // Zeroed on the scale the test above accepted them on (the data's and the values'):
         // on the values' alone, a value accepted as round-off of larger data was then
@@ -823,7 +832,7 @@ mod tests {
         let q = [-2.0, 1.0, 3.0];
         let settings = Settings::default();
         let cov = [0.0; 3];
-        let verdict = remove_tightening(&prep, &q, vec![0, 4, 2], 0.0, &cov, &settings)
+        let verdict = remove_tightening(&prep, (&q, &q), vec![0, 4, 2], 0.0, &cov, &settings)
             .expect_err("the basis {x1, z2, x3} is infeasible at q");
         let BasisVerdict::Negative {
             var,
@@ -837,8 +846,9 @@ mod tests {
         assert!((value + 1.0 / 3.0).abs() < 1e-15, "{value}");
         assert!((largest - 1.0 / 3.0).abs() < 1e-15, "{largest}");
         // The solution's basis {z1, x2, x3} (z1 = 1, x2 = 2, x3 = 3) is accepted as it is.
-        let (x, z, pivots) = remove_tightening(&prep, &q, vec![3, 1, 2], 0.0, &cov, &settings)
-            .expect("the basis {z1, x2, x3} solves the problem at q");
+        let (x, z, pivots) =
+            remove_tightening(&prep, (&q, &q), vec![3, 1, 2], 0.0, &cov, &settings)
+                .expect("the basis {z1, x2, x3} solves the problem at q");
         assert_eq!(pivots, 0);
         assert!((z[0] - 1.0).abs() < 1e-15 && (x[1] - 2.0).abs() < 1e-15 && x[2] == 3.0);
     }
@@ -855,7 +865,7 @@ mod tests {
         let evaluate = |q: &[f64]| {
             remove_tightening(
                 &prep,
-                q,
+                (q, q),
                 vec![3, 4, 5],
                 0.0,
                 &[0.0; 3],
@@ -884,7 +894,7 @@ mod tests {
         let prep = prepared(&[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
         let verdict = remove_tightening(
             &prep,
-            &[-1.0, -1.0, 1.0],
+            (&[-1.0, -1.0, 1.0], &[1.0, 1.0, 1.0]),
             vec![3, 4, 2],
             0.0,
             &[0.0; 3],

@@ -160,6 +160,15 @@ impl PathSolver {
             .collect()
     }
 
+    /// `|q0| + |p·d|`: the sizes of the terms of [`PathSolver::q_at`], a row.
+    pub(crate) fn q_terms_at(&self, p: f64) -> Vec<f64> {
+        self.q0
+            .iter()
+            .zip(&self.d)
+            .map(|(q, d)| q.abs() + (p * d).abs())
+            .collect()
+    }
+
     /// Residuals of `(x, z)` at load `p` against the original data.
     pub(crate) fn residual(&self, p: f64, x: &[f64], z: &[f64]) -> crate::Residual {
         let n = self.n;

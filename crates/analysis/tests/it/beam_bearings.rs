@@ -682,3 +682,57 @@ fn a_long_stage_past_the_sliding_limit_ends_there() {
         "{factor} against {by_hand}"
     );
 }
+
+/// A simply supported beam (4 m, E = 210 GPa, I = 1e-5 m⁴) on two frictional bearings, its
+/// self-weight 100 N/m constant and an upward 1000 N at midspan times `p`: each bearing
+/// carries `200 − 500·p` N, so both lift off together at `p = 0.4`, where every contact force
+/// is zero — a mechanism whose state is the beam resting on its bearings with no force in them,
+/// the midspan moment `qL²/8 − PL/4 = −200 N·m` (an independent tester's model, found by
+/// enumerating every state of its pairs). The state's forces are the cancellation of terms of
+/// 200 N: judged against themselves (zero) a round-off of 3e-14 N read as a negative force, no
+/// state was reported and the run failed (exit 1) in N·m, not in kN·mm. Now in both: the
+/// mechanism at 0.4 with its verified state.
+#[test]
+fn a_beam_lifted_off_both_bearings_at_once_reports_its_state_at_the_limit() {
+    use unilateral_contact::Outcome;
+    for kn_mm in [false, true] {
+        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let text = format!(
+            "units = \"{units}\"\n\
+             [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
+             [[members]]\nname = \"b\"\nstart = [0.0, 0.0]\nend = [{span:e}, 0.0]\n\
+             divisions = 2\nsection = \"beam\"\n\
+             [[springs]]\nnodes = \"b.start\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
+             [[contact]]\nname = \"brg\"\nfrom = \"ground\"\nto = [\"b.start\", \"b.end\"]\n\
+             normal = [0.0, 1.0]\nfriction = 0.3\n\
+             [[loads.constant.distributed]]\nelements = \"b\"\nq = [0.0, {q:e}]\n\
+             [[loads.variable.nodal]]\nnodes = \"b.1\"\nfy = {p:e}\n",
+            units = if kn_mm { "kN, mm" } else { "N, m" },
+            e = 2.1e11 * f / (l * l),
+            a = 1e-2 * l * l,
+            i = 1e-5 * l * l * l * l,
+            span = 4.0 * l,
+            k = 1e6 * f / l,
+            q = -100.0 * f / l,
+            p = 1000.0 * f,
+        );
+        let p = crate::surface::read("lift.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+        let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{e}"));
+        let s = &a.solution;
+        let Outcome::Mechanism { p_limit, .. } = s.outcome else {
+            panic!("kN·mm {kn_mm}: {:?}", s.outcome);
+        };
+        assert!(
+            (p_limit - 0.4).abs() < 1e-12,
+            "kN·mm {kn_mm}: p_lim = {p_limit}"
+        );
+        assert_eq!(s.p, Some(p_limit), "kN·mm {kn_mm}: {:?}", s.notes);
+        assert!(s.residual.is_some(), "kN·mm {kn_mm}: a verified state");
+        for r in &s.pairs {
+            // Forces of round-off of 200 N, no opening: the beam rests on its bearings.
+            assert!(r.x_n.abs() < 1e-12 * 200.0 * f, "kN·mm {kn_mm}: {r:?}");
+            assert!(r.x_t.abs() < 1e-12 * 200.0 * f, "kN·mm {kn_mm}: {r:?}");
+            assert!(r.z_n.abs() < 1e-12 * l, "kN·mm {kn_mm}: {r:?}");
+        }
+    }
+}
