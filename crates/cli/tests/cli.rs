@@ -133,8 +133,11 @@ fn a_missing_solution_is_explained() {
     .unwrap();
     let out = cmd.run();
     assert_eq!(out.code, 0, "{}", out.stderr);
+    // Traced with the tightening, the mechanism's load is the traced path's (it depends on c).
     assert!(
-        out.stdout.contains("mechanism at p_lim = 2.000000"),
+        out.stdout.contains(
+            "the path traced with the tightening c = 1 becomes a mechanism at p = 2.000000"
+        ),
         "{}",
         out.stdout
     );

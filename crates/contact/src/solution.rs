@@ -174,6 +174,38 @@ impl Outcome {
 
     /// A sentence for engineers.
     pub fn reading(&self, target: f64) -> String {
+        self.reading_traced_with(target, 0.0)
+    }
+
+    /// [`Outcome::reading`] of a path traced with the tightening `c` (the paper's procedure):
+    /// a ray's start and a mechanism's load depend on `c` there, so they are said to be the
+    /// traced path's, not the structure's (an independent tester's beam read "the structure
+    /// becomes a mechanism at p_lim = 198.9" with c = 921.6, where its own limit, traced with
+    /// `c = 0`, is 62.87).
+    pub fn reading_traced_with(&self, target: f64, c: f64) -> String {
+        if c > 0.0 {
+            match self {
+                Outcome::Ray { p_from } if *p_from > 0.0 => {
+                    return format!(
+                        "the working scheme of the path traced with the tightening c = {} no \
+                         longer changes for p ≥ {} (Criterion 2a: ray; this load depends on c \
+                         — the structure's own path is traced with tightening 0)",
+                        number_text(c),
+                        load_text(*p_from)
+                    )
+                }
+                Outcome::Mechanism { p_limit, .. } => {
+                    return format!(
+                        "the path traced with the tightening c = {} becomes a mechanism at p = {} \
+                         (Criterion 2b; this load depends on c — the structure's own limit is \
+                         traced with tightening 0)",
+                        number_text(c),
+                        load_text(*p_limit)
+                    )
+                }
+                _ => {}
+            }
+        }
         match self {
             Outcome::TargetReached => {
                 format!(

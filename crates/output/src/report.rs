@@ -255,7 +255,8 @@ pub fn report_html(
         format!(
             "{} — {}",
             sol.outcome.status(),
-            sol.outcome.reading(sol.settings.target)
+            sol.outcome
+                .reading_traced_with(sol.settings.target, sol.tightening)
         ),
     );
     row(

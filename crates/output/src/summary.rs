@@ -71,7 +71,8 @@ pub fn contact_summary_detail(
         s,
         "status: {} — {}",
         sol.outcome.status(),
-        sol.outcome.reading(sol.settings.target)
+        sol.outcome
+            .reading_traced_with(sol.settings.target, sol.tightening)
     );
     match sol.p {
         Some(p) => {
