@@ -210,6 +210,18 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 // the last breakpoint (where the mechanism forms) and its step carry it too,
                 // not the value the updates had reached there (a rounding or more apart).
                 let p_lim = piv.driver_value();
+                // A limit within round-off of the load's start (1e-12 of the loads of p = 1 or
+                // of the target) is the start: the mechanism forms as soon as the variable load
+                // is applied (beams on frictionless bearings pushed sideways, or hanging over
+                // their gaps; an independent tester's enumeration finds no state at any p > 0).
+                // Read as p = ±1e-15, the point there failed its verification or was refused as
+                // unresolvable (exit 1 or 2, in N·m and not in kN·mm), or was reported at a
+                // negative load.
+                let p_lim = if p_lim.abs() <= 1e-12 * options.target.abs().max(1.0) {
+                    0.0
+                } else {
+                    p_lim
+                };
                 path.p_limit = Some(p_lim);
                 if let (Some(b), Some(st)) = (path.breakpoints.last_mut(), path.steps.last_mut()) {
                     b.p = p_lim;

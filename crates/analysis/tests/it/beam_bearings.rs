@@ -736,3 +736,30 @@ fn a_beam_lifted_off_both_bearings_at_once_reports_its_state_at_the_limit() {
         }
     }
 }
+
+/// A beam on four bearings that nothing holds sideways, pushed sideways by the variable load
+/// (`tests/data/oracle/beam-pushed-sideways-at-rest.toml`, an independent tester's model): a
+/// mechanism at `p_lim = 0` exactly, its state the constant load's, which the tester's own frame
+/// solver gives by enumerating every state of the pairs (547.587523, 2317.093893, 0 and
+/// 474.135096 N; no state at `p = 1e-6`). Read as `p_lim = 1.8e-15`, the point there failed its
+/// verification (exit 1) in N·m, not in kN·mm.
+#[test]
+fn a_beam_pushed_sideways_with_nothing_to_hold_it_is_a_mechanism_at_zero() {
+    use unilateral_contact::Outcome;
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/oracle/beam-pushed-sideways-at-rest.toml");
+    let Problem::Structural(p) = read_problem(&path).unwrap_or_else(|e| panic!("{e}")) else {
+        panic!("a structural model");
+    };
+    let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{e}"));
+    let s = &a.solution;
+    let Outcome::Mechanism { p_limit, .. } = s.outcome else {
+        panic!("{:?} {:?}", s.outcome, s.notes);
+    };
+    assert_eq!(p_limit, 0.0);
+    assert_eq!(s.p, Some(0.0), "{:?}", s.notes);
+    let by_hand = [547.587523, 2317.093893, 0.0, 474.135096];
+    for (r, want) in s.pairs.iter().zip(by_hand) {
+        assert!((r.x_n - want).abs() < 1e-6 * 2317.1, "{r:?} against {want}");
+    }
+}
