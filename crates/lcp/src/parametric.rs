@@ -899,6 +899,28 @@ mod tests {
         );
     }
 
+    /// A value below zero by round-off of the terms that formed `q` (`q` itself their
+    /// cancellation) is zero: `M = I`, `q = (−2.8e-14, 1e-14, 2e-14)`, its first row formed from
+    /// terms of 400 (a reaction of `200 − 500·0.4`), the basis `{x1, x2, x3}`: `x1 = −2.8e-14` is
+    /// 7e-17 of the terms, accepted and reported as zero; judged against `q` alone (all its rows
+    /// of round-off size) it is named negative.
+    #[test]
+    fn a_value_below_zero_by_round_off_of_cancelling_terms_is_zero() {
+        let prep = prepared(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        let q = [-2.8e-14, 1e-14, 2e-14];
+        let evaluate = |terms: &[f64]| {
+            let settings = Settings::default();
+            remove_tightening(&prep, (&q, terms), vec![0, 1, 2], 0.0, &[0.0; 3], &settings)
+        };
+        let (x, _, _) = evaluate(&[400.0, 1e-14, 2e-14]).expect("round-off of terms of 400");
+        assert_eq!(x, vec![0.0, 1e-14, 2e-14]);
+        let verdict = evaluate(&q).expect_err("against q alone: negative");
+        assert!(
+            matches!(verdict, BasisVerdict::Negative { var: Var::X(0), .. }),
+            "{verdict:?}"
+        );
+    }
+
     /// A basis whose kernel is singular on the data is said to be so: `{z1, z2, x3}` of
     /// `M = [[1, 1, 0], [1, 1, 0], [0, 0, 1]]` has the kernel `[[1, 1], [1, 1]]`.
     #[test]
