@@ -694,46 +694,61 @@ fn a_long_stage_past_the_sliding_limit_ends_there() {
 /// mechanism at 0.4 with its verified state.
 #[test]
 fn a_beam_lifted_off_both_bearings_at_once_reports_its_state_at_the_limit() {
-    use unilateral_contact::Outcome;
     for kn_mm in [false, true] {
-        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-        let text = format!(
-            "units = \"{units}\"\n\
-             [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
-             [[members]]\nname = \"b\"\nstart = [0.0, 0.0]\nend = [{span:e}, 0.0]\n\
-             divisions = 2\nsection = \"beam\"\n\
-             [[springs]]\nnodes = \"b.start\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
-             [[contact]]\nname = \"brg\"\nfrom = \"ground\"\nto = [\"b.start\", \"b.end\"]\n\
-             normal = [0.0, 1.0]\nfriction = 0.3\n\
-             [[loads.constant.distributed]]\nelements = \"b\"\nq = [0.0, {q:e}]\n\
-             [[loads.variable.nodal]]\nnodes = \"b.1\"\nfy = {p:e}\n",
-            units = if kn_mm { "kN, mm" } else { "N, m" },
-            e = 2.1e11 * f / (l * l),
-            a = 1e-2 * l * l,
-            i = 1e-5 * l * l * l * l,
-            span = 4.0 * l,
-            k = 1e6 * f / l,
-            q = -100.0 * f / l,
-            p = 1000.0 * f,
-        );
-        let p = crate::surface::read("lift.toml", &text).unwrap_or_else(|e| panic!("{e}"));
-        let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{e}"));
-        let s = &a.solution;
-        let Outcome::Mechanism { p_limit, .. } = s.outcome else {
-            panic!("kN·mm {kn_mm}: {:?}", s.outcome);
-        };
-        assert!(
-            (p_limit - 0.4).abs() < 1e-12,
-            "kN·mm {kn_mm}: p_lim = {p_limit}"
-        );
-        assert_eq!(s.p, Some(p_limit), "kN·mm {kn_mm}: {:?}", s.notes);
-        assert!(s.residual.is_some(), "kN·mm {kn_mm}: a verified state");
-        for r in &s.pairs {
-            // Forces of round-off of 200 N, no opening: the beam rests on its bearings.
-            assert!(r.x_n.abs() < 1e-12 * 200.0 * f, "kN·mm {kn_mm}: {r:?}");
-            assert!(r.x_t.abs() < 1e-12 * 200.0 * f, "kN·mm {kn_mm}: {r:?}");
-            assert!(r.z_n.abs() < 1e-12 * l, "kN·mm {kn_mm}: {r:?}");
-        }
+        assert_lifted_off(kn_mm, 1000.0, 0.4);
+    }
+}
+
+/// The same beam lifted by 4e15 N: a real limit at `p = 1e-13` (400 N of the variable load),
+/// not round-off of the start — a reviewer's model, which a first rule for a mechanism at the
+/// start (`p_lim` within 1e-12 of `p = 1`) read as `p_lim = 0` with no state.
+#[test]
+fn a_beam_lifted_by_a_huge_load_has_its_limit_at_a_tiny_load_not_at_zero() {
+    assert_lifted_off(false, 4e15, 1e-13);
+}
+
+/// The beam of [`a_beam_lifted_off_both_bearings_at_once_reports_its_state_at_the_limit`] lifted
+/// by `load` N at midspan: the mechanism at `p_lim` (by hand `400/load`), every force zero there.
+fn assert_lifted_off(kn_mm: bool, load: f64, p_lim: f64) {
+    use unilateral_contact::Outcome;
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    let text = format!(
+        "units = \"{units}\"\n\
+         [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
+         [[members]]\nname = \"b\"\nstart = [0.0, 0.0]\nend = [{span:e}, 0.0]\n\
+         divisions = 2\nsection = \"beam\"\n\
+         [[springs]]\nnodes = \"b.start\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
+         [[contact]]\nname = \"brg\"\nfrom = \"ground\"\nto = [\"b.start\", \"b.end\"]\n\
+         normal = [0.0, 1.0]\nfriction = 0.3\n\
+         [[loads.constant.distributed]]\nelements = \"b\"\nq = [0.0, {q:e}]\n\
+         [[loads.variable.nodal]]\nnodes = \"b.1\"\nfy = {p:e}\n",
+        units = if kn_mm { "kN, mm" } else { "N, m" },
+        e = 2.1e11 * f / (l * l),
+        a = 1e-2 * l * l,
+        i = 1e-5 * l * l * l * l,
+        span = 4.0 * l,
+        k = 1e6 * f / l,
+        q = -100.0 * f / l,
+        p = load * f,
+    );
+    let p = crate::surface::read("lift.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+    let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{e}"));
+    let s = &a.solution;
+    let what = format!("kN·mm {kn_mm}, load {load}");
+    let Outcome::Mechanism { p_limit, .. } = s.outcome else {
+        panic!("{what}: {:?}", s.outcome);
+    };
+    assert!(
+        (p_limit - p_lim).abs() < 1e-12 * p_lim,
+        "{what}: p_lim = {p_limit}"
+    );
+    assert_eq!(s.p, Some(p_limit), "{what}: {:?}", s.notes);
+    assert!(s.residual.is_some(), "{what}: a verified state");
+    for r in &s.pairs {
+        // Forces of round-off of 200 N, no opening: the beam rests on its bearings.
+        assert!(r.x_n.abs() < 1e-9 * 200.0 * f, "{what}: {r:?}");
+        assert!(r.x_t.abs() < 1e-9 * 200.0 * f, "{what}: {r:?}");
+        assert!(r.z_n.abs() < 1e-12 * l, "{what}: {r:?}");
     }
 }
 
