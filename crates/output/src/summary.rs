@@ -208,9 +208,15 @@ pub fn contact_summary_detail(
         }
     }
     if let Outcome::Mechanism { p_limit, mode } = &sol.outcome {
+        // Traced with a tightening, the load is the traced path's (it depends on c).
         let _ = writeln!(
             s,
-            "\nmechanism at p_lim = {}; rates per pair (dz_n, dz_t):",
+            "\nmechanism {} {}; rates per pair (dz_n, dz_t):",
+            if sol.tightening > 0.0 {
+                "of the tightened path at p ="
+            } else {
+                "at p_lim ="
+            },
             fmt_num(*p_limit)
         );
         for (i, (dn, dt)) in mode.iter().enumerate() {
