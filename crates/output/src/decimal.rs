@@ -136,14 +136,8 @@ mod tests {
 
     /// A fixed sequence of 64-bit words (splitmix64), so that a failure can be replayed.
     fn words(seed: u64, count: usize) -> impl Iterator<Item = u64> {
-        let mut state = seed;
-        (0..count).map(move |_| {
-            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        })
+        let mut next = crate::replay::bits(seed);
+        (0..count).map(move |_| next())
     }
 
     #[test]

@@ -341,6 +341,7 @@ fn adler32(bytes: &[u8]) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::{stored_len, zlib, Table};
+    use crate::replay::bits;
     use proptest::prelude::*;
 
     /// The Adler-32 of RFC 1950 as its text gives it, a byte at a time.
@@ -363,18 +364,6 @@ mod tests {
         assert!(back == bytes, "{} bytes inflated differ", bytes.len());
         let sum = u32::from_be_bytes(stream[stream.len() - 4..].try_into().unwrap());
         assert_eq!(sum, adler_by_the_rfc(bytes));
-    }
-
-    /// A replayable sequence of bits (splitmix64).
-    fn bits(seed: u64) -> impl FnMut() -> u64 {
-        let mut state = seed;
-        move || {
-            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        }
     }
 
     /// Short inputs at every length (no match possible below four bytes), runs, the values

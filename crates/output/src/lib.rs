@@ -38,6 +38,8 @@ mod finite;
 pub mod font;
 mod json;
 mod overwrite;
+#[cfg(test)]
+mod replay;
 mod report;
 mod structure;
 mod summary;

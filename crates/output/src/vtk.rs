@@ -1686,14 +1686,7 @@ mod tests {
     /// on numbers of every size and kind (a fixed sequence of bits, replayable).
     #[test]
     fn ascii_numbers_read_back_and_negate_as_text() {
-        let mut state = 7u64;
-        let mut next = move || {
-            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        };
+        let mut next = crate::replay::bits(7);
         let mut xs = vec![
             0.0,
             -0.0,

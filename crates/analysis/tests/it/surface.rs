@@ -1796,7 +1796,6 @@ fn assert_slid_back(st: &unilateral_contact::StageSolution, (w, fw): (f64, f64),
 /// `(P − f·W)/k` and every other pair open — in N·m and in kN·mm.
 #[test]
 fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
-    use unilateral_contact::StageStatus;
     // (mesh and size, friction, spring, weight, push, units): x1009, x0767, x1226k, x0869k,
     // x0789 (its second trace turned back out of balance at the tipping: the third, with the
     // relations only up to the heel's opening, tips), x0724k (its first trace met a singular
@@ -1810,25 +1809,38 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
         ((6, 2, 1.0, 0.5), (0.2, 1e5, 8000.0), 1.2, true),
     ];
     for (mesh, (f, k, w), push, kn_mm) in cases {
-        let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}, kN·mm {kn_mm}");
-        let text = block_history_text(mesh, (f, k, w), &[push], kn_mm);
-        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
-        let st = &a.history.stages[1];
-        assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
-        let (nx, _, b, h) = mesh;
-        let tipping = w * b / (2.0 * h);
-        let load = 10_000.0 * push * st.s_end;
-        assert!(
-            (load - tipping).abs() < 1e-6 * tipping,
-            "{what}: the mechanism at {load}, by hand {tipping}"
-        );
-        let force = if kn_mm { 1e-3 } else { 1.0 };
-        let length = if kn_mm { 1e3 } else { 1.0 };
-        let slip = (tipping - f * w) / k * length;
-        let toe = format!("g.{}", nx + 1);
-        assert_tipped(&st.pairs, &toe, (w * force, f, slip), true, &what);
-        assert_rotation_about_the_toe(st.mechanism.as_deref().unwrap_or_default(), nx, &what);
+        assert_push_tips_at_the_toe(mesh, (f, k, w), push, kn_mm);
     }
+}
+
+/// The block of [`block_history_text`] pushed to `push` in one stage after its weight: the
+/// stage ends in the mechanism at the tipping load `w·b/(2h)` by hand, the toe carrying the
+/// weight and `f·w`, every pair slid `(P − f·w)/k` and every other pair open, the mode the
+/// rotation about the toe.
+fn assert_push_tips_at_the_toe(
+    mesh: (usize, usize, f64, f64),
+    (f, k, w): (f64, f64, f64),
+    push: f64,
+    kn_mm: bool,
+) {
+    use unilateral_contact::StageStatus;
+    let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}, kN·mm {kn_mm}");
+    let text = block_history_text(mesh, (f, k, w), &[push], kn_mm);
+    let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let st = &a.history.stages[1];
+    assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
+    let (nx, _, b, h) = mesh;
+    let tipping = w * b / (2.0 * h);
+    let load = 10_000.0 * push * st.s_end;
+    assert!(
+        (load - tipping).abs() < 1e-6 * tipping,
+        "{what}: the mechanism at {load}, by hand {tipping}"
+    );
+    let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    let slip = (tipping - f * w) / k * length;
+    let toe = format!("g.{}", nx + 1);
+    assert_tipped(&st.pairs, &toe, (w * force, f, slip), true, &what);
+    assert_rotation_about_the_toe(st.mechanism.as_deref().unwrap_or_default(), nx, &what);
 }
 
 /// Blocks of the generated sweep pushed past their tipping load in a history, on springs of
@@ -1841,7 +1853,6 @@ fn a_block_whose_heel_opens_as_it_slides_in_a_history_tips_where_statics_say() {
 /// rotation about the toe — in N·m and in kN·mm.
 #[test]
 fn a_block_pushed_past_its_tipping_load_in_a_history_tips_there() {
-    use unilateral_contact::StageStatus;
     // x1166, x1226, x1369, x0467, x1125, x0650k (the loads as the helper writes them)
     let cases = [
         ((7, 2, 2.0, 1.0), (0.3, 1e5, 9000.0), 1.08, false),
@@ -1853,23 +1864,7 @@ fn a_block_pushed_past_its_tipping_load_in_a_history_tips_there() {
     ];
     for (mesh, (f, k, w), push, kn_mm) in cases {
         for kn_mm in [kn_mm, !kn_mm] {
-            let what = format!("{mesh:?}, f = {f}, k = {k}, push {push}, kN·mm {kn_mm}");
-            let text = block_history_text(mesh, (f, k, w), &[push], kn_mm);
-            let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
-            let st = &a.history.stages[1];
-            assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
-            let (nx, _, b, h) = mesh;
-            let tipping = w * b / (2.0 * h);
-            let load = 10_000.0 * push * st.s_end;
-            assert!(
-                (load - tipping).abs() < 1e-6 * tipping,
-                "{what}: the mechanism at {load}, by hand {tipping}"
-            );
-            let (force, length) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-            let slip = (tipping - f * w) / k * length;
-            let toe = format!("g.{}", nx + 1);
-            assert_tipped(&st.pairs, &toe, (w * force, f, slip), true, &what);
-            assert_rotation_about_the_toe(st.mechanism.as_deref().unwrap_or_default(), nx, &what);
+            assert_push_tips_at_the_toe(mesh, (f, k, w), push, kn_mm);
         }
     }
 }
