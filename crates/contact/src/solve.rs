@@ -336,6 +336,14 @@ fn solve_with(
     if let Some(why) = &path.unreported {
         notes.push(unreported_note(why, m, &names));
     }
+    if path.unloaded_at_start {
+        notes.push(
+            "no state is reported at p = 0: the structure is a mechanism as soon as the variable \
+             load is applied, and at p = 0 no pair carries a force (no constant load reaches \
+             them), so nothing fixes the structure's position there"
+                .into(),
+        );
+    }
     let solution = normalised_solution;
     if let Some(p_art) = path.artificial_mechanism {
         notes.push(format!(
@@ -347,11 +355,14 @@ fn solve_with(
         ));
     } else if let Some(sol) = &solution {
         if sol.fallback {
-            notes.push(
+            notes.push(if settings.tightening > 0.0 {
                 "the tightening could not be removed along the path; the reported solution comes \
                  from a fresh solve at this load and may belong to another branch"
-                    .into(),
-            );
+            } else {
+                "the path's working scheme gave no verified point at this load; the reported \
+                 solution comes from a fresh solve at this load and may belong to another branch"
+            }
+            .into());
         }
     }
     let steps_before_target = path.target_segment.unwrap_or(steps.len());

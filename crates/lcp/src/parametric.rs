@@ -89,6 +89,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 refactorizations: 0,
                 artificial_mechanism: None,
                 unreported: None,
+                unloaded_at_start: false,
                 start_slots: (0..n).collect(),
                 records: vec![],
                 target_segment: None,
@@ -170,6 +171,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         refactorizations: piv.refactorizations,
         artificial_mechanism: None,
         unreported: None,
+        unloaded_at_start: false,
         start_slots,
         records: pivots,
         target_segment: crossed,
@@ -237,6 +239,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
                 path.mechanism = Some(mechanism_mode(prep, &piv, last_entering, &alpha));
                 match crossed {
                     Some(j) => Some((j, options.target)),
+                    None if p_lim == 0.0 => None,
                     None => path.last_segment_containing(p_lim).map(|j| (j, p_lim)),
                 }
             }
@@ -283,7 +286,89 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
         }
         progress.pivots(path.solution.as_ref().map_or(0, |s| s.tightening_pivots));
     }
+    if path.status == PathStatus::Mechanism && path.solution.is_none() && c0 == 0.0 {
+        mechanism_at_start(solver, &mut path, kseg);
+    }
     path
+}
+
+/// Every value `x = q0 + M z` of `point` (at `p = 0`) is round-off of the terms that form it
+/// (`|q0| + |M|·|z|`, 1e-10 of the largest): a state without force — the gaps alone, closed
+/// or not by a rigid motion of a structure that nothing holds (the tester's beams without a
+/// constant load: their positions there are not determined, and the structure's check, its
+/// forces being round-off, refused them).
+fn carries_no_force(solver: &PathSolver, point: &PathPoint) -> bool {
+    use crate::schur::DenseRates;
+    let (_, terms) = solver.rows(&point.z, 0.0);
+    let largest = terms
+        .iter()
+        .zip(solver.q0())
+        .fold(0.0f64, |a, (t, q)| a.max(t + q.abs()));
+    point.x.iter().all(|x| x.abs() <= 1e-10 * largest)
+}
+
+/// The state of a structure that becomes a mechanism as soon as the variable load is applied,
+/// where the path's own report found none (an independent tester's beams on bearings):
+///
+/// * the limit read at `p = 0`, but every breakpoint lies there, so no segment of positive
+///   length contains it: the state is the last basis's point at `p = 0` (the scheme in which
+///   the mechanism was found), or a fresh solve there;
+/// * the limit read a round-off above zero (`|p|·‖d‖` within 1e-12 of `‖q0‖`: a frictionless
+///   pair's tangential row blocking at its round-off, `p ≈ 2.7e-12` on a beam pushed sideways
+///   by a small load) where no state exists — the problem has none for any `p > 0` — while
+///   the constant load's state at `p = 0` is verified: the limit is `p = 0`, and the
+///   breakpoints in between are there too.
+///
+/// Only a verified point changes the path; otherwise it stays as it was (no state, or the
+/// reason none was reported).
+fn mechanism_at_start(solver: &PathSolver, path: &mut LoadPath, kseg: usize) {
+    let Some(p_lim) = path.p_limit else { return };
+    let (q0, d) = (max_abs(solver.q0()), max_abs(solver.d()));
+    let at_start = p_lim == 0.0 && path.unreported.is_none();
+    let round_off = p_lim > 0.0 && path.unreported.is_some() && p_lim * d <= 1e-12 * q0;
+    if !(at_start || round_off) {
+        return;
+    }
+    if q0 == 0.0 {
+        // Nothing loads the pairs at p = 0 (no constant load; gaps that a rigid motion takes
+        // up): the state there is zero.
+        path.unloaded_at_start = at_start;
+        return;
+    }
+    // The bases from the start to the limit, latest first (the last one is where the
+    // mechanism was found: with the load held its entering column makes it singular); those
+    // of the settling at p = 0 solve the problem there by construction. Then a fresh solve.
+    let first = path.last_segment_containing(0.0);
+    let at_zero = (0..=kseg).rev().filter(|&j| {
+        path.breakpoints
+            .get(j)
+            .is_some_and(|b| (0.0..=p_lim).contains(&b.p))
+    });
+    let point = first
+        .into_iter()
+        .chain(at_zero)
+        .map(|j| basis_point_on_segment(solver, path, j, 0.0))
+        .find_map(Result::ok)
+        .or_else(|| fresh_solution(solver, 0.0).ok());
+    let Some(point) = point else { return };
+    if at_start && carries_no_force(solver, &point) {
+        path.unloaded_at_start = true;
+        return;
+    }
+    path.solution = Some(point);
+    path.unreported = None;
+    path.p_limit = Some(0.0);
+    // The breakpoints whose variable load is round-off of the constant one are at p = 0 too
+    // (on the tester's beam with its variable load 1e-7 times smaller, two pivots read at
+    // p = 2.2e-9 between the start and the limit).
+    let at_zero = |p: f64| p.abs() * d <= 1e-12 * q0 || (p > 0.0 && p <= p_lim);
+    for b in path.breakpoints.iter_mut().filter(|b| at_zero(b.p)) {
+        b.p = 0.0;
+    }
+    for st in path.steps.iter_mut().filter(|s| at_zero(s.p)) {
+        st.p = 0.0;
+    }
+    path.p_max = path.breakpoints.iter().fold(0.0f64, |a, b| a.max(b.p));
 }
 
 /// A path traced by the engine on sparse data ([`crate::SchurPath`]) as this solver's
@@ -335,6 +420,7 @@ pub(crate) fn adopt(solver: &PathSolver, schur: crate::SchurPath) -> Option<Load
         refactorizations: schur.refactorizations,
         artificial_mechanism: None,
         unreported: None,
+        unloaded_at_start: false,
         start_slots: (0..n).collect(),
         records,
         target_segment: schur.target_segment,

@@ -261,6 +261,10 @@ pub struct LoadPath {
     /// (`None` when there is a solution, or when the ending has no such load: a numerical failure
     /// of the path itself, no solution at the start).
     pub unreported: Option<Unreported>,
+    /// A mechanism at `p = 0` whose state there carries no force: every value of the path's
+    /// state at `p = 0` is round-off of the terms that form it (no constant load, gaps alone):
+    /// the structure's position is not determined there, and no state is reported.
+    pub unloaded_at_start: bool,
     pub(crate) start_slots: Vec<usize>,
     pub(crate) records: Vec<(usize, usize)>,
     /// The segments (by the number of pivots before them) whose direction, and whose points,
