@@ -555,7 +555,8 @@ impl Condensed {
         // open pair standing at its gap at p = 0) has nothing to scale its residuals but the
         // round-off of the dislocations z_n − η, differences of terms |z_n| + |η|, times the
         // links' stiffness: every force it makes is that round-off. With any load, the loads
-        // scale the check (a state whose loads the gaps' round-off swamps fails it).
+        // scale the check (a state whose loads the gaps' round-off swamps fails it). Summed
+        // over the links: a link force sums the terms of every link it couples to.
         let mut dislocation_force = 0.0f64;
         for k in 0..2 * m {
             let terms = if k < m {
@@ -567,7 +568,7 @@ impl Condensed {
                 let stiffness = self.asm.kiz[k]
                     .iter()
                     .fold(0.0f64, |a, &(_, v)| a.max(v.abs()));
-                dislocation_force = dislocation_force.max(terms * stiffness);
+                dislocation_force += terms * stiffness;
             }
         }
         // unloaded, with link forces no larger than the dislocations' round-off (8.5e-9 N at

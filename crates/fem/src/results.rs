@@ -132,10 +132,13 @@ pub struct Equilibrium {
     pub free_dof_relative: f64,
     /// `link_force_mismatch` relative to the largest link force (given or implied).
     pub link_force_relative: f64,
-    /// The size of the forces the links' dislocations make term by term (|z_n| + |η| and |z_t|
-    /// times the links' largest stiffness): where they cancel (a gap closed by a rigid motion)
-    /// their round-off, about 1e-16 of this, is in every force recovered; against loads
-    /// smaller than that round-off allows, a state cannot be resolved in double precision.
+    /// The size of the forces the links' dislocations make term by term: |z_n| + |η| and
+    /// |z_t| times the link's largest stiffness, summed over the links (a link force sums the
+    /// terms of every link it couples to: a block sliding 21.6 m on eight pairs carried the
+    /// round-off of eight pairs' terms, 2.1 times what the largest alone allowed). Where they
+    /// cancel (a gap closed by a rigid motion, metres of slip on a soft spring) their round-off,
+    /// about 1e-16 of this, is in every force recovered; against loads smaller than that
+    /// round-off allows, a state cannot be resolved in double precision.
     pub dislocation_force: f64,
 }
 

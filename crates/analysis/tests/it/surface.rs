@@ -1275,6 +1275,48 @@ fn a_history_that_cannot_be_resolved_names_the_stage() {
     assert!(!e.to_string().contains("gap"), "{e}");
 }
 
+/// A steel block (1 m × 0.5 m, 7 × 4 elements, friction 0.45) held sideways only by a
+/// 178 N/m spring, its weight (8000 N) and then a push of 7440 N (below tipping, 8000 N): by
+/// hand it slides (7440 − 0.45·8000)/178 = 21.6 m over eight pairs, slips that make forces of
+/// 1e12 N a pair term by term against the state's 7440 N. Its link forces carry the round-off
+/// of those terms summed over the pairs (0.03 N, 5e-6 of the forces): the check judged the
+/// round-off by the largest pair's terms alone and called it the program's failure (exit 1);
+/// the data's conditioning is the sum over the pairs, and the state is refused as
+/// unresolvable (exit 2, the advice about the spring). N·m and kN·mm (a generated sweep's
+/// model, one of 163 such failures on springs of 100 to 1000 N/m).
+#[test]
+fn a_block_sliding_metres_on_a_soft_spring_in_a_history_is_refused_as_unresolvable() {
+    for kn_mm in [false, true] {
+        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let text = format!(
+            "units = \"{units}\"\n\
+             [[materials]]\nname = \"steel\"\nE = {e:e}\nnu = 0.3\nthickness = {t:e}\n\
+             [[blocks]]\nname = \"blk\"\norigin = [0.0, 0.0]\nwidth = {w:e}\nheight = {h:e}\n\
+             nx = 7\nny = 4\nmaterial = \"steel\"\nanalysis = \"plane_stress\"\n\
+             [[contact]]\nname = \"g\"\nfrom = \"ground\"\nto = \"blk.bottom\"\n\
+             normal = [0.0, 1.0]\nfriction = 0.45\n\
+             [[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
+             [[loads.weight.nodal]]\nnodes = \"blk.top\"\nfy = {wt:e}\n\
+             [[loads.push.nodal]]\nnodes = \"blk.top_right\"\nfx = {push:e}\n",
+            units = if kn_mm { "kN, mm" } else { "N, m" },
+            e = 2e11 * f / (l * l),
+            t = l,
+            w = l,
+            h = 0.5 * l,
+            k = 178.0 * f / l,
+            wt = -1000.0 * f,
+            push = 5000.0 * f,
+        );
+        let e = analyze_with_history(&text, ("weight", "weight"), "push", &[("push", 1.488)])
+            .expect_err("slips of 21.6 m");
+        assert!(
+            matches!(e, unilateral_analysis::AnalysisError::Unresolved { .. }),
+            "kN·mm {kn_mm}: {e}"
+        );
+        assert!(!e.is_internal(), "kN·mm {kn_mm}: {e}");
+    }
+}
+
 /// The block of [`a_slow_load_rate_still_reaches_the_target`] on springs of 300 and 178 N/m
 /// at its heel in a load history, its weight and then the push to 1 (in N·m and kN·mm). By
 /// hand as on the path: every pair slides from 0.6, and at the end the block has slid
