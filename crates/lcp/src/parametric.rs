@@ -311,8 +311,12 @@ fn carries_no_force(solver: &PathSolver, point: &PathPoint) -> bool {
 /// where the path's own report found none (an independent tester's beams on bearings):
 ///
 /// * the limit read at `p = 0`, but every breakpoint lies there, so no segment of positive
-///   length contains it: the state is the last basis's point at `p = 0` (the scheme in which
-///   the mechanism was found), or a fresh solve there;
+///   length contains it: the state is the point at `p = 0` of the last segment containing it,
+///   else of the latest basis at `p = 0` that verifies there (the settling's; the last one,
+///   where the mechanism was found, is singular with the load held), else of a fresh solve —
+///   unless that state carries no force ([`carries_no_force`], or `q0 = 0`): then nothing
+///   fixes the structure's position, no state is reported and
+///   [`LoadPath::unloaded_at_start`] says why;
 /// * the limit read a round-off above zero (`|p|·‖d‖` within 1e-12 of `‖q0‖`: a frictionless
 ///   pair's tangential row blocking at its round-off, `p ≈ 2.7e-12` on a beam pushed sideways
 ///   by a small load) where no state exists — the problem has none for any `p > 0` — while
