@@ -339,8 +339,9 @@ fn solve_with(
     if path.unloaded_at_start {
         notes.push(
             "no state is reported at p = 0: the structure is a mechanism as soon as the variable \
-             load is applied, and at p = 0 no pair carries a force (no constant load reaches \
-             them), so nothing fixes the structure's position there"
+             load is applied, and at p = 0 no pair carries a force beyond the round-off of the \
+             forces its gaps make term by term (no constant load reaches the pairs, or one too \
+             small to resolve against the gaps), so nothing fixes the structure's position there"
                 .into(),
         );
     }

@@ -565,8 +565,14 @@ impl Condensed {
                 sol.z_t[k - m].abs()
             };
             if terms > 0.0 {
+                // Its couplings to translations only (force per length): a rotation's (6EI/L²,
+                // a force per radian) times a length is a moment, counted as a force in the
+                // model's length unit — a thousand times more in kN·mm than in N·m against the
+                // same state (a reviewer's beams on 50–300 bearings: internal failures read as
+                // the data's round-off in kN·mm only).
                 let stiffness = self.asm.kiz[k]
                     .iter()
+                    .filter(|&&(j, _)| map.free_label[j].1 != crate::error::DofLabel::Rz)
                     .fold(0.0f64, |a, &(_, v)| a.max(v.abs()));
                 dislocation_force += terms * stiffness;
             }

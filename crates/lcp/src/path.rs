@@ -262,8 +262,9 @@ pub struct LoadPath {
     /// of the path itself, no solution at the start).
     pub unreported: Option<Unreported>,
     /// A mechanism at `p = 0` whose state there carries no force: every value of the path's
-    /// state at `p = 0` is round-off of the terms that form it (no constant load, gaps alone):
-    /// the structure's position is not determined there, and no state is reported.
+    /// state at `p = 0` is round-off of the terms that form it (no constant load reaches the
+    /// pairs, or one too small to resolve against the gaps' terms): the structure's position
+    /// is not determined there, and no state is reported.
     pub unloaded_at_start: bool,
     pub(crate) start_slots: Vec<usize>,
     pub(crate) records: Vec<(usize, usize)>,
