@@ -462,7 +462,7 @@ pub fn follow_history_judged(
         // over the stage's last segment, or, where the stage ends in a mechanism (whose last
         // breakpoint has no segment after it), by its rate in the mechanism's mode — the
         // bearings that slide as the structure moves.
-        let assess = |run: &StageRun| -> (Vec<PairResult>, HistoryResidual) {
+        let assess = |run: &StageRun, relaxed: bool| -> (Vec<PairResult>, HistoryResidual) {
             let inc = &run.last_increment;
             let pairs = match &run.ending {
                 StageEnding::Mechanism(mode) => {
@@ -476,8 +476,27 @@ pub fn follow_history_judged(
                 }
                 _ => reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i])),
             };
-            let mut residual = reader.residual(&pairs, &factors_at(run.s_end), history, inc);
-            residual.dissipation = reader.dissipation(&stage_chain(&state, run));
+            // Each pair's largest slip over the stage's states (user units), for the relaxed
+            // check only.
+            let chain = stage_chain(&state, run);
+            let excursion: Vec<f64> = (0..m)
+                .map(|j| {
+                    if !relaxed {
+                        return 0.0;
+                    }
+                    chain.iter().fold(0.0f64, |a, (_, z)| {
+                        a.max(
+                            reader
+                                .units
+                                .user_displacement(z[m + j] - z[2 * m + j])
+                                .abs(),
+                        )
+                    })
+                })
+                .collect();
+            let mut residual =
+                reader.residual(&pairs, &factors_at(run.s_end), history, inc, &excursion);
+            residual.dissipation = reader.dissipation(&chain);
             (pairs, residual)
         };
         let failed = |run: &StageRun, r: &HistoryResidual| {
@@ -488,7 +507,10 @@ pub fn follow_history_judged(
         // the last column), kept where it passes. Only as a last resort: a retrace that
         // passes is kept first (a refined end that passed the check instead left six blocks
         // on soft springs of a sweep out of balance on the structure's equations).
-        let settle = |mut run: StageRun, pairs: Vec<PairResult>, residual: HistoryResidual| {
+        let settle = |mut run: StageRun,
+                      pairs: Vec<PairResult>,
+                      residual: HistoryResidual,
+                      relaxed: bool| {
             if !(run.ending == StageEnding::Completed && failed(&run, &residual)) {
                 return (run, pairs, residual);
             }
@@ -500,63 +522,89 @@ pub fn follow_history_judged(
                 std::mem::replace(&mut run.end.z, refined.z),
                 std::mem::replace(&mut run.last_increment, refined.last_increment),
             );
-            let (p2, r2) = assess(&run);
+            let (p2, r2) = assess(&run, relaxed);
             if failed(&run, &r2) {
                 (run.end.x, run.end.z, run.last_increment) = kept;
                 return (run, pairs, residual);
             }
             (run, p2, r2)
         };
-        let (mut pairs, mut residual) = assess(&run);
-        // A stage whose trace failed (a singular basis, or an end that fails its check) or
-        // ended in a mechanism is traced again with the friction relations deciding every tie
-        // (`EvolutionSolver::stage_related`): where a sliding pair opens, its normal force and
-        // its friction part reach zero together, and the stage's own rule, on values that
-        // carry the round-off of the slips it absorbed, can let the friction part leave first
-        // (then the basis turns singular, or the trace reads a false mechanism, or its end
-        // leaves friction on an open pair). After a failure the second trace is kept where it
-        // passes the check, whatever its ending; after a mechanism only where it completes
-        // the stage and passes the check: a genuine mechanism, which the second trace meets
-        // too, stays as the first found it.
-        let mut run = run;
-        // A mechanism in which nothing moves is the formulation's, not the structure's (an
-        // open pair's two friction parts growing together): the trace failed.
-        let null_at = moves_nothing(&run.ending, m).then_some(run.s_end);
-        let first_failed = failed(&run, &residual) || null_at.is_some();
-        // Where the first trace went wrong: a null mode's load, or the load of a singular
-        // basis (met after a pair's opening tie was decided for its friction part).
-        let wrong_at = null_at.or((run.ending == StageEnding::Singular).then_some(run.s_end));
-        // What the traces after the first did, where none was kept (for the failure's reason).
-        let mut retraced = Vec::new();
-        if first_failed || matches!(run.ending, StageEnding::Mechanism(_)) {
-            let again = solver.stage_related(&state, &d, judge.clone());
-            let (p2, r2) = assess(&again);
-            let completed = again.ending == StageEnding::Completed;
-            if !failed(&again, &r2)
-                && !moves_nothing(&again.ending, m)
-                && (first_failed || completed)
-            {
-                (run, pairs, residual) = (again, p2, r2);
-            } else if let Some(s_wrong) = wrong_at {
-                retraced.push(retrace_note(
-                    "with the relations deciding every tie",
-                    &again,
-                    &r2,
-                ));
-                // The relations decide the ties up to where the first trace went wrong (its
-                // null mode, or its singular basis), the stage's own rule the rest (where a
-                // block tips about its toe, the second trace ran past the tipping or turned
-                // back out of balance).
-                let third = solver.stage_related_until(&state, &d, judge, s_wrong + PAST_NULL);
-                let (p3, r3) = assess(&third);
-                if !failed(&third, &r3) && !moves_nothing(&third.ending, m) {
-                    (run, pairs, residual) = (third, p3, r3);
-                } else {
-                    retraced.push(retrace_note("with them only up to that load", &third, &r3));
+        let select = |relaxed: bool, first: StageRun| {
+            let mut run = first;
+            let (mut pairs, mut residual) = assess(&run, relaxed);
+            // A stage whose trace failed (a singular basis, or an end that fails its check) or
+            // ended in a mechanism is traced again with the friction relations deciding every tie
+            // (`EvolutionSolver::stage_related`): where a sliding pair opens, its normal force and
+            // its friction part reach zero together, and the stage's own rule, on values that
+            // carry the round-off of the slips it absorbed, can let the friction part leave first
+            // (then the basis turns singular, or the trace reads a false mechanism, or its end
+            // leaves friction on an open pair). After a failure the second trace is kept where it
+            // passes the check, whatever its ending; after a mechanism only where it completes
+            // the stage and passes the check: a genuine mechanism, which the second trace meets
+            // too, stays as the first found it.
+            // A mechanism in which nothing moves is the formulation's, not the structure's (an
+            // open pair's two friction parts growing together): the trace failed.
+            let null_at = moves_nothing(&run.ending, m).then_some(run.s_end);
+            let first_failed = failed(&run, &residual) || null_at.is_some();
+            // Where the first trace went wrong: a null mode's load, or the load of a singular
+            // basis (met after a pair's opening tie was decided for its friction part).
+            let wrong_at = null_at.or((run.ending == StageEnding::Singular).then_some(run.s_end));
+            // What the traces after the first did, where none was kept (for the failure's reason).
+            let mut retraced = Vec::new();
+            if first_failed || matches!(run.ending, StageEnding::Mechanism(_)) {
+                let again = solver.stage_related(&state, &d, judge.clone());
+                let (p2, r2) = assess(&again, relaxed);
+                let completed = again.ending == StageEnding::Completed;
+                if !failed(&again, &r2)
+                    && !moves_nothing(&again.ending, m)
+                    && (first_failed || completed)
+                {
+                    (run, pairs, residual) = (again, p2, r2);
+                } else if let Some(s_wrong) = wrong_at {
+                    retraced.push(retrace_note(
+                        "with the relations deciding every tie",
+                        &again,
+                        &r2,
+                    ));
+                    // The relations decide the ties up to where the first trace went wrong (its
+                    // null mode, or its singular basis), the stage's own rule the rest (where a
+                    // block tips about its toe, the second trace ran past the tipping or turned
+                    // back out of balance).
+                    let third =
+                        solver.stage_related_until(&state, &d, judge.clone(), s_wrong + PAST_NULL);
+                    let (p3, r3) = assess(&third, relaxed);
+                    if !failed(&third, &r3) && !moves_nothing(&third.ending, m) {
+                        (run, pairs, residual) = (third, p3, r3);
+                    } else {
+                        retraced.push(retrace_note("with them only up to that load", &third, &r3));
+                    }
                 }
             }
-        }
-        let (run, pairs, residual) = settle(run, pairs, residual);
+            let (run, pairs, residual) = settle(run, pairs, residual, relaxed);
+            (run, pairs, residual, retraced)
+        };
+        // Where no trace passes the check, the check once more with each pair's largest slip
+        // over the stage standing for round-off its forces carry (a block slid far and back:
+        // its forces keep the round-off of the slide, its final slips do not). Only as a last
+        // resort: the strict check decides which trace is kept wherever one passes it (the
+        // relaxed one let a trace that left friction on an opening pair pass, and its later
+        // stages fail).
+        let (run, pairs, residual, retraced) = {
+            let passes = |r: &(StageRun, Vec<PairResult>, HistoryResidual, Vec<String>)| {
+                !failed(&r.0, &r.2) && !moves_nothing(&r.0.ending, m)
+            };
+            let strict = select(false, run.clone());
+            if passes(&strict) {
+                strict
+            } else {
+                let relaxed = select(true, run);
+                if passes(&relaxed) {
+                    relaxed
+                } else {
+                    strict
+                }
+            }
+        };
         let chain = stage_chain(&state, &run);
         let mut open = (0..m)
             .map(|i| reader.is_open(state.x[i], state.z[i]))
@@ -839,13 +887,16 @@ impl Reader<'_> {
     }
 
     /// Equation, complementarity and feasibility of a final state, from the original data in
-    /// the user's units; `inc` the normalised slip increments of the last segment.
+    /// the user's units; `inc` the normalised slip increments of the last segment; `excursion`
+    /// each pair's largest slip over the stage (user units), whose round-off the forces carry
+    /// (zeros for the strict check).
     fn residual(
         &self,
         pairs: &[PairResult],
         phi: &[f64],
         history: &History,
         inc: &[f64],
+        excursion: &[f64],
     ) -> HistoryResidual {
         let zone = self.zone;
         let m = pairs.len();
@@ -901,8 +952,13 @@ impl Reader<'_> {
                     size = size.max(tn).max(tg).max(t2.abs());
                     sum += tn + tg + t2.abs();
                 }
+                // The round-off the slips met over the stage left in the force (its terms at
+                // their largest), none where `excursion` is zero.
+                let slid: f64 = (0..m).map(|j| (b[(i, j)] * excursion[j]).abs()).sum();
+                sum += slid;
                 terms[i][usize::from(!normal)] = sum;
-                equation = equation.max(r.abs() / size.max(xs));
+                let scale = size.max(xs).max(ROUNDOFF_TERMS * slid / VERIFIED);
+                equation = equation.max(r.abs() / scale);
             }
         }
         let mut complementarity = 0.0f64;
