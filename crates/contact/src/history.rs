@@ -476,8 +476,8 @@ pub fn follow_history_judged(
                 }
                 _ => reader.pairs(&run.end.x, &run.end.z, |i| (inc[m + i], inc[2 * m + i])),
             };
-            // Each pair's largest slip over the stage's states (user units), for the relaxed
-            // check only.
+            // Each pair's largest slip over the stage's states (user units, `z_t` as the pairs
+            // report it), for the relaxed check only.
             let chain = stage_chain(&state, run);
             let excursion: Vec<f64> = (0..m)
                 .map(|j| {
@@ -488,7 +488,7 @@ pub fn follow_history_judged(
                         a.max(
                             reader
                                 .units
-                                .user_displacement(z[m + j] - z[2 * m + j])
+                                .user_displacement((z[m + j] - z[2 * m + j]) / 2.0)
                                 .abs(),
                         )
                     })
