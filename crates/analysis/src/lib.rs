@@ -423,7 +423,8 @@ fn unreported_rest(s: &mut unilateral_contact::ContactSolution, why: &AnalysisEr
     s.pairs.clear();
     s.residual = None;
     s.notes.push(format!(
-        "no state is reported at p = 0, where the structure becomes a mechanism: {why}"
+        "{}, where the structure becomes a mechanism: {why}",
+        unilateral_contact::NO_STATE_AT_START
     ));
 }
 

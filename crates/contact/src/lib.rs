@@ -38,7 +38,7 @@ pub use lcp::ContactLcp;
 pub use settings::SolveSettings;
 pub use solution::{
     number_text, pair_results, ContactSolution, Event, EventKind, LoadStep, Outcome, PairResult,
-    PairState,
+    PairState, NO_STATE_AT_START,
 };
 pub use solve::{solve, solve_judged, solve_shared, solve_sparse};
 pub use sparse_zone::SparseZone;

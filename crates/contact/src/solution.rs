@@ -239,6 +239,10 @@ impl Outcome {
     }
 }
 
+/// How the note begins that says why a mechanism at `p = 0` reports no state
+/// ([`ContactSolution::no_state_at_start`]).
+pub const NO_STATE_AT_START: &str = "no state is reported at p = 0";
+
 /// The answer of [`crate::solve`].
 #[derive(Debug, Clone)]
 pub struct ContactSolution {
@@ -372,6 +376,13 @@ impl ContactSolution {
             .as_ref()
             .filter(|_| self.p.is_none())
             .map(|why| crate::solve::unreported_note(why, self.pairs(), &self.engine.names))
+    }
+
+    /// No state is reported at `p = 0` where the structure becomes a mechanism, and a note
+    /// (beginning [`NO_STATE_AT_START`]) says why: it carries no force, or the structure's
+    /// check refused it.
+    pub fn no_state_at_start(&self) -> bool {
+        self.p.is_none() && self.notes.iter().any(|n| n.starts_with(NO_STATE_AT_START))
     }
 
     /// Whether the missing solution ([`ContactSolution::unreported`]) is the program's failure

@@ -337,13 +337,13 @@ fn solve_with(
         notes.push(unreported_note(why, m, &names));
     }
     if path.unloaded_at_start {
-        notes.push(
-            "no state is reported at p = 0: the structure is a mechanism as soon as the variable \
-             load is applied, and at p = 0 no pair carries a force beyond the round-off of the \
-             forces its gaps make term by term (no constant load reaches the pairs, or one too \
-             small to resolve against the gaps), so nothing fixes the structure's position there"
-                .into(),
-        );
+        notes.push(format!(
+            "{}: the structure is a mechanism as soon as the variable load is applied, and at \
+             p = 0 no pair carries a force beyond the round-off of the forces its gaps make term \
+             by term (no constant load reaches the pairs, or one too small to resolve against \
+             the gaps), so nothing fixes the structure's position there",
+            crate::solution::NO_STATE_AT_START
+        ));
     }
     let solution = normalised_solution;
     if let Some(p_art) = path.artificial_mechanism {

@@ -93,7 +93,7 @@ pub fn contact_summary_detail(
             let _ = writeln!(s);
         }
         None => {
-            let why = if sol.unreported().is_some() {
+            let why = if sol.unreported().is_some() || sol.no_state_at_start() {
                 " (why: in the notes at the end)"
             } else {
                 ""

@@ -900,6 +900,10 @@ fn a_beam_that_slides_from_the_start_reports_the_constant_loads_state_or_says_wh
             "{what}: {:?}",
             s.notes
         );
+        assert!(
+            s.no_state_at_start(),
+            "{what}: the summary points to the note"
+        );
     }
 }
 
@@ -920,6 +924,10 @@ fn a_mechanism_at_the_start_whose_state_cannot_be_resolved_keeps_its_limit() {
                 .any(|n| n.contains("cannot be resolved in double precision")),
             "kN·mm {kn_mm}: {:?}",
             s.notes
+        );
+        assert!(
+            s.no_state_at_start(),
+            "kN·mm {kn_mm}: the summary points to the note"
         );
     }
 }
