@@ -479,21 +479,15 @@ pub fn follow_history_judged(
             // Each pair's largest slip over the stage's states (user units, `z_t` as the pairs
             // report it), for the relaxed check only.
             let chain = stage_chain(&state, run);
-            let excursion: Vec<f64> = (0..m)
-                .map(|j| {
-                    if !relaxed {
-                        return 0.0;
+            let mut excursion = vec![0.0f64; m];
+            if relaxed {
+                for (_, z) in &chain {
+                    for (j, e) in excursion.iter_mut().enumerate() {
+                        let slip = (z[m + j] - z[2 * m + j]) / 2.0;
+                        *e = e.max(reader.units.user_displacement(slip).abs());
                     }
-                    chain.iter().fold(0.0f64, |a, (_, z)| {
-                        a.max(
-                            reader
-                                .units
-                                .user_displacement((z[m + j] - z[2 * m + j]) / 2.0)
-                                .abs(),
-                        )
-                    })
-                })
-                .collect();
+                }
+            }
             let mut residual =
                 reader.residual(&pairs, &factors_at(run.s_end), history, inc, &excursion);
             residual.dissipation = reader.dissipation(&chain);

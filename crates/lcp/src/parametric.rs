@@ -377,11 +377,11 @@ fn mechanism_at_start(solver: &PathSolver, path: &mut LoadPath, kseg: usize, tar
     // The breakpoints whose variable load is round-off of the constant one are at p = 0 too
     // (on the tester's beam with its variable load 1e-7 times smaller, two pivots read at
     // p = 2.2e-9 between the start and the limit).
-    let at_zero = |p: f64| p.abs() * d <= 1e-12 * q0 || (p != 0.0 && lo <= p && p <= hi);
-    for b in path.breakpoints.iter_mut().filter(|b| at_zero(b.p)) {
+    let round_off_load = |p: f64| p.abs() * d <= 1e-12 * q0 || (p != 0.0 && lo <= p && p <= hi);
+    for b in path.breakpoints.iter_mut().filter(|b| round_off_load(b.p)) {
         b.p = 0.0;
     }
-    for st in path.steps.iter_mut().filter(|s| at_zero(s.p)) {
+    for st in path.steps.iter_mut().filter(|s| round_off_load(s.p)) {
         st.p = 0.0;
     }
     path.p_max = path.breakpoints.iter().fold(0.0f64, |a, b| a.max(b.p));

@@ -707,37 +707,47 @@ fn a_beam_lifted_by_a_huge_load_has_its_limit_at_a_tiny_load_not_at_zero() {
     assert_lifted_off(false, 4e15, 1e-13);
 }
 
+/// The units line and the steel section `beam` (E = 2.1e11 Pa, A = 1e-2 m², I = 1e-5 m⁴) of
+/// the beams and portals below, in N·m or kN·mm; with `member`, the 4 m beam `b` along x (two
+/// elements).
+fn steel_beam(kn_mm: bool, member: bool) -> String {
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    let mut text = format!(
+        "units = \"{units}\"\n\
+         [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n",
+        units = if kn_mm { "kN, mm" } else { "N, m" },
+        e = 2.1e11 * f / (l * l),
+        a = 1e-2 * l * l,
+        i = 1e-5 * l * l * l * l,
+    );
+    if member {
+        text += &format!(
+            "[[members]]\nname = \"b\"\nstart = [0.0, 0.0]\nend = [{:e}, 0.0]\n\
+             divisions = 2\nsection = \"beam\"\n",
+            4.0 * l
+        );
+    }
+    text
+}
+
 /// The beam of [`a_beam_lifted_off_both_bearings_at_once_reports_its_state_at_the_limit`] lifted
 /// by `load` N at midspan: the mechanism at `p_lim` (by hand `400/load`), every force zero there.
 fn assert_lifted_off(kn_mm: bool, load: f64, p_lim: f64) {
-    use unilateral_contact::Outcome;
     let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
     let text = format!(
-        "units = \"{units}\"\n\
-         [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
-         [[members]]\nname = \"b\"\nstart = [0.0, 0.0]\nend = [{span:e}, 0.0]\n\
-         divisions = 2\nsection = \"beam\"\n\
+        "{head}\
          [[springs]]\nnodes = \"b.start\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
          [[contact]]\nname = \"brg\"\nfrom = \"ground\"\nto = [\"b.start\", \"b.end\"]\n\
          normal = [0.0, 1.0]\nfriction = 0.3\n\
          [[loads.constant.distributed]]\nelements = \"b\"\nq = [0.0, {q:e}]\n\
          [[loads.variable.nodal]]\nnodes = \"b.1\"\nfy = {p:e}\n",
-        units = if kn_mm { "kN, mm" } else { "N, m" },
-        e = 2.1e11 * f / (l * l),
-        a = 1e-2 * l * l,
-        i = 1e-5 * l * l * l * l,
-        span = 4.0 * l,
+        head = steel_beam(kn_mm, true),
         k = 1e6 * f / l,
         q = -100.0 * f / l,
         p = load * f,
     );
-    let p = crate::surface::read("lift.toml", &text).unwrap_or_else(|e| panic!("{e}"));
-    let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{e}"));
-    let s = &a.solution;
     let what = format!("kN·mm {kn_mm}, load {load}");
-    let Outcome::Mechanism { p_limit, .. } = s.outcome else {
-        panic!("{what}: {:?}", s.outcome);
-    };
+    let (p_limit, s) = mechanism(&text, &what);
     assert!(
         (p_limit - p_lim).abs() < 1e-12 * p_lim,
         "{what}: p_lim = {p_limit}"
@@ -764,7 +774,6 @@ fn assert_lifted_off(kn_mm: bool, load: f64, p_lim: f64) {
 /// path's own scheme at `p = 0`.
 #[test]
 fn a_beam_pushed_sideways_with_nothing_to_hold_it_is_a_mechanism_at_zero() {
-    use unilateral_contact::Outcome;
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/data/oracle/beam-pushed-sideways-at-rest.toml");
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -784,12 +793,7 @@ fn a_beam_pushed_sideways_with_nothing_to_hold_it_is_a_mechanism_at_zero() {
             })
             .collect();
         let text = format!("{head}[[loads.variable.nodal]]{scaled}");
-        let p = crate::surface::read("sideways.toml", &text).unwrap_or_else(|e| panic!("{e}"));
-        let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{factor}: {e}"));
-        let s = &a.solution;
-        let Outcome::Mechanism { p_limit, .. } = s.outcome else {
-            panic!("{factor}: {:?} {:?}", s.outcome, s.notes);
-        };
+        let (p_limit, s) = mechanism(&text, &format!("{factor}"));
         assert_eq!(p_limit, 0.0, "{factor}");
         assert_eq!(s.p, Some(0.0), "{factor}: {:?}", s.notes);
         assert!(s.residual.is_some(), "{factor}: a verified state");
@@ -826,20 +830,13 @@ fn a_beam_pushed_sideways_with_nothing_to_hold_it_is_a_mechanism_at_zero() {
 fn sliding_beam(kn_mm: bool, q: f64, gap: f64) -> String {
     let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
     let mut text = format!(
-        "units = \"{units}\"\n\
-         [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
-         [[members]]\nname = \"b\"\nstart = [0.0, 0.0]\nend = [{span:e}, 0.0]\n\
-         divisions = 2\nsection = \"beam\"\n\
+        "{head}\
          [[contact]]\nname = \"left\"\nfrom = \"ground\"\nto = \"b.start\"\n\
          normal = [0.0, 1.0]\nfriction = 0.0\ngap = {gap:e}\n\
          [[contact]]\nname = \"right\"\nfrom = \"ground\"\nto = \"b.end\"\n\
          normal = [0.0, 1.0]\nfriction = 0.0\n\
          [[loads.variable.nodal]]\nnodes = \"b.1\"\nfx = {p:e}\nfy = {mp:e}\n",
-        units = if kn_mm { "kN, mm" } else { "N, m" },
-        e = 2.1e11 * f / (l * l),
-        a = 1e-2 * l * l,
-        i = 1e-5 * l * l * l * l,
-        span = 4.0 * l,
+        head = steel_beam(kn_mm, true),
         gap = gap * l,
         p = 1000.0 * f,
         mp = -1000.0 * f,
@@ -855,15 +852,34 @@ fn sliding_beam(kn_mm: bool, q: f64, gap: f64) -> String {
 
 /// [`sliding_beam`] analysed: its limit (it must be a mechanism) and its solution.
 fn slides(kn_mm: bool, q: f64, gap: f64) -> (f64, unilateral_contact::ContactSolution) {
-    use unilateral_contact::Outcome;
     let what = format!("kN·mm {kn_mm}, q = {q}, gap {gap}");
-    let p = crate::surface::read("slide.toml", &sliding_beam(kn_mm, q, gap))
-        .unwrap_or_else(|e| panic!("{what}: {e}"));
+    mechanism(&sliding_beam(kn_mm, q, gap), &what)
+}
+
+/// A model file's text analysed: its limit (it must be a mechanism) and its solution.
+fn mechanism(text: &str, what: &str) -> (f64, unilateral_contact::ContactSolution) {
+    use unilateral_contact::Outcome;
+    let p = crate::surface::read("model.toml", text).unwrap_or_else(|e| panic!("{what}: {e}"));
     let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{what}: {e}"));
     let Outcome::Mechanism { p_limit, .. } = a.solution.outcome else {
         panic!("{what}: {:?} {:?}", a.solution.outcome, a.solution.notes);
     };
     (p_limit, a.solution)
+}
+
+/// A mechanism at `p = 0` that reports no state, with the note (containing `why`) the summary
+/// points to.
+fn assert_no_state_at_start(s: &unilateral_contact::ContactSolution, why: &str, what: &str) {
+    assert_eq!(s.p, None, "{what}: {:?}", s.pairs);
+    assert!(
+        s.notes.iter().any(|n| n.contains(why)),
+        "{what}: {:?}",
+        s.notes
+    );
+    assert!(
+        s.no_state_at_start(),
+        "{what}: the summary points to the note"
+    );
 }
 
 /// [`sliding_beam`] with a gap of 0.1 mm: nothing holds it sideways, a mechanism at
@@ -892,18 +908,7 @@ fn a_beam_that_slides_from_the_start_reports_the_constant_loads_state_or_says_wh
         }
         let (p_limit, s) = slides(kn_mm, 0.0, 1e-4);
         assert_eq!(p_limit, 0.0, "{what}");
-        assert_eq!(s.p, None, "{what}: {:?}", s.pairs);
-        assert!(
-            s.notes
-                .iter()
-                .any(|n| n.contains("nothing fixes the structure's position")),
-            "{what}: {:?}",
-            s.notes
-        );
-        assert!(
-            s.no_state_at_start(),
-            "{what}: the summary points to the note"
-        );
+        assert_no_state_at_start(&s, "nothing fixes the structure's position", &what);
     }
 }
 
@@ -917,18 +922,8 @@ fn a_mechanism_at_the_start_whose_state_cannot_be_resolved_keeps_its_limit() {
     for kn_mm in [false, true] {
         let (p_limit, s) = slides(kn_mm, 2.5e-7, 0.1);
         assert_eq!(p_limit, 0.0, "kN·mm {kn_mm}");
-        assert_eq!(s.p, None, "kN·mm {kn_mm}: {:?}", s.pairs);
-        assert!(
-            s.notes
-                .iter()
-                .any(|n| n.contains("cannot be resolved in double precision")),
-            "kN·mm {kn_mm}: {:?}",
-            s.notes
-        );
-        assert!(
-            s.no_state_at_start(),
-            "kN·mm {kn_mm}: the summary points to the note"
-        );
+        let why = "cannot be resolved in double precision";
+        assert_no_state_at_start(&s, why, &format!("kN·mm {kn_mm}"));
     }
 }
 
@@ -950,13 +945,7 @@ fn portal(kn_mm: bool, mu: f64, h: f64, heavy: bool) -> String {
              normal = [0.0, 1.0]\nfriction = {mu}\n"
         )
     };
-    let mut text = format!(
-        "units = \"{}\"\n[[sections]]\nname = \"beam\"\nE = {:e}\nA = {:e}\nI = {:e}\n",
-        if kn_mm { "kN, mm" } else { "N, m" },
-        2.1e11 * f / (l * l),
-        1e-2 * l * l,
-        1e-5 * l * l * l * l,
-    );
+    let mut text = steel_beam(kn_mm, false);
     text += &member("cl", point(0.0, 0.0), point(0.0, h));
     text += &member("cr", point(4.0, 0.0), point(4.0, h));
     text += &member("bm", "\"cl.end\"".into(), "\"cr.end\"".into());
@@ -989,17 +978,10 @@ fn portal(kn_mm: bool, mu: f64, h: f64, heavy: bool) -> String {
 /// tipping's breakpoints, to `p = 0`.
 #[test]
 fn portals_pushed_sideways_have_their_limits_at_zero_or_where_they_tip() {
-    use unilateral_contact::Outcome;
     for kn_mm in [false, true] {
         let f = if kn_mm { 1e-3 } else { 1.0 };
         let what = format!("kN·mm {kn_mm}");
-        let p = crate::surface::read("portal.toml", &portal(kn_mm, 0.0, 3.0, false))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{what}: {e}"));
-        let s = &a.solution;
-        let Outcome::Mechanism { p_limit, .. } = s.outcome else {
-            panic!("{what}: {:?} {:?}", s.outcome, s.notes);
-        };
+        let (p_limit, s) = mechanism(&portal(kn_mm, 0.0, 3.0, false), &what);
         assert_eq!(p_limit, 0.0, "{what}");
         assert_eq!(s.p, Some(0.0), "{what}: {:?}", s.notes);
         for r in &s.pairs {
@@ -1008,12 +990,7 @@ fn portals_pushed_sideways_have_their_limits_at_zero_or_where_they_tip() {
                 "{what}: {r:?}"
             );
         }
-        let p = crate::surface::read("portal.toml", &portal(kn_mm, 0.3, 12.0, true))
-            .unwrap_or_else(|e| panic!("{e}"));
-        let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{what}: {e}"));
-        let Outcome::Mechanism { p_limit, .. } = a.solution.outcome else {
-            panic!("{what}: {:?} {:?}", a.solution.outcome, a.solution.notes);
-        };
+        let (p_limit, _) = mechanism(&portal(kn_mm, 0.3, 12.0, true), &what);
         let by_hand = 1000.0 * 4.0 / (2.0 * 200.0 * 12.0);
         assert!(
             (p_limit - by_hand).abs() < 1e-9 * by_hand,

@@ -1287,28 +1287,9 @@ fn a_history_that_cannot_be_resolved_names_the_stage() {
 #[test]
 fn a_block_sliding_metres_on_a_soft_spring_in_a_history_is_refused_as_unresolvable() {
     for kn_mm in [false, true] {
-        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-        let text = format!(
-            "units = \"{units}\"\n\
-             [[materials]]\nname = \"steel\"\nE = {e:e}\nnu = 0.3\nthickness = {t:e}\n\
-             [[blocks]]\nname = \"blk\"\norigin = [0.0, 0.0]\nwidth = {w:e}\nheight = {h:e}\n\
-             nx = 7\nny = 4\nmaterial = \"steel\"\nanalysis = \"plane_stress\"\n\
-             [[contact]]\nname = \"g\"\nfrom = \"ground\"\nto = \"blk.bottom\"\n\
-             normal = [0.0, 1.0]\nfriction = 0.45\n\
-             [[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\nstiffness = {k:e}\n\
-             [[loads.weight.nodal]]\nnodes = \"blk.top\"\nfy = {wt:e}\n\
-             [[loads.push.nodal]]\nnodes = \"blk.top_right\"\nfx = {push:e}\n",
-            units = if kn_mm { "kN, mm" } else { "N, m" },
-            e = 2e11 * f / (l * l),
-            t = l,
-            w = l,
-            h = 0.5 * l,
-            k = 178.0 * f / l,
-            wt = -1000.0 * f,
-            push = 5000.0 * f,
-        );
-        let e = analyze_with_history(&text, ("weight", "weight"), "push", &[("push", 1.488)])
-            .expect_err("slips of 21.6 m");
+        // 7440 N: 0.744 of the block's 10 kN push.
+        let text = block_history_text((7, 4, 1.0, 0.5), (0.45, 178.0, 8000.0), &[0.744], kn_mm);
+        let e = analyze_history_text(&text).expect_err("slips of 21.6 m");
         assert!(
             matches!(e, unilateral_analysis::AnalysisError::Unresolved { .. }),
             "kN·mm {kn_mm}: {e}"
@@ -2136,33 +2117,11 @@ fn assert_block_slides_out_and_back(
 ) {
     for kn_mm in [false, true] {
         let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-        let text = format!(
-            "units = \"{units}\"\n\
-             [[materials]]\nname = \"steel\"\nE = {e:e}\nnu = 0.3\nthickness = {t:e}\n\
-             [[blocks]]\nname = \"blk\"\norigin = [0.0, 0.0]\nwidth = {bw:e}\nheight = {bh:e}\n\
-             nx = {nx}\nny = 1\nmaterial = \"steel\"\nanalysis = \"plane_stress\"\n\
-             [[contact]]\nname = \"g\"\nfrom = \"ground\"\nto = \"blk.bottom\"\n\
-             normal = [0.0, 1.0]\nfriction = {mu}\n\
-             [[springs]]\nnodes = \"blk.bottom_left\"\ndirection = [1.0, 0.0]\nstiffness = {kk:e}\n\
-             [[loads.weight.nodal]]\nnodes = \"blk.top\"\nfy = {wt:e}\n\
-             [[loads.push.nodal]]\nnodes = \"blk.top_right\"\nfx = {px:e}\n",
-            units = if kn_mm { "kN, mm" } else { "N, m" },
-            e = 2e11 * f / (l * l),
-            t = l,
-            bw = b * l,
-            bh = h * l,
-            kk = k * f / l,
-            wt = -w / (nx as f64 + 1.0) * f,
-            px = push * f,
-        );
+        // The pushes as factors of the block's 10 kN push.
+        let pushes = [push / 10_000.0, back / 10_000.0];
+        let text = block_history_text((nx, 1, b, h), (mu, k, w), &pushes, kn_mm);
         let what = format!("k = {k}, kN·mm {kn_mm}");
-        let a = analyze_with_history(
-            &text,
-            ("weight", "weight"),
-            "push",
-            &[("push", 1.0), ("back", back / push)],
-        )
-        .unwrap_or_else(|e| panic!("{what}: {e}"));
+        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
         let stages = &a.history.stages;
         assert_eq!(stages.len(), 3, "{what}");
         for (st, (sign, u)) in stages[1..]
