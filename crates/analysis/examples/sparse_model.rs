@@ -95,6 +95,32 @@ fn main() {
         println!("condensed M against M by a dense LU of A: {zeroed} entries zero in the condensed one (largest {maxabs_rel_row:e} of its row), largest difference {maxrel:e} of the row; q0 {dq:e}, d {dd:e}");
     }
     let solver = PathSolver::new(dense.problem, opts, settings).unwrap();
+    // `SPARSE_ONLY`: the sparse engine's path alone (for profiling it).
+    if std::env::var("SPARSE_ONLY").is_ok() {
+        let options = SchurOptions {
+            target,
+            follow,
+            max_pivots: 20 * n + 100,
+            max_border: std::env::var("MAX_BORDER").map_or(40, |v| v.parse().unwrap()),
+            order: Some(order),
+            relations,
+            progress: Default::default(),
+        };
+        let t = Instant::now();
+        let got = solver.trace_sparse(&lcp, &options);
+        let mut h = 0u64;
+        for st in &got.steps {
+            h = h.rotate_left(7) ^ st.p.to_bits();
+        }
+        println!(
+            "sparse {:?} {} steps (hash of the loads {h:x}) {:.3} s, {} refactorisations",
+            got.status,
+            got.steps.len(),
+            t.elapsed().as_secs_f64(),
+            got.refactorizations
+        );
+        return;
+    }
     let t = Instant::now();
     let want = solver.follow();
     let td = t.elapsed().as_secs_f64();

@@ -371,6 +371,8 @@ pub(crate) fn follow(
     let Ok(mut basis) = Bordered::slack(lcp) else {
         return out;
     };
+    // Every direction and every set of values is refined once against the data.
+    basis.refine_checks();
     let mut st = State {
         n,
         basic: (0..=2 * n).map(|v| v < n).collect(),
@@ -457,6 +459,11 @@ pub(crate) fn follow(
         })
         .collect();
     let mut rhs = vec![0.0; big_n + 2 * n + 1];
+    // The direction and the refinement's vectors, reused from step to step.
+    let (mut dv, mut work) = (Vec::new(), (Vec::new(), Vec::new()));
+    // The base's own solution of the direction's right-hand side: the border column of the
+    // pivot that frees the entering variable's fix row.
+    let mut base_dir = Vec::new();
     loop {
         if out.steps.len() >= opts.max_pivots {
             out.status = PathStatus::IterationLimit;
@@ -464,16 +471,24 @@ pub(crate) fn follow(
         }
         // The direction: the entering variable at 1, every other non-basic at 0.
         rhs.fill(0.0);
-        if let Some((at, entry)) = basis.fix_row(entering) {
+        let entering_row = basis.fix_row(entering);
+        if let Some((at, entry)) = entering_row {
             rhs[at] = entry;
         }
-        let dv = refined(
+        basis.solve_into_keeping(
+            &rhs,
+            |v| f64::from(v == entering),
+            &mut dv,
+            Some(&mut base_dir),
+        );
+        refine_in_place(
             lcp,
             &basis,
             &st.basic,
             None,
             Some(entering),
-            basis.solve(&rhs, |v| f64::from(v == entering)),
+            &mut dv,
+            (&mut work.0, &mut work.1),
         );
         let mut dir = dv[big_n..].to_vec();
         let dp = dir[2 * n];
@@ -699,7 +714,12 @@ pub(crate) fn follow(
         }
         st.val[leaving] = 0.0;
         fresh = false;
-        let updated = basis.pivot(entering, leaving);
+        let known = entering_row.map(|(row, entry)| bordered::KnownColumn {
+            row,
+            entry,
+            t: &base_dir,
+        });
+        let updated = basis.pivot_with(entering, leaving, known);
         if updated.is_err() {
             singular_updates += 1;
         }
@@ -857,6 +877,22 @@ fn refined(
     unit: Option<usize>,
     mut v: Vec<f64>,
 ) -> Vec<f64> {
+    let (mut res, mut dv) = (Vec::new(), Vec::new());
+    refine_in_place(lcp, basis, basic, rhs, unit, &mut v, (&mut res, &mut dv));
+    v
+}
+
+/// [`refined`] on `v` in place, with two work vectors of the base's size (reused from step
+/// to step).
+fn refine_in_place(
+    lcp: &SchurLcp,
+    basis: &Bordered,
+    basic: &[bool],
+    rhs: Option<(&[f64], &[f64])>,
+    unit: Option<usize>,
+    v: &mut [f64],
+    (res, dv): (&mut Vec<f64>, &mut Vec<f64>),
+) {
     let n = lcp.order();
     let big_n = lcp.a.nrows();
     for (k, val) in v[big_n..].iter_mut().enumerate() {
@@ -864,7 +900,8 @@ fn refined(
             *val = f64::from(Some(k) == unit);
         }
     }
-    let mut res = vec![0.0; big_n + 2 * n + 1];
+    res.clear();
+    res.resize(big_n + 2 * n + 1, 0.0);
     if let Some((qa, q0)) = rhs {
         res[..big_n].copy_from_slice(qa);
         res[big_n..big_n + n].copy_from_slice(q0);
@@ -899,11 +936,10 @@ fn refined(
             *r += d * p;
         }
     }
-    let dv = basis.solve(&res, |_| 0.0);
-    for (a, b) in v.iter_mut().zip(&dv) {
+    basis.solve_into(res, |_| 0.0, dv);
+    for (a, b) in v.iter_mut().zip(dv.iter()) {
         *a += b;
     }
-    v
 }
 
 /// The tied candidate that leaves by the lexicographic rule: the smallest row of
