@@ -350,6 +350,15 @@ pub struct Analysis {
     pub timings: Timings,
 }
 
+/// The number of contact pairs from which [`analyze`] traces the path with the engine on the
+/// structure's sparse blocks ([`unilateral_contact::solve_sparse`]): a pivot there costs a few
+/// sparse solves, on the condensed zone a pass over `n·k` entries of the dense matrix. Measured
+/// on the whole-process benchmark's beams (`docs/performance.md`, round 38): 2.6 s against
+/// 4.2 s at 1000 pairs, 13 s against 50 s at 2000; slower below about 700 pairs (0.37 s
+/// against 0.16 s at 500, round 28). Where the sparse path is not taken (it fails, or ends
+/// otherwise than at the target or in a ray that verifies), the dense engine traces it.
+pub const SPARSE_ENGINE_PAIRS: usize = 1000;
+
 /// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
 /// names ([`Model::names`], the 0-based indices where it has none).
 pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, AnalysisError> {
@@ -365,8 +374,14 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
     let sparse = (settings.tightening == 0.0)
         .then(|| sparse_zone_of(model).ok())
         .flatten();
-    let solution = unilateral_contact::solve_judged(Arc::clone(&zone), sparse.as_ref(), settings)
-        .map_err(contact_error)?;
+    // From SPARSE_ENGINE_PAIRS pairs on, the path is traced on the structure's sparse blocks
+    // (the dense engine where that path is not taken).
+    let solution = if zone.pairs() >= SPARSE_ENGINE_PAIRS {
+        unilateral_contact::solve_sparse(Arc::clone(&zone), sparse.as_ref(), settings)
+    } else {
+        unilateral_contact::solve_judged(Arc::clone(&zone), sparse.as_ref(), settings)
+    }
+    .map_err(contact_error)?;
     drop(sparse);
     let solve = started.elapsed();
     if solution.outcome == Outcome::NoSolutionAtStart {

@@ -145,36 +145,56 @@ fn solve_with(
         tightening: normalised.tightening(units.normalised_force(settings.tightening)),
     };
     let engine = engine_settings(&normalised, settings);
-    // The solver takes the normalised LCP and holds its `M` once (equilibrated); the LCP in the
-    // user's units, shown in tableaux and labels, is built only after the path, so that the
-    // pivoting's kernel matrices never meet a second `n × n` matrix.
-    let mut solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
     // The structure's blocks in the solver's units, where they apply (no tightening).
     let sparse_lcp = sparse
         .filter(|sparse| settings.tightening == 0.0 && sparse.pairs() == zone.pairs())
         .map(|sparse| units.normalise_sparse(sparse).lcp());
-    if let Some(lcp) = &sparse_lcp {
-        solver.judged_on(Arc::new(unilateral_lcp::StructureJudge::new(lcp.clone())));
-    }
-    let traced = sparse_lcp.filter(|_| trace_sparse).and_then(|lcp| {
-        // The sparse engine's options: the solver's order, relations and progress.
-        let engine = solver.settings();
-        let schur_options = unilateral_lcp::SchurOptions {
-            target: settings.target,
-            follow: settings.follow,
-            // A long path takes about 2n pivots; beyond 6n the sparse engine is more
-            // likely wandering in ill-conditioned ties than tracing, and the dense engine
-            // takes over.
-            max_pivots: engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
-            max_border: 40,
-            order: engine.lexicographic_order.clone(),
-            relations: engine.row_relations.clone(),
-            progress: engine.progress.clone(),
-        };
-        // Taken where it reaches the target, or ends in a ray that verifies far along
-        // it, its doubtful rates judged on the dense data (`PathSolver::follow_sparse`).
-        solver.follow_sparse(&lcp, &schur_options)
-    });
+    let judge = sparse_lcp
+        .as_ref()
+        .map(|lcp| Arc::new(unilateral_lcp::StructureJudge::new(lcp.clone())));
+    let (solver, traced) = match sparse_lcp.as_ref().filter(|_| trace_sparse) {
+        Some(lcp) => {
+            // The sparse engine's options: the solver's order, relations and progress.
+            let schur_options = unilateral_lcp::SchurOptions {
+                target: settings.target,
+                follow: settings.follow,
+                // A long path takes about 2n pivots; beyond 6n the sparse engine is more
+                // likely wandering in ill-conditioned ties than tracing, and the dense engine
+                // takes over.
+                max_pivots: engine.max_pivots.unwrap_or(6 * 3 * zone.pairs() + 100),
+                // Refactorised when the border passes 28 changes: a border's columns are
+                // passed over by every solve, a refactorisation costs about ten of them (the
+                // 2000-bearing beam's path 13.3 s at 28, 14.0 s at 40, 13.7 s at 24).
+                max_border: 28,
+                order: engine.lexicographic_order.clone(),
+                relations: engine.row_relations.clone(),
+                progress: engine.progress.clone(),
+            };
+            // Taken where it reaches the target, or ends in a ray that verifies far along
+            // it, its doubtful rates judged on the dense data (`PathSolver::follow_sparse`);
+            // the dense solver is built on a second thread while the path is traced.
+            PathSolver::new_following_sparse(
+                normalised.problem,
+                normalised_options,
+                engine,
+                judge,
+                lcp,
+                &schur_options,
+            )?
+        }
+        None => {
+            // The solver takes the normalised LCP and holds its `M` once (equilibrated); the
+            // LCP in the user's units, shown in tableaux and labels, is built only after the
+            // path, so that the pivoting's kernel matrices never meet a second `n × n` matrix.
+            let mut solver = PathSolver::new(normalised.problem, normalised_options, engine)?;
+            // The structure's own equations judge the rates the condensed data cannot tell
+            // from round-off.
+            if let Some(judge) = judge {
+                solver.judged_on(judge);
+            }
+            (solver, None)
+        }
+    };
     let traced_on_sparse_blocks = traced.is_some();
     let mut path = traced.unwrap_or_else(|| solver.follow());
     let m = zone.pairs();

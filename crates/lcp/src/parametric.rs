@@ -707,6 +707,24 @@ pub(crate) fn structure_point_at(
     structure_point(solver, &segment_slots(path, seg, solver.prep.n)?, p)
 }
 
+/// The values of the basis of the path's last segment at load `p`, formed on the structure's
+/// own equations (the judge's); `None` without a judge, with a tightening, or where that basis
+/// is singular there.
+pub(crate) fn last_basis_on_structure(
+    solver: &PathSolver,
+    path: &LoadPath,
+    p: f64,
+) -> Option<(Vec<f64>, Vec<f64>)> {
+    let judge = solver.judge.as_ref().filter(|_| solver.c0 == 0.0)?;
+    let n = solver.prep.n;
+    let slots = segment_slots(path, path.records.len(), n)?;
+    let mut basic = vec![false; 2 * n];
+    for &v in &slots {
+        *basic.get_mut(v)? = true;
+    }
+    judge.point(&basic, p)
+}
+
 fn structure_point(solver: &PathSolver, slots: &[usize], p: f64) -> Option<PathPoint> {
     let judge = solver.judge.as_ref()?;
     let n = solver.prep.n;

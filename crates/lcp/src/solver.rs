@@ -238,7 +238,9 @@ impl PathSolver {
     /// adopted ([`PathSolver::adopt`]). Taken only where it reaches the target or ends in a ray
     /// whose reported point verifies and, for a ray, whose basis still solves the problem at
     /// 10⁶ times the larger of its start and the target (a false ray ends there in a negative
-    /// variable). `None` otherwise: the caller traces with [`PathSolver::follow`].
+    /// variable): on the structure's own equations where this solver is judged on them
+    /// ([`PathSolver::judged_on`]; no value below −1e-8 of the largest of its kind), else on
+    /// this solver's data. `None` otherwise: the caller traces with [`PathSolver::follow`].
     pub fn follow_sparse(
         &self,
         lcp: &crate::SchurLcp,
@@ -247,7 +249,62 @@ impl PathSolver {
         if lcp.order() != self.n {
             return None;
         }
-        let schur = self.trace_sparse(lcp, options);
+        self.take_sparse(self.trace_sparse(lcp, options))
+    }
+
+    /// A new solver (as [`PathSolver::new`], judged on `judge` where given) and the path of
+    /// [`PathSolver::follow_sparse`] on `lcp`, the solver built on a second thread while this
+    /// one traces: the engine on sparse data needs the dense data only for the rates it cannot
+    /// tell from round-off, and waits for them there (preparing a 6000-row `M` takes about a
+    /// second, a fifteenth of the 2000-bearing beam's path). `Ok((solver, None))` where the
+    /// path is not taken (the caller traces with [`PathSolver::follow`]).
+    pub fn new_following_sparse(
+        problem: ParametricLcp,
+        options: PathOptions,
+        settings: Settings,
+        judge: Option<std::sync::Arc<crate::StructureJudge>>,
+        lcp: &crate::SchurLcp,
+        schur_options: &crate::SchurOptions,
+    ) -> Result<(Self, Option<LoadPath>), LcpError> {
+        use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+        use std::sync::OnceLock;
+        // The solver, or `None` where its construction panicked (the panic is resumed here).
+        let built: OnceLock<Option<Result<Self, LcpError>>> = OnceLock::new();
+        let order = problem.q0.len();
+        let schur = std::thread::scope(|scope| {
+            let builder = scope.spawn(|| {
+                let made = catch_unwind(AssertUnwindSafe(|| {
+                    PathSolver::new(problem, options, settings).map(|mut solver| {
+                        if let Some(judge) = judge {
+                            solver.judged_on(judge);
+                        }
+                        solver
+                    })
+                }));
+                let panicked = made.is_err();
+                let _ = built.set(made.ok());
+                if panicked {
+                    resume_unwind(Box::new("the dense solver's construction panicked"));
+                }
+            });
+            let schur = (lcp.order() == order)
+                .then(|| crate::schur::follow(lcp, schur_options, Some(&Building(&built))));
+            if let Err(panic) = builder.join() {
+                resume_unwind(panic);
+            }
+            schur
+        });
+        let solver = built
+            .into_inner()
+            .flatten()
+            .expect("the builder sets the solver or panics")?;
+        let path = schur.and_then(|schur| solver.take_sparse(schur));
+        Ok((solver, path))
+    }
+
+    /// A path of the engine on sparse data taken as this solver's (see
+    /// [`PathSolver::follow_sparse`]), or `None`.
+    fn take_sparse(&self, schur: crate::SchurPath) -> Option<LoadPath> {
         if !matches!(
             schur.status,
             crate::PathStatus::TargetReached | crate::PathStatus::Ray
@@ -259,12 +316,30 @@ impl PathSolver {
         if path.status == crate::PathStatus::Ray {
             let start = path.breakpoints.last().map_or(0.0, |b| b.p);
             let far = 1e6 * start.max(self.options.target).max(f64::MIN_POSITIVE);
-            // The ray's own basis (not a fresh solve there, which at 6000 rows takes minutes).
-            let point =
-                crate::parametric::basis_point_on_segment(self, &path, path.records.len(), far)
+            // The ray's own basis (not a fresh solve there, which at 6000 rows takes minutes),
+            // on the structure's own equations where this solver has them: far along a long
+            // path the condensed data's round-off times the basis's conditioning exceeds the
+            // values' (the 2000-bearing beam's ray: a force −5.5e-8 of the largest on them,
+            // −2.2e-9 on the structure's equations — a rate of 2.2e-9 of the largest, a basis
+            // the dense engine reaches too and calls a ray).
+            match crate::parametric::last_basis_on_structure(self, &path, far) {
+                Some((x, z)) => {
+                    if !ray_values_hold(&x) || !ray_values_hold(&z) {
+                        return None;
+                    }
+                }
+                None => {
+                    let point = crate::parametric::basis_point_on_segment(
+                        self,
+                        &path,
+                        path.records.len(),
+                        far,
+                    )
                     .ok()?;
-            if point.tightening_pivots != 0 {
-                return None;
+                    if point.tightening_pivots != 0 {
+                        return None;
+                    }
+                }
             }
         }
         Some(path)
@@ -428,6 +503,27 @@ impl crate::residual::ColumnSource for OriginalColumns<'_> {
     }
 }
 
+/// The dense data of a solver being built on another thread
+/// ([`PathSolver::new_following_sparse`]): a question waits for it. Where its construction
+/// failed, every rate is called round-off (the path is then discarded with the failure).
+struct Building<'a>(&'a std::sync::OnceLock<Option<Result<PathSolver, LcpError>>>);
+
+impl crate::schur::DenseRates for Building<'_> {
+    fn row(&self, i: usize, dz: &[f64], dp: f64) -> (f64, f64) {
+        match self.0.wait() {
+            Some(Ok(solver)) => solver.row(i, dz, dp),
+            _ => (0.0, f64::INFINITY),
+        }
+    }
+
+    fn rows(&self, dz: &[f64], dp: f64) -> (Vec<f64>, Vec<f64>) {
+        match self.0.wait() {
+            Some(Ok(solver)) => solver.rows(dz, dp),
+            _ => (vec![0.0; dz.len()], vec![f64::INFINITY; dz.len()]),
+        }
+    }
+}
+
 impl crate::schur::DenseRates for PathSolver {
     fn row(&self, i: usize, dz: &[f64], dp: f64) -> (f64, f64) {
         let (mut rate, mut terms) = (0.0, 0.0);
@@ -455,4 +551,15 @@ impl crate::schur::DenseRates for PathSolver {
         }
         (rate, terms)
     }
+}
+
+/// A ray's values of one kind (`x` or `z`) far along it: none below −1e-8 of the largest of
+/// the kind. At 10⁶ times the ray's start a value is that many times its rate, so this
+/// refuses a variable that decreases at more than 1e-8 of the largest rate — the size of
+/// round-off in a basis of condition 10⁸ and more, which late bases of long paths have. A
+/// false ray (a variable that genuinely decreases: the dense engine's "ray" of the
+/// 1000-bearing beam, −2.9e-3) is far beyond it.
+fn ray_values_hold(v: &[f64]) -> bool {
+    let top = v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    v.iter().all(|&b| b.is_finite() && b >= -1e-8 * top)
 }
