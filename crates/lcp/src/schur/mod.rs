@@ -1,8 +1,9 @@
 //! The parametric LCP whose matrix is a Schur complement of sparse data, and the engine that
 //! traces its path without forming the matrix (issue 11). A path to the target can be handed
 //! to the dense solver ([`crate::PathSolver::adopt`], [`crate::PathSolver::follow_sparse`]),
-//! which verifies what is reported on the condensed data; the CLI does not use it yet (late
-//! on long paths the condensed data are the less accurate, `docs/engine.md`).
+//! which verifies what is reported on the condensed data (a ray's end on the structure's own
+//! equations, where the solver has them); `unilateral solve` traces with it from 1000 contact
+//! pairs on (`docs/engine.md`, "Which engine traces a structural model").
 //!
 //! ```text
 //! x = q0 + p·d0 + D z − C y,   A y = qa + p·da + B z,   x ≥ 0, z ≥ 0, xᵀz = 0
@@ -24,8 +25,10 @@
 //! solver at hand ([`crate::PathSolver::trace_sparse`]), the rates of `x` that the sparse
 //! data cannot tell from round-off judged on the dense `M`. What it does not do (the dense
 //! engine does, and the callers fall back to it): a start by Lemke's method or a
-//! tightening, equilibration, the verification of its points on the structure's equations,
-//! the sweep and the tableaux. Measurements: `docs/performance.md`, rounds 27 and 28.
+//! tightening, equilibration, the verification of its breakpoints on the structure's
+//! equations (its reported point is verified on the dense data, its ray's end on the
+//! structure's equations: [`crate::PathSolver::follow_sparse`]), the sweep and the tableaux.
+//! Measurements: `docs/performance.md`, rounds 27, 28 and 38.
 
 mod bordered;
 mod judge;
