@@ -354,9 +354,11 @@ pub struct Analysis {
 /// structure's sparse blocks ([`unilateral_contact::solve_sparse`]): a pivot there costs a few
 /// sparse solves, on the condensed zone a pass over `n·k` entries of the dense matrix. Measured
 /// on the whole-process benchmark's beams (`docs/performance.md`, round 38): 2.6 s against
-/// 4.2 s at 1000 pairs, 13 s against 50 s at 2000; slower below about 700 pairs (0.37 s
+/// 4.5 s at 1000 pairs, 13–15 s against 52 s at 2000; slower below about 700 pairs (0.37 s
 /// against 0.16 s at 500, round 28). Where the sparse path is not taken (it fails, or ends
-/// otherwise than at the target or in a ray that verifies), the dense engine traces it.
+/// otherwise than at the target or in a ray that verifies: a sliding mechanism before the
+/// target), or where the structure refuses its state, the dense engine traces it (the run
+/// pays both).
 pub const SPARSE_ENGINE_PAIRS: usize = 1000;
 
 /// Runs the analysis of a model; messages and extremes name nodes and elements by the model's
