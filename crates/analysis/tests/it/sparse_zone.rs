@@ -374,3 +374,29 @@ fn a_beam_on_1100_bearings_sliding_before_the_target_ends_at_its_limit_by_hand()
     assert!(!a.solution.traced_on_sparse_blocks);
     assert!(a.results.is_some());
 }
+
+/// The engine on sparse data on that beam (1100 bearings sliding at 6/11 before the target):
+/// the step past the limit has a load rate of round-off and would move the slips by far more
+/// than their size — the path ends there as a mechanism, at the limit by hand, where it went
+/// on to the target with slips of 1e20 (and on other beams wandered for thousands of pivots)
+/// before the caller could hand the path to the dense engine.
+#[test]
+fn the_sparse_engine_ends_at_a_sliding_limit_instead_of_running_past_it() {
+    let model = crate::bearings_model(&Bearings {
+        m: 1100,
+        friction: 0.3,
+        springs: [6.53e9, 2.261e5],
+        load_scale: 1.0,
+        sideways: 1e4,
+        kn_mm: false,
+    });
+    let (solver, lcp, options) = both_engines(&model, Follow::ToTarget, 1.0);
+    let got = solver.trace_sparse(&lcp, &options);
+    assert_eq!(got.status, PathStatus::Mechanism);
+    let p_end = got.breakpoints.last().unwrap().p;
+    assert!(
+        (p_end - 6.0 / 11.0).abs() <= 1e-9,
+        "the path ends at {p_end}, the limit by hand 6/11"
+    );
+    assert!(got.at_target.is_none());
+}
