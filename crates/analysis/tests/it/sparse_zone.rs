@@ -343,21 +343,27 @@ fn a_beam_on_a_thousand_bearings_is_traced_on_its_sparse_blocks_to_a_ray_that_ho
 /// A beam on 1100 bearings (a reviewer's) pushed sideways hard enough to slide on all of them
 /// before the target: by hand the bearings slip when `p·H = f·(V_c + p·V_v)` per metre —
 /// `H` = 10 kN/m sideways, the weight `V_c` = 10 kN/m and the variable `V_v` = 15 kN/m down,
-/// `f` = 0.3 — at `p* = f·V_c/(H − f·V_v)` = 6/11. The engine on sparse data passed that
-/// mechanism (its load rate round-off of the data) and reached the target with slips of 1e20,
-/// which the structure's check refused (exit 2); the analysis now takes the dense engine's path
-/// where the structure refuses a state of the sparse one: the mechanism at 6/11.
-#[test]
-fn a_beam_on_1100_bearings_sliding_before_the_target_ends_at_its_limit_by_hand() {
-    use unilateral_contact::{Outcome, SolveSettings};
-    let model = crate::bearings_model(&Bearings {
+/// `f` = 0.3 — at `p* = f·V_c/(H − f·V_v)` = 6/11.
+fn beam_sliding_before_the_target() -> Model {
+    crate::bearings_model(&Bearings {
         m: 1100,
         friction: 0.3,
         springs: [6.53e9, 2.261e5],
         load_scale: 1.0,
         sideways: 1e4,
         kn_mm: false,
-    });
+    })
+}
+
+/// That beam analysed: the mechanism at 6/11, with the dense engine's path. The engine on
+/// sparse data first passed the limit (its load rate round-off of its data) and reached the
+/// target with slips of 1e20, which the structure's check refused (exit 2). Two defences now:
+/// the sparse path ends at such a runaway step (the next test), and a sparse path's state that
+/// the structure refuses is traced again by the dense engine (`analyze`).
+#[test]
+fn a_beam_on_1100_bearings_sliding_before_the_target_ends_at_its_limit_by_hand() {
+    use unilateral_contact::{Outcome, SolveSettings};
+    let model = beam_sliding_before_the_target();
     assert!(model.pairs().len() >= unilateral_analysis::SPARSE_ENGINE_PAIRS);
     let settings = SolveSettings {
         follow: Follow::ToTarget,
@@ -382,14 +388,7 @@ fn a_beam_on_1100_bearings_sliding_before_the_target_ends_at_its_limit_by_hand()
 /// before the caller could hand the path to the dense engine.
 #[test]
 fn the_sparse_engine_ends_at_a_sliding_limit_instead_of_running_past_it() {
-    let model = crate::bearings_model(&Bearings {
-        m: 1100,
-        friction: 0.3,
-        springs: [6.53e9, 2.261e5],
-        load_scale: 1.0,
-        sideways: 1e4,
-        kn_mm: false,
-    });
+    let model = beam_sliding_before_the_target();
     let (solver, lcp, options) = both_engines(&model, Follow::ToTarget, 1.0);
     let got = solver.trace_sparse(&lcp, &options);
     assert_eq!(got.status, PathStatus::Mechanism);
