@@ -806,7 +806,10 @@ pub(crate) fn follow(
 const RUNAWAY: f64 = 100.0;
 
 /// How far a step of length `theta` along `dir` moves the basic values of each kind (`x`,
-/// `z`; the entering variable's rate one) against the largest of that kind: the larger.
+/// `z`; the entering variable's rate one) against the largest of that kind: the larger. A kind
+/// whose basic values are all zero (no slip or opening yet) is not counted: against zero every
+/// step would be a runaway, and the first slip entering at a constant load would end the path
+/// (a reviewer's reading of the code).
 fn runaway(st: &State, dir: &[f64], entering: usize, theta: f64) -> f64 {
     let n = st.n;
     let (mut rate, mut value) = ([0.0f64; 2], [0.0f64; 2]);
@@ -820,8 +823,8 @@ fn runaway(st: &State, dir: &[f64], entering: usize, theta: f64) -> f64 {
         rate[k] = rate[k].max(1.0);
     }
     (0..2)
-        .filter(|&k| rate[k] > 0.0)
-        .map(|k| theta * rate[k] / value[k].max(f64::MIN_POSITIVE))
+        .filter(|&k| rate[k] > 0.0 && value[k] > 0.0)
+        .map(|k| theta * rate[k] / value[k])
         .fold(0.0f64, f64::max)
 }
 
