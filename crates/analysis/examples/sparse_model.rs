@@ -192,14 +192,7 @@ fn main() {
             let (v, x, scale) = most_negative(&sol, n);
             println!("{name} ray's basis at p = {far:e}: most negative {v} = {x:e} (largest of its kind {scale:e})");
             if std::env::var("CHECK_RAY_SPARSE").is_ok() {
-                let mut sh = lcp.clone();
-                for (q, d) in sh.q0.iter_mut().zip(&lcp.d0) {
-                    *q += far * d;
-                }
-                for (q, d) in sh.qa.iter_mut().zip(&lcp.da) {
-                    *q += far * d;
-                }
-                let sol = sh.basis_solution(&basic).unwrap();
+                let sol = lcp.at_load(far).basis_solution(&basic).unwrap();
                 let (v, x, scale) = most_negative(&sol, n);
                 println!("  on the sparse equations: most negative {v} = {x:e} (largest of its kind {scale:e})");
             }

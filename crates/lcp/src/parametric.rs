@@ -679,9 +679,6 @@ pub(crate) fn basis_point_on_segment(
     }
 }
 
-/// The point of the complementary basis `slots` at load `p` solved from the structure's
-/// equations ([`crate::StructureJudge::point`]), where this solver has them and the point
-/// solves its problem (verified on its data, as every reported point is).
 /// The basis of segment `seg` of `path` (order `n`): the slots after its pivots, the driver's
 /// slot taking the segment's entering column. `None` for a segment without one (the end of the
 /// record), which has no basis to evaluate.
@@ -715,24 +712,31 @@ pub(crate) fn last_basis_on_structure(
     path: &LoadPath,
     p: f64,
 ) -> Option<(Vec<f64>, Vec<f64>)> {
-    let judge = solver.judge.as_ref().filter(|_| solver.c0 == 0.0)?;
-    let n = solver.prep.n;
-    let slots = segment_slots(path, path.records.len(), n)?;
-    let mut basic = vec![false; 2 * n];
-    for &v in &slots {
+    if solver.c0 != 0.0 {
+        return None;
+    }
+    structure_values(
+        solver,
+        &segment_slots(path, path.records.len(), solver.prep.n)?,
+        p,
+    )
+}
+
+/// `(x, z)` of the complementary basis `slots` at load `p` from the structure's equations
+/// ([`crate::StructureJudge::point`]), where this solver has them.
+fn structure_values(solver: &PathSolver, slots: &[usize], p: f64) -> Option<(Vec<f64>, Vec<f64>)> {
+    let judge = solver.judge.as_ref()?;
+    let mut basic = vec![false; 2 * solver.prep.n];
+    for &v in slots {
         *basic.get_mut(v)? = true;
     }
     judge.point(&basic, p)
 }
 
+/// [`structure_values`] as a point, where it solves this solver's problem (verified on its
+/// data, as every reported point is).
 fn structure_point(solver: &PathSolver, slots: &[usize], p: f64) -> Option<PathPoint> {
-    let judge = solver.judge.as_ref()?;
-    let n = solver.prep.n;
-    let mut basic = vec![false; 2 * n];
-    for &v in slots {
-        *basic.get_mut(v)? = true;
-    }
-    let (x, z) = judge.point(&basic, p)?;
+    let (x, z) = structure_values(solver, slots, p)?;
     let residual = solver.residual(p, &x, &z);
     residual.accepts(&x, &z).then_some(PathPoint {
         p,

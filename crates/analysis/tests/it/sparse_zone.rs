@@ -276,14 +276,10 @@ fn last_basis_at(lcp: &SchurLcp, path: &unilateral_lcp::LoadPath, p: f64) -> (f6
     };
     basic[2 * n] = false;
     basic[entering] = true;
-    let mut at = lcp.clone();
-    for (q, d) in at.q0.iter_mut().zip(&lcp.d0) {
-        *q += p * d;
-    }
-    for (q, d) in at.qa.iter_mut().zip(&lcp.da) {
-        *q += p * d;
-    }
-    let v = at.basis_solution(&basic).expect("a basis of n variables");
+    let v = lcp
+        .at_load(p)
+        .basis_solution(&basic)
+        .expect("a basis of n variables");
     let worst = |v: &[f64]| {
         let top = v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
         v.iter().fold(0.0f64, |a, &b| a.min(b / top))

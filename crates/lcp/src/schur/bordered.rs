@@ -22,7 +22,7 @@
 
 use std::cell::RefCell;
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::SolveCore;
 use faer::perm::PermRef;
 use faer::sparse::linalg::colamd;
@@ -93,10 +93,7 @@ impl Base {
             MemStack::new(&mut MemBuffer::new(req)),
         )
         .map_err(|_| Singular)?;
-        let scratch = StackReq::any_of(&[
-            simplicial::factorize_simplicial_numeric_lu_scratch::<usize, f64>(size, size),
-            simplicial::solve_in_place_scratch::<usize, f64>(size, 1, Par::Seq),
-        ]);
+        let scratch = simplicial::factorize_simplicial_numeric_lu_scratch::<usize, f64>(size, size);
         let equations =
             SparseColMat::try_new_from_triplets(size, size, &equations).map_err(|_| Singular)?;
         let mut base = Self {
@@ -511,19 +508,15 @@ impl Bordered {
     /// base's unknowns (`p` the last).
     pub fn solve(&self, r: &[f64], fix: impl Fn(Col) -> f64) -> Vec<f64> {
         let mut t = Vec::new();
-        self.solve_into(r, fix, &mut t);
+        self.solve_into(r, fix, &mut t, None);
         t
     }
 
     /// [`Bordered::solve`] into `t` (its memory reused: a solve's vectors are larger than
-    /// the allocator keeps at hand, and fresh pages cost a long path 5 % of its time).
-    pub fn solve_into(&self, r: &[f64], fix: impl Fn(Col) -> f64, t: &mut Vec<f64>) {
-        self.solve_into_keeping(r, fix, t, None);
-    }
-
-    /// [`Bordered::solve_into`], the base's own solution `𝒜0⁻¹ r` (before the border's
-    /// correction) copied into `base` where it is given.
-    pub fn solve_into_keeping(
+    /// the allocator keeps at hand, and fresh pages cost a long path 5 % of its time), the
+    /// base's own solution `𝒜0⁻¹ r` (before the border's correction) copied into `base` where
+    /// it is given.
+    pub fn solve_into(
         &self,
         r: &[f64],
         fix: impl Fn(Col) -> f64,

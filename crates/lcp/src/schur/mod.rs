@@ -87,6 +87,19 @@ impl SchurLcp {
         Ok(())
     }
 
+    /// The same structure at a fixed load `p`: `q0 + p·d0` and `qa + p·da` as its constant
+    /// loads (for [`SchurLcp::basis_solution`] at `p`).
+    pub fn at_load(&self, p: f64) -> SchurLcp {
+        let mut at = self.clone();
+        for (q, d) in at.q0.iter_mut().zip(&self.d0) {
+            *q += p * d;
+        }
+        for (q, d) in at.qa.iter_mut().zip(&self.da) {
+            *q += p * d;
+        }
+        at
+    }
+
     /// The same problem with `M`, `q` and `d` formed densely (for tests and small problems).
     pub fn dense(&self) -> ParametricLcp {
         let n = self.order();
@@ -478,7 +491,7 @@ pub(crate) fn follow(
         if let Some((at, entry)) = entering_row {
             rhs[at] = entry;
         }
-        basis.solve_into_keeping(
+        basis.solve_into(
             &rhs,
             |v| f64::from(v == entering),
             &mut dv,
@@ -904,39 +917,27 @@ fn values(lcp: &SchurLcp, basis: &Bordered, st: &mut State) {
     let mut r = vec![0.0; big_n + 2 * n + 1];
     r[..big_n].copy_from_slice(&lcp.qa);
     r[big_n..big_n + n].copy_from_slice(&lcp.q0);
-    let v = refined(
+    let mut v = basis.solve(&r, |_| 0.0);
+    refine_in_place(
         lcp,
         basis,
         &st.basic,
         Some((&lcp.qa, &lcp.q0)),
         None,
-        basis.solve(&r, |_| 0.0),
+        &mut v,
+        (&mut Vec::new(), &mut Vec::new()),
     );
     for i in 0..=2 * n {
         st.val[i] = if st.basic[i] { v[big_n + i] } else { 0.0 };
     }
 }
 
-/// One step of iterative refinement of a solution `v` of the basis system whose equations'
-/// right-hand side is `(qa, q0)` (`None` for zero), whose non-basic variables are zero but
-/// `unit` (one): the residual of the two blocks of equations formed from the data, solved
-/// for the correction. The bordered solve's round-off grows with the border and the mixed
-/// sizes of forces and displacements; one step brings it back to the data's.
-fn refined(
-    lcp: &SchurLcp,
-    basis: &Bordered,
-    basic: &[bool],
-    rhs: Option<(&[f64], &[f64])>,
-    unit: Option<usize>,
-    mut v: Vec<f64>,
-) -> Vec<f64> {
-    let (mut res, mut dv) = (Vec::new(), Vec::new());
-    refine_in_place(lcp, basis, basic, rhs, unit, &mut v, (&mut res, &mut dv));
-    v
-}
-
-/// [`refined`] on `v` in place, with two work vectors of the base's size (reused from step
-/// to step).
+/// One step of iterative refinement, in place, of a solution `v` of the basis system whose
+/// equations' right-hand side is `(qa, q0)` (`None` for zero), whose non-basic variables are
+/// zero but `unit` (one): the residual of the two blocks of equations formed from the data,
+/// solved for the correction. The bordered solve's round-off grows with the border and the
+/// mixed sizes of forces and displacements; one step brings it back to the data's. `res` and
+/// `dv` are work vectors of the base's size (reused from step to step).
 fn refine_in_place(
     lcp: &SchurLcp,
     basis: &Bordered,
@@ -989,7 +990,7 @@ fn refine_in_place(
             *r += d * p;
         }
     }
-    basis.solve_into(res, |_| 0.0, dv);
+    basis.solve_into(res, |_| 0.0, dv, None);
     for (a, b) in v.iter_mut().zip(dv.iter()) {
         *a += b;
     }
