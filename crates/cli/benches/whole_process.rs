@@ -26,7 +26,9 @@
 //!   sizes up to `UNILATERAL_BENCH_REPORT_MAX` (the path without tightening: its tables and
 //!   charts read the path's breakpoints; every ParaView frame is a recovered structure), and
 //!   `beam+bp` with `--json-breakpoints` (every pair at every breakpoint in the JSON, formed and
-//!   written a block at a time).
+//!   written a block at a time). Each `--vtk` case is run twice: into a new directory (new
+//!   files), then again into the same one (`…/w`: the files written over in place, a user's
+//!   second run).
 //!
 //! `UNILATERAL_BENCH_CASES=beam` (a comma-separated list of the case names) runs only those.
 //! `UNILATERAL_BENCH_KEEP=DIR` writes the input files into `DIR/m{m}/` and keeps them (to
@@ -467,6 +469,12 @@ fn main() {
                 })
             });
             println!("{m:>5} {case}: {files} files, {:.0} MB", bytes as f64 / 1e6);
+            // The same run again into the directory the first wrote: its files are written
+            // over in place (a user's second run). The first run's files are new, and on a
+            // virtual machine that hands free memory back to its host the page cache's fresh
+            // pages cost the kernel more than writing the bytes (`docs/performance.md`,
+            // round 39).
+            row(&format!("{case}/w"), &run(&a, d));
         }
         if m <= report_max() && selected("beam+bp") {
             let mut a = beam_args.to_vec();
