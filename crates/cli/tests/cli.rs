@@ -2638,19 +2638,43 @@ fn progress_of_a_plain_lcp_counts_its_pivots() {
 /// the paper's procedure's and depend on c, the JSON says so with c, and `steps.csv` carries c
 /// in a last column `tightening_c [N]` on every row (a rectangular table, as pandas reads it).
 /// The sheet pile wall (c = 0, physical events) has no such label. Reference: the files'
-/// `[solve] tightening` (1000 and 0).
+/// `[solve] tightening` (1000 and 0). Example 3 has no constant load: the structure's own path
+/// (one working scheme for every p > 0, that of the reported solution) is said first — in the
+/// summary before the status, in the JSON as `physical_path`, in the report's facts.
 #[test]
 fn tightened_events_are_labelled_as_depending_on_c() {
     let run = |name: &str| {
         let cmd = TestCommand::new(&["solve"])
             .arg(root().join("examples").join(name))
-            .args(&["--json", "r.json", "--csv", "csv"]);
+            .args(&["--json", "r.json", "--csv", "csv", "--report", "rep"]);
         let out = cmd.run();
         assert_eq!(out.code, 0, "{}", out.stderr);
         let steps = std::fs::read_to_string(cmd.path("csv/steps.csv")).unwrap();
-        (out.stdout, cmd.json("r.json"), steps)
+        let report = std::fs::read_to_string(cmd.path("rep/report.html")).unwrap();
+        (out.stdout, cmd.json("r.json"), steps, report)
     };
-    let (summary, j, steps) = run("example3-sheet-pile.toml");
+    let (summary, j, steps, report) = run("example3-sheet-pile.toml");
+    let physical = "no constant load: the structure's working scheme is the same for every \
+                    p > 0 — that of the solution at p = 1 below";
+    let first = summary
+        .lines()
+        .position(|l| l.starts_with("physical path: "))
+        .expect("the physical path said");
+    let status = summary
+        .lines()
+        .position(|l| l.starts_with("status: "))
+        .unwrap();
+    assert!(first < status, "{summary}");
+    assert!(
+        summary.lines().nth(first).unwrap().contains(physical),
+        "{summary}"
+    );
+    assert!(
+        j["physical_path"].as_str().unwrap().contains(physical),
+        "{}",
+        j["physical_path"]
+    );
+    assert!(report.contains("<dt>Physical path</dt><dd>no constant load"));
     assert!(
         summary.contains(
             "these are the events of the paper's procedure: their loads depend on c (the \
@@ -2686,8 +2710,11 @@ fn tightened_events_are_labelled_as_depending_on_c() {
     }
     assert_eq!(rows, j["steps"].as_array().unwrap().len());
 
-    let (summary, j, steps) = run("sheet-pile-wall.toml");
+    let (summary, j, steps, report) = run("sheet-pile-wall.toml");
     assert!(!summary.contains("depend on c"), "{summary}");
+    assert!(!summary.contains("physical path"), "{summary}");
+    assert!(!report.contains("Physical path"));
+    assert_eq!(j["physical_path"], serde_json::Value::Null);
     assert_eq!(j["events_depend_on_tightening"], false);
     assert!(!steps.lines().next().unwrap().contains("tightening"));
 }

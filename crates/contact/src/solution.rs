@@ -189,7 +189,7 @@ impl Outcome {
                     return format!(
                         "the working scheme of the path traced with the tightening c = {} no \
                          longer changes for p ≥ {} (Criterion 2a: ray; this load depends on c \
-                         — the structure's own path is traced with tightening 0)",
+                         and is not the structure's: see the physical path)",
                         number_text(c),
                         load_text(*p_from)
                     )
@@ -197,8 +197,8 @@ impl Outcome {
                 Outcome::Mechanism { p_limit, .. } => {
                     return format!(
                         "the path traced with the tightening c = {} becomes a mechanism at p = {} \
-                         (Criterion 2b; this load depends on c — the structure's own limit is \
-                         traced with tightening 0)",
+                         (Criterion 2b; this load depends on c and is not \
+                         the structure's limit: see the physical path)",
                         number_text(c),
                         load_text(*p_limit)
                     )
@@ -342,6 +342,57 @@ impl ContactSolution {
     /// The number of contact pairs `m`.
     pub fn pairs(&self) -> usize {
         self.zone.pairs()
+    }
+
+    /// Whether the problem without the tightening is homogeneous: no constant load and no
+    /// initial gap, so that a state at a load `p > 0`, scaled by `s > 0`, is the state at
+    /// `s·p` (`w = M z + p·q` with `q0 = 0`): the working scheme is the same for every `p > 0`.
+    pub fn homogeneous(&self) -> bool {
+        let z = &self.zone;
+        z.constant.normal.iter().all(|&v| v == 0.0)
+            && z.constant.tangential.iter().all(|&v| v == 0.0)
+            && z.gap.iter().all(|&g| g == 0.0)
+    }
+
+    /// What the structure itself does, said before the path traced with the paper's
+    /// tightening `c > 0` (whose events are at loads that depend on `c`); `None` when the
+    /// path was traced without it (it is then the structure's own).
+    ///
+    /// Without a constant load the problem is homogeneous ([`ContactSolution::homogeneous`]):
+    /// the reported solution, free of the tightening and verified, scaled by `p / p_rep` is
+    /// the solution at every `p > 0` — the structure's own path has no event, however many the
+    /// traced one has, and no limit. With a constant load (where the tightening is never
+    /// needed) the structure's own path is another trace, with tightening 0; it is named,
+    /// not traced.
+    pub fn physical_reading(&self) -> Option<String> {
+        if self.tightening <= 0.0 {
+            return None;
+        }
+        let state = self
+            .p
+            .filter(|&p| p > 0.0 && self.residual.is_some() && !self.pairs.is_empty());
+        Some(match (self.homogeneous(), state) {
+            (true, Some(p)) => format!(
+                "no constant load: the structure's working scheme is the same for every p > 0 \
+                 — that of the solution at p = {} below, every force and displacement \
+                 proportional to p — with no event and no limit; the path traced with the \
+                 tightening c = {} is the paper's procedure",
+                number_text(p),
+                number_text(self.tightening)
+            ),
+            (true, None) => format!(
+                "no constant load: the structure's working scheme is the same for every p > 0, \
+                 but the path traced with the tightening c = {} reported no state free of it \
+                 to show it; a run with tightening 0 gives it",
+                number_text(self.tightening)
+            ),
+            (false, _) => format!(
+                "the structure's own path is the one traced with tightening 0 (not traced \
+                 here); the events below are the paper's procedure with the tightening \
+                 c = {}, at loads that depend on c",
+                number_text(self.tightening)
+            ),
+        })
     }
 
     /// The paper's label of a variable of the `3m` LCP: `x_n1`, `x_t1+`, `z_t1-`, …, `p`.

@@ -310,6 +310,7 @@ fn path_document(
     let mut doc = json!({
         "status": sol.outcome.status(),
         "reading": sol.outcome.reading_traced_with(sol.settings.target, sol.tightening),
+        "physical_path": sol.physical_reading(),
         "p": sol.p,
         "p_limit": p_limit,
         "target": sol.settings.target,

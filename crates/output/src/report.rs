@@ -250,6 +250,9 @@ pub fn report_html(
         row("Units", u.clone());
     }
     row("Contact pairs", sol.pairs().to_string());
+    if let Some(physical) = sol.physical_reading() {
+        row("Physical path", physical);
+    }
     row(
         "Status",
         format!(

@@ -67,6 +67,10 @@ pub fn contact_summary_detail(
     finite::contact_solution(sol)?;
     let mut s = String::new();
     header(&mut s, title, about);
+    // The structure's own path first, where the path was traced with the paper's tightening.
+    if let Some(physical) = sol.physical_reading() {
+        let _ = writeln!(s, "physical path: {physical}");
+    }
     let _ = writeln!(
         s,
         "status: {} — {}",

@@ -9,7 +9,9 @@ use unilateral_contact::{
 };
 use unilateral_oracle as oracle;
 
-use crate::common::{assert_matches_enumeration, enumerated, rows};
+use crate::common::{
+    assert_matches_enumeration, enumerated, example1_paper_settings, example1_zone, rows,
+};
 
 /// A bar of `m` nodes on a rigid base, clamped at its far end, pressed by a constant force `N` at
 /// every node and pulled by `F·p` at the free end (the discrete form of the paper's Example 2).
@@ -278,4 +280,85 @@ fn example1_event_load_afresh_is_the_papers() {
     assert!((sol.steps[0].p - expect).abs() < 1e-12 * expect);
     let fresh = sol.event_load(1).expect("the first step's basis");
     assert!((fresh - expect).abs() < 1e-12 * expect, "{fresh}");
+}
+
+/// Without a constant load the problem is homogeneous, and the structure's own path is said
+/// before the path traced with the paper's tightening: Example 1 traced with c = 1 has an
+/// event at p = 32/3 (a load that depends on c), the structure none. The claim is checked
+/// independently: the reported state at p = 1, scaled by p, is a solution of the zone without
+/// the tightening at loads below, at and far beyond that event, by exhaustive enumeration of
+/// the LCP in exact arithmetic; and the path traced with c = 0 gives the same states with no
+/// event.
+#[test]
+fn a_homogeneous_zone_traced_with_the_tightening_says_its_physical_path_first() {
+    let zone = example1_zone();
+    let sol = solve(&zone, &example1_paper_settings()).unwrap();
+    assert!(sol.homogeneous());
+    // the tightened path's event: support 1 lifts off at p = 32/3 with c = 1
+    assert!(sol
+        .steps
+        .iter()
+        .any(|s| (s.p - 32.0 / 3.0).abs() < 1e-12 * s.p));
+    let reading = sol.physical_reading().expect("traced with c > 0");
+    assert!(
+        reading.contains("the same for every p > 0")
+            && reading.contains("solution at p = 1 below")
+            && reading.contains("no event and no limit"),
+        "{reading}"
+    );
+    assert_eq!(sol.p, Some(1.0));
+    let states: Vec<PairState> = sol.pairs.iter().map(|r| r.state).collect();
+    // by hand (formulation.md §5): support 1 lifts off, 2 and 3 carry the load and stick
+    assert_eq!(
+        states,
+        [PairState::Open, PairState::Stick, PairState::Stick]
+    );
+    for p in [0.25, 1.0, 10.0, 40.0, 1e6] {
+        let scaled: Vec<_> = sol
+            .pairs
+            .iter()
+            .map(|r| unilateral_contact::PairResult {
+                x_n: p * r.x_n,
+                x_t: p * r.x_t,
+                z_n: p * r.z_n,
+                z_t: p * r.z_t,
+                ..r.clone()
+            })
+            .collect();
+        assert_matches_enumeration(&zone, p, &scaled);
+        let physical = solve(
+            &zone,
+            &SolveSettings {
+                tightening: 0.0,
+                target: p,
+                follow: Follow::ToEnd,
+                ..SolveSettings::default()
+            },
+        )
+        .unwrap();
+        assert!(physical.physical_reading().is_none(), "c = 0: its own path");
+        assert!(
+            physical.steps.iter().all(|s| s.settling),
+            "no event on the structure's own path: {:?}",
+            physical.steps
+        );
+        let own: Vec<PairState> = physical.pairs.iter().map(|r| r.state).collect();
+        assert_eq!(own, states, "p = {p}");
+        for (a, b) in physical.pairs.iter().zip(&scaled) {
+            assert!((a.x_n - b.x_n).abs() <= 1e-12 * p, "p = {p}: {a:?} {b:?}");
+            assert!((a.z_n - b.z_n).abs() <= 1e-12 * p, "p = {p}: {a:?} {b:?}");
+        }
+    }
+    // With a constant load the structure's own path is another trace (not made): said so.
+    let mut pressed = zone.clone();
+    pressed.constant.normal = vec![0.1; 3];
+    let sol = solve(&pressed, &example1_paper_settings()).unwrap();
+    assert!(!sol.homogeneous());
+    let reading = sol.physical_reading().expect("traced with c > 0");
+    assert!(reading.contains("traced with tightening 0"), "{reading}");
+    // An initial gap also makes the problem inhomogeneous.
+    let mut gapped = example1_zone();
+    gapped.gap = vec![0.0, 1e-3, 0.0];
+    let sol = solve(&gapped, &example1_paper_settings()).unwrap();
+    assert!(!sol.homogeneous());
 }
