@@ -189,7 +189,7 @@ impl Outcome {
                     return format!(
                         "the working scheme of the path traced with the tightening c = {} no \
                          longer changes for p ≥ {} (Criterion 2a: ray; this load depends on c \
-                         and is not the structure's: see the physical path)",
+                         — for the structure's own path see the physical path)",
                         number_text(c),
                         load_text(*p_from)
                     )
@@ -197,8 +197,8 @@ impl Outcome {
                 Outcome::Mechanism { p_limit, .. } => {
                     return format!(
                         "the path traced with the tightening c = {} becomes a mechanism at p = {} \
-                         (Criterion 2b; this load depends on c and is not \
-                         the structure's limit: see the physical path)",
+                         (Criterion 2b; this load depends on c — for \
+                         the structure's own limit see the physical path)",
                         number_text(c),
                         load_text(*p_limit)
                     )
@@ -359,11 +359,14 @@ impl ContactSolution {
     /// path was traced without it (it is then the structure's own).
     ///
     /// Without a constant load the problem is homogeneous ([`ContactSolution::homogeneous`]):
-    /// the reported solution, free of the tightening and verified, scaled by `p / p_rep` is
-    /// the solution at every `p > 0` — the structure's own path has no event, however many the
-    /// traced one has, and no limit. With a constant load (where the tightening is never
-    /// needed) the structure's own path is another trace, with tightening 0; it is named,
-    /// not traced.
+    /// the reported solution, free of the tightening and verified, scaled by `p / p_rep` is a
+    /// solution at every `p > 0` — on that branch the structure's path has no event, however
+    /// many the traced one has, and no limit (where the path turned or the solution came from
+    /// a fresh solve, the text says it may not be unique; at a limit of the traced path only
+    /// the values are claimed, its states being named by that limit). Without a reported
+    /// state nothing is claimed but the scaling. With a constant load (where the tightening
+    /// is never needed) the structure's own path is another trace, with tightening 0; it is
+    /// named, not traced.
     pub fn physical_reading(&self) -> Option<String> {
         if self.tightening <= 0.0 {
             return None;
@@ -371,19 +374,38 @@ impl ContactSolution {
         let state = self
             .p
             .filter(|&p| p > 0.0 && self.residual.is_some() && !self.pairs.is_empty());
+        let at_limit = matches!(self.outcome, Outcome::Mechanism { .. });
         Some(match (self.homogeneous(), state) {
-            (true, Some(p)) => format!(
-                "no constant load: the structure's working scheme is the same for every p > 0 \
-                 — that of the solution at p = {} below, every force and displacement \
-                 proportional to p — with no event and no limit; the path traced with the \
-                 tightening c = {} is the paper's procedure",
+            // The states at a limit of the traced path are named by its mechanism, which
+            // depends on c: only the values are the structure's.
+            (true, Some(p)) if at_limit => format!(
+                "no constant load: the forces and displacements of the solution at p = {} \
+                 below, scaled by p, solve the problem at every p > 0 — the structure itself \
+                 has no limit; the states there are named after the limit of the path traced \
+                 with the tightening c = {}, which depends on c",
                 number_text(p),
                 number_text(self.tightening)
             ),
+            (true, Some(p)) => format!(
+                "no constant load: the solution at p = {} below, every force and displacement \
+                 scaled by p, is a solution at every p > 0 — one working scheme at every load, \
+                 with no event and no limit on it; the path traced with the tightening c = {} \
+                 is the paper's procedure{}",
+                number_text(p),
+                number_text(self.tightening),
+                if self.steps.iter().any(|s| s.turning)
+                    || self.notes.iter().any(|n| n.contains("another branch"))
+                {
+                    " (the solution may not be unique: see the notes)"
+                } else {
+                    ""
+                }
+            ),
             (true, None) => format!(
-                "no constant load: the structure's working scheme is the same for every p > 0, \
-                 but the path traced with the tightening c = {} reported no state free of it \
-                 to show it; a run with tightening 0 gives it",
+                "no constant load: a state the structure has at one load p > 0, scaled by p, \
+                 it has at every load; the path traced with the tightening c = {} reported \
+                 none free of c — the structure's own path is the one traced with tightening 0 \
+                 (not traced here)",
                 number_text(self.tightening)
             ),
             (false, _) => format!(

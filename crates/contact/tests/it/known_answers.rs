@@ -301,9 +301,9 @@ fn a_homogeneous_zone_traced_with_the_tightening_says_its_physical_path_first() 
         .any(|s| (s.p - 32.0 / 3.0).abs() < 1e-12 * s.p));
     let reading = sol.physical_reading().expect("traced with c > 0");
     assert!(
-        reading.contains("the same for every p > 0")
-            && reading.contains("solution at p = 1 below")
-            && reading.contains("no event and no limit"),
+        reading.contains("the solution at p = 1 below, every force and displacement scaled by p, is a solution at every p > 0")
+            && reading.contains("no event and no limit")
+            && !reading.contains("not be unique"),
         "{reading}"
     );
     assert_eq!(sol.p, Some(1.0));
@@ -356,6 +356,30 @@ fn a_homogeneous_zone_traced_with_the_tightening_says_its_physical_path_first() 
     assert!(!sol.homogeneous());
     let reading = sol.physical_reading().expect("traced with c > 0");
     assert!(reading.contains("traced with tightening 0"), "{reading}");
+    // A rigid block on two pairs pushed sideways and lifted by the same load (a reviewer's
+    // zone): the tightening c presses it and its friction holds it up to p = 2, a load of c;
+    // without c no state exists at any p > 0 (by hand: `Rnn` and `Rtt` are singular along the
+    // block's rigid motion, so the pairs' forces together balance the load — the push 2p
+    // sideways needs 0.5·(x_n1 + x_n2) ≥ 2p, while x_n1 + x_n2 is at most the normal load's
+    // 2p). No state free of c is reported, and the reading claims none.
+    let mut block = ContactZone::new(
+        Mat::from_fn(2, 2, |i, j| if i == j { 1.0 } else { -1.0 }),
+        Mat::from_fn(2, 2, |i, j| if i == j { 1.0 } else { -1.0 }),
+    );
+    block.friction = vec![0.5; 2];
+    block.variable.normal = vec![1.0; 2];
+    block.variable.tangential = vec![1.0; 2];
+    let sol = solve(&block, &example1_paper_settings()).unwrap();
+    assert!(sol.homogeneous());
+    assert!(
+        matches!(sol.outcome, Outcome::Mechanism { .. }),
+        "{:?}",
+        sol.outcome
+    );
+    assert_eq!(sol.p, None, "{:?}", sol.notes);
+    let reading = sol.physical_reading().expect("traced with c > 0");
+    assert!(reading.contains("reported none free of c"), "{reading}");
+    assert!(!reading.contains("is a solution at every"), "{reading}");
     // An initial gap also makes the problem inhomogeneous.
     let mut gapped = example1_zone();
     gapped.gap = vec![0.0, 1e-3, 0.0];
