@@ -999,6 +999,55 @@ fn portals_pushed_sideways_have_their_limits_at_zero_or_where_they_tip() {
     }
 }
 
+/// A reviewer's portal, 10 m tall with friction 0.3, tips exactly at its target: by statics
+/// `p_lim = W·L/(2·200·h) = 1000·4/(2·200·10) = 1`, where the left foot's normal force is zero
+/// and the right foot carries the weight W = 1000 N and the push 200 N by friction (it sticks:
+/// 0.3·1000 = 300 N available). In kN·mm the condensed data put that zero at −1.3e-11 of the
+/// forces, beyond their round-off allowance, and the run failed (exit 1) where N·m answered;
+/// the structure's own equations (double-double) judge such a basis now. Traced to the end and
+/// to the target, in both units.
+#[test]
+fn a_portal_tipping_exactly_at_its_target_reports_its_state_there_in_any_units() {
+    for kn_mm in [false, true] {
+        for trace in ["end", "target"] {
+            let f = if kn_mm { 1e-3 } else { 1.0 };
+            let what = format!("kN·mm {kn_mm}, trace {trace}");
+            let text = portal(kn_mm, 0.3, 10.0, false)
+                + &format!("[solve]\ntarget = 1.0\ntrace = \"{trace}\"\n");
+            let s = if trace == "end" {
+                let (p_limit, s) = mechanism(&text, &what);
+                assert!((p_limit - 1.0).abs() < 1e-9, "{what}: p_lim = {p_limit}");
+                s
+            } else {
+                // stopped at the target, where the tipping's event is not yet passed
+                let p = crate::surface::read("model.toml", &text).unwrap();
+                let a = analyze(&p.model, &p.settings).unwrap_or_else(|e| panic!("{what}: {e}"));
+                assert_eq!(
+                    a.solution.outcome,
+                    unilateral_contact::Outcome::TargetReached,
+                    "{what}"
+                );
+                a.solution
+            };
+            let p = s.p.unwrap_or_else(|| panic!("{what}: {:?}", s.notes));
+            assert!((p - 1.0).abs() < 1e-9, "{what}: p = {p}");
+            assert!(s.residual.is_some(), "{what}: a verified state");
+            let (fl, fr) = (&s.pairs[0], &s.pairs[1]);
+            assert!(fl.x_n.abs() < 1e-9 * 1000.0 * f, "{what}: {fl:?}");
+            assert!(fl.x_t.abs() < 1e-9 * 1000.0 * f, "{what}: {fl:?}");
+            assert!(
+                (fr.x_n - 1000.0 * f).abs() < 1e-9 * 1000.0 * f,
+                "{what}: {fr:?}"
+            );
+            assert!(
+                (fr.x_t.abs() - 200.0 * f).abs() < 1e-9 * 1000.0 * f,
+                "{what}: {fr:?}"
+            );
+            assert_eq!(fr.state, unilateral_contact::PairState::Stick, "{what}");
+        }
+    }
+}
+
 /// The structure check's round-off allowance ([`unilateral_fem::Equilibrium::dislocation_force`]
 /// against the state's force scale) is a ratio of forces: the same in N·m and kN·mm. It took
 /// each link's largest coupling, a rotation's (`6EI/L²`) among them, whose product with a gap
