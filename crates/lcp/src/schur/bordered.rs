@@ -168,12 +168,14 @@ impl Base {
         }
     }
 
-    /// `t = 𝒜0⁻¹ r` (`t` resized to the base's size).
-    fn solve_from(&self, r: &[f64], t: &mut Vec<f64>) {
+    /// `t = 𝒜0⁻¹ r` (`t` resized to the base's size) from the unknown `from` on; the unknowns
+    /// before it are zero.
+    fn solve_from(&self, r: &[f64], t: &mut Vec<f64>, from: usize) {
         self.solve_permuted(r);
         let work = self.work.borrow();
         t.clear();
-        t.extend(self.col_perm_inv.iter().map(|&j| work[j]));
+        t.resize(from, 0.0);
+        t.extend(self.col_perm_inv[from..].iter().map(|&j| work[j]));
     }
 
     /// `𝒜0⁻¹ r` in the factor's order of the unknowns, left in `work`.
@@ -508,7 +510,7 @@ impl Bordered {
     /// base's unknowns (`p` the last).
     pub fn solve(&self, r: &[f64], fix: impl Fn(Col) -> f64) -> Vec<f64> {
         let mut t = Vec::new();
-        self.solve_into(r, fix, &mut t, None);
+        self.solve_into(r, fix, &mut t, None, 0);
         t
     }
 
@@ -516,14 +518,19 @@ impl Bordered {
     /// the allocator keeps at hand, and fresh pages cost a long path 5 % of its time), the
     /// base's own solution `𝒜0⁻¹ r` (before the border's correction) copied into `base` where
     /// it is given.
+    ///
+    /// Only the unknowns from `from` on are solved for (every unknown with `from = 0`); those
+    /// before it are zero: a caller that reads only the tableau's `x`, `z` and `p` (from the
+    /// structure's `N` on) streams a third of the border's columns and of the permutation.
     pub fn solve_into(
         &self,
         r: &[f64],
         fix: impl Fn(Col) -> f64,
         t: &mut Vec<f64>,
         base: Option<&mut Vec<f64>>,
+        from: usize,
     ) {
-        self.base.solve_from(r, t);
+        self.base.solve_from(r, t, from);
         if let Some(base) = base {
             base.clear();
             base.extend_from_slice(t);
@@ -543,8 +550,8 @@ impl Bordered {
         // column).
         let mu: Vec<f64> = (0..k).map(|u| rhs[(u, 0)] * self.s_cols[u]).collect();
         const BLOCK: usize = 1024;
-        for (b, block) in t.chunks_mut(BLOCK).enumerate() {
-            let start = b * BLOCK;
+        for (b, block) in t[from..].chunks_mut(BLOCK).enumerate() {
+            let start = from + b * BLOCK;
             for (w, &mu) in self.w.iter().zip(&mu) {
                 for (a, wi) in block.iter_mut().zip(&w[start..]) {
                     *a -= wi * mu;

@@ -496,7 +496,11 @@ pub(crate) fn follow(
             |v| f64::from(v == entering),
             &mut dv,
             Some(&mut base_dir),
+            0,
         );
+        // The structure's part `y` of the direction is left unrefined: it is read only for
+        // the sizes of the terms that form a row's rate (`sparse_terms`), which one step of
+        // refinement moves in their ninth digit at most.
         refine_in_place(
             lcp,
             &basis,
@@ -505,6 +509,7 @@ pub(crate) fn follow(
             Some(entering),
             &mut dv,
             (&mut work.0, &mut work.1),
+            false,
         );
         let mut dir = dv[big_n..].to_vec();
         let dp = dir[2 * n];
@@ -926,6 +931,7 @@ fn values(lcp: &SchurLcp, basis: &Bordered, st: &mut State) {
         None,
         &mut v,
         (&mut Vec::new(), &mut Vec::new()),
+        false,
     );
     for i in 0..=2 * n {
         st.val[i] = if st.basic[i] { v[big_n + i] } else { 0.0 };
@@ -937,7 +943,10 @@ fn values(lcp: &SchurLcp, basis: &Bordered, st: &mut State) {
 /// zero but `unit` (one): the residual of the two blocks of equations formed from the data,
 /// solved for the correction. The bordered solve's round-off grows with the border and the
 /// mixed sizes of forces and displacements; one step brings it back to the data's. `res` and
-/// `dv` are work vectors of the base's size (reused from step to step).
+/// `dv` are work vectors of the base's size (reused from step to step). With `refine_y`
+/// false only the tableau's part (`x`, `z`, `p`) is corrected, the structure's `y` left as
+/// it was.
+#[allow(clippy::too_many_arguments)]
 fn refine_in_place(
     lcp: &SchurLcp,
     basis: &Bordered,
@@ -946,6 +955,7 @@ fn refine_in_place(
     unit: Option<usize>,
     v: &mut [f64],
     (res, dv): (&mut Vec<f64>, &mut Vec<f64>),
+    refine_y: bool,
 ) {
     let n = lcp.order();
     let big_n = lcp.a.nrows();
@@ -990,8 +1000,9 @@ fn refine_in_place(
             *r += d * p;
         }
     }
-    basis.solve_into(res, |_| 0.0, dv, None);
-    for (a, b) in v.iter_mut().zip(dv.iter()) {
+    let from = if refine_y { 0 } else { big_n };
+    basis.solve_into(res, |_| 0.0, dv, None, from);
+    for (a, b) in v[from..].iter_mut().zip(&dv[from..]) {
         *a += b;
     }
 }
