@@ -530,6 +530,9 @@ impl Bordered {
         base: Option<&mut Vec<f64>>,
         from: usize,
     ) {
+        // The border's rows read unknowns from `N` on; a base copy must be whole (it becomes
+        // a border column).
+        assert!(from <= self.big_n && (base.is_none() || from == 0));
         self.base.solve_from(r, t, from);
         if let Some(base) = base {
             base.clear();
@@ -611,4 +614,69 @@ fn equations(lcp: &SchurLcp) -> Vec<Triplet<usize, usize, f64>> {
         t.push(Triplet::new(big_n + i, big_n + i, 1.0));
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sparse(
+        rows: usize,
+        cols: usize,
+        f: impl Fn(usize, usize) -> f64,
+    ) -> SparseColMat<usize, f64> {
+        let mut t = Vec::new();
+        for j in 0..cols {
+            for i in 0..rows {
+                let v = f(i, j);
+                if v != 0.0 {
+                    t.push(Triplet::new(i, j, v));
+                }
+            }
+        }
+        SparseColMat::try_new_from_triplets(rows, cols, &t).unwrap()
+    }
+
+    /// A solve for the unknowns from `N` on gives them bit for bit as the whole solve does
+    /// (the same operations in the same order), the unknowns before `N` zero — with a border
+    /// of two columns and two rows, so that the border's correction is in play.
+    #[test]
+    fn a_solve_from_the_tableau_on_is_the_whole_solves_tail_bit_for_bit() {
+        let (n, big_n) = (4, 5);
+        let lcp = SchurLcp {
+            a: sparse(big_n, big_n, |i, j| {
+                if i == j {
+                    6.0 + i as f64
+                } else {
+                    1.0 / (1.0 + (i + 2 * j) as f64)
+                }
+            }),
+            b: sparse(big_n, n, |i, j| ((i * 3 + j * 5) % 7) as f64 - 3.0),
+            c: sparse(n, big_n, |i, j| ((i * 5 + j * 2) % 5) as f64 - 2.0),
+            d: sparse(n, n, |i, j| if i == j { 9.0 } else { 0.5 }),
+            q0: vec![1.0; n],
+            qa: vec![0.5; big_n],
+            d0: vec![-1.0, 2.0, 0.5, 1.5],
+            da: vec![0.3, -0.2, 0.1, 0.0, 0.7],
+        };
+        let mut basis = Bordered::slack(&lcp).unwrap();
+        // z0 enters for x0, then the driver for x1: two freed fix rows (border columns) and
+        // two newly fixed variables (border rows).
+        basis.pivot_with(n, 0, None).unwrap();
+        basis.pivot_with(2 * n, 1, None).unwrap();
+        assert_eq!(basis.border(), 2);
+        let size = big_n + 2 * n + 1;
+        let r: Vec<f64> = (0..size).map(|i| (i as f64 * 0.37).sin()).collect();
+        let fix = |v: Col| 0.25 * v as f64 - 0.5;
+        let (mut whole, mut tail) = (Vec::new(), Vec::new());
+        basis.solve_into(&r, fix, &mut whole, None, 0);
+        basis.solve_into(&r, fix, &mut tail, None, big_n);
+        assert_eq!(whole.len(), size);
+        assert_eq!(tail.len(), size);
+        assert!(tail[..big_n].iter().all(|&v| v == 0.0));
+        for i in big_n..size {
+            assert_eq!(whole[i].to_bits(), tail[i].to_bits(), "unknown {i}");
+        }
+        assert!(whole[big_n..].iter().any(|&v| v != 0.0));
+    }
 }
