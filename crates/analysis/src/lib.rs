@@ -404,6 +404,7 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
             ..Timings::default()
         },
     };
+    let refused = Instant::now();
     match recover_reported(&mut a) {
         // A state of the sparse engine's path that the structure's check refuses or finds out
         // of balance: the dense engine's path instead. The sparse engine can pass a sliding
@@ -413,10 +414,11 @@ pub fn analyze(model: &Model, settings: &SolveSettings) -> Result<Analysis, Anal
         Err(AnalysisError::Equilibrium { .. } | AnalysisError::Unresolved { .. })
             if a.solution.traced_on_sparse_blocks =>
         {
-            let started = Instant::now();
+            progress.restart_path();
             a.solution = trace(false)?;
             a.results = None;
-            a.timings.solve = Some(solve + started.elapsed());
+            // The refused state's recovery was part of choosing the path: in the solve's time.
+            a.timings.solve = Some(solve + refused.elapsed());
             recover_reported(&mut a)?;
         }
         r => r?,

@@ -152,6 +152,8 @@ fn solve_with(
     let judge = sparse_lcp
         .as_ref()
         .map(|lcp| Arc::new(unilateral_lcp::StructureJudge::new(lcp.clone())));
+    let progress = engine.progress.clone();
+    let sparse_traced = trace_sparse && sparse_lcp.is_some();
     let (solver, traced) = match sparse_lcp.as_ref().filter(|_| trace_sparse) {
         Some(lcp) => {
             // The sparse engine's options: the solver's order, relations and progress.
@@ -196,7 +198,14 @@ fn solve_with(
         }
     };
     let traced_on_sparse_blocks = traced.is_some();
-    let mut path = traced.unwrap_or_else(|| solver.follow());
+    let mut path = traced.unwrap_or_else(|| {
+        if sparse_traced {
+            // The sparse engine's path was not taken: the counts start again with the dense
+            // engine's.
+            progress.restart_path();
+        }
+        solver.follow()
+    });
     let m = zone.pairs();
     let names = zone.pair_names.clone();
     // Which pairs are open, followed along the path, to read friction events of open pairs.

@@ -154,6 +154,17 @@ impl Progress {
         }
     }
 
+    /// The path is traced again from its start by another engine (a trace that was not
+    /// taken): the steps and pivots counted so far, and the load reached, are dropped, so that
+    /// the counts are those of the path reported.
+    pub fn restart_path(&self) {
+        if let Some(c) = &self.0 {
+            c.steps.store(0, Ordering::Relaxed);
+            c.pivots.store(0, Ordering::Relaxed);
+            c.load.store(u64::MAX, Ordering::Relaxed);
+        }
+    }
+
     /// Starts the next stage of a load history (the first is 1).
     pub fn next_stage(&self) {
         if let Some(c) = &self.0 {

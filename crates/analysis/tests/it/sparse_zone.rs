@@ -355,17 +355,24 @@ fn beam_sliding_before_the_target() -> Model {
 /// sparse data first passed the limit (its load rate round-off of its data) and reached the
 /// target with slips of 1e20, which the structure's check refused (exit 2). Two defences now:
 /// the sparse path ends at such a runaway step (the next test), and a sparse path's state that
-/// the structure refuses is traced again by the dense engine (`analyze`).
+/// the structure refuses is traced again by the dense engine (`analyze`). The progress handle
+/// counts the reported path's steps and pivots only (it counted both traces' before: 2200).
 #[test]
 fn a_beam_on_1100_bearings_sliding_before_the_target_ends_at_its_limit_by_hand() {
     use unilateral_contact::{Outcome, SolveSettings};
     let model = beam_sliding_before_the_target();
     assert!(model.pairs().len() >= unilateral_analysis::SPARSE_ENGINE_PAIRS);
-    let settings = SolveSettings {
+    let mut settings = SolveSettings {
         follow: Follow::ToTarget,
         ..SolveSettings::default()
     };
+    settings.engine.progress = unilateral_lcp::Progress::new();
     let a = unilateral_analysis::analyze(&model, &settings).unwrap();
+    // The progress counts are the reported path's (the dense engine's), not also those of the
+    // sparse engine's trace that was not taken.
+    let seen = settings.engine.progress.snapshot().unwrap();
+    assert_eq!(seen.steps as usize, a.solution.path.steps.len(), "{seen:?}");
+    assert_eq!(seen.pivots as usize, a.solution.steps.len(), "{seen:?}");
     let Outcome::Mechanism { p_limit, .. } = a.solution.outcome else {
         panic!("{:?}", a.solution.outcome)
     };
