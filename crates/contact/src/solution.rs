@@ -348,10 +348,7 @@ impl ContactSolution {
     /// initial gap, so that a state at a load `p > 0`, scaled by `s > 0`, is the state at
     /// `s·p` (`w = M z + p·q` with `q0 = 0`): the working scheme is the same for every `p > 0`.
     pub fn homogeneous(&self) -> bool {
-        let z = &self.zone;
-        z.constant.normal.iter().all(|&v| v == 0.0)
-            && z.constant.tangential.iter().all(|&v| v == 0.0)
-            && z.gap.iter().all(|&g| g == 0.0)
+        self.zone.is_homogeneous()
     }
 
     /// What the structure itself does, said before the path traced with the paper's
@@ -394,7 +391,10 @@ impl ContactSolution {
                 number_text(p),
                 number_text(self.tightening),
                 if self.steps.iter().any(|s| s.turning)
-                    || self.notes.iter().any(|n| n.contains("another branch"))
+                    || self
+                        .notes
+                        .iter()
+                        .any(|n| n.contains(crate::solve::ANOTHER_BRANCH))
                 {
                     " (the solution may not be unique: see the notes)"
                 } else {

@@ -14,6 +14,10 @@ use crate::{
     ContactError, ContactSolution, ContactZone, Event, EventKind, LoadStep, Outcome, SolveSettings,
 };
 
+/// The end of the note that the reported solution comes from a fresh solve, which may have
+/// found another branch than the path's (read by [`ContactSolution::physical_reading`]).
+pub(crate) const ANOTHER_BRANCH: &str = "may belong to another branch";
+
 /// The engine's settings of a solve: the user's (pivot tolerance, pivot cap, …) with the
 /// formulation's lexicographic order and covering direction.
 fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
@@ -153,8 +157,8 @@ fn solve_with(
         .as_ref()
         .map(|lcp| Arc::new(unilateral_lcp::StructureJudge::new(lcp.clone())));
     let progress = engine.progress.clone();
-    let sparse_traced = trace_sparse && sparse_lcp.is_some();
-    let (solver, traced) = match sparse_lcp.as_ref().filter(|_| trace_sparse) {
+    let traced_sparse = sparse_lcp.as_ref().filter(|_| trace_sparse);
+    let (solver, traced) = match traced_sparse {
         Some(lcp) => {
             // The sparse engine's options: the solver's order, relations and progress.
             let schur_options = unilateral_lcp::SchurOptions {
@@ -199,7 +203,7 @@ fn solve_with(
     };
     let traced_on_sparse_blocks = traced.is_some();
     let mut path = traced.unwrap_or_else(|| {
-        if sparse_traced {
+        if traced_sparse.is_some() {
             // The sparse engine's path was not taken: the counts start again with the dense
             // engine's.
             progress.restart_path();
@@ -318,9 +322,7 @@ fn solve_with(
     if outcome == Outcome::NoSolutionAtStart {
         notes.extend(start_diagnosis(&zone));
     }
-    let no_constant = zone.constant.normal.iter().all(|&v| v == 0.0)
-        && zone.constant.tangential.iter().all(|&v| v == 0.0)
-        && zone.gap.iter().all(|&g| g == 0.0);
+    let no_constant = zone.is_homogeneous();
     if settings.tightening > 0.0 && no_constant {
         notes.push(format!(
             "the tightening c = {} is artificial and there is no constant load: the loads of the \
@@ -385,14 +387,15 @@ fn solve_with(
         ));
     } else if let Some(sol) = &solution {
         if sol.fallback {
-            notes.push(if settings.tightening > 0.0 {
-                "the tightening could not be removed along the path; the reported solution comes \
-                 from a fresh solve at this load and may belong to another branch"
-            } else {
-                "the path's working scheme gave no verified point at this load; the reported \
-                 solution comes from a fresh solve at this load and may belong to another branch"
-            }
-            .into());
+            notes.push(format!(
+                "{}; the reported solution comes from a fresh solve at this load and \
+                 {ANOTHER_BRANCH}",
+                if settings.tightening > 0.0 {
+                    "the tightening could not be removed along the path"
+                } else {
+                    "the path's working scheme gave no verified point at this load"
+                }
+            ));
         }
     }
     let steps_before_target = path.target_segment.unwrap_or(steps.len());

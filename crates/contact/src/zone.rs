@@ -78,6 +78,14 @@ impl ContactZone {
         self.rnn.nrows()
     }
 
+    /// No constant load and no initial gap: the problem without the tightening is
+    /// homogeneous (`q0 = 0`), a state at `p > 0` scaled by `s > 0` being the state at `s·p`.
+    pub fn is_homogeneous(&self) -> bool {
+        self.constant.normal.iter().all(|&v| v == 0.0)
+            && self.constant.tangential.iter().all(|&v| v == 0.0)
+            && self.gap.iter().all(|&g| g == 0.0)
+    }
+
     /// Checks sizes, finiteness, signs and the symmetry of `Rnn` and `Rtt`, and the size and
     /// finiteness of every load case (`load.NAME.normal`, `load.NAME.tangential`).
     ///

@@ -635,7 +635,7 @@ pub(crate) fn solution_on_segment(
     if matches!(
         path_basis,
         BasisVerdict::Negative { .. } | BasisVerdict::Unverified { .. }
-    ) && !(path.judged_load_segments.contains(&seg))
+    ) && !path.judged_load_segments.contains(&seg)
     {
         if let Some(pt) = structure_point_signed(solver, path, seg, p) {
             return Ok(pt);
@@ -754,6 +754,11 @@ fn structure_values(solver: &PathSolver, slots: &[usize], p: f64) -> Option<(Vec
 /// data, as every reported point is).
 fn structure_point(solver: &PathSolver, slots: &[usize], p: f64) -> Option<PathPoint> {
     let (x, z) = structure_values(solver, slots, p)?;
+    verified_point(solver, p, x, z)
+}
+
+/// `(x, z)` at `p` as a point of the path, where it is verified on this solver's data.
+fn verified_point(solver: &PathSolver, p: f64, x: Vec<f64>, z: Vec<f64>) -> Option<PathPoint> {
     let residual = solver.residual(p, &x, &z);
     residual.accepts(&x, &z).then_some(PathPoint {
         p,
@@ -785,16 +790,7 @@ fn structure_point_signed(
         let v = clamp_at(&v, top);
         v.iter().all(|&a| a >= 0.0).then_some(v)
     };
-    let (x, z) = (signed(x)?, signed(z)?);
-    let residual = solver.residual(p, &x, &z);
-    residual.accepts(&x, &z).then_some(PathPoint {
-        p,
-        x,
-        z,
-        residual,
-        tightening_pivots: 0,
-        fallback: false,
-    })
+    verified_point(solver, p, signed(x)?, signed(z)?)
 }
 
 /// A solution at load `p` by a fresh standard solve (Lemke with fallbacks), verified; else how

@@ -619,23 +619,7 @@ fn equations(lcp: &SchurLcp) -> Vec<Triplet<usize, usize, f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn sparse(
-        rows: usize,
-        cols: usize,
-        f: impl Fn(usize, usize) -> f64,
-    ) -> SparseColMat<usize, f64> {
-        let mut t = Vec::new();
-        for j in 0..cols {
-            for i in 0..rows {
-                let v = f(i, j);
-                if v != 0.0 {
-                    t.push(Triplet::new(i, j, v));
-                }
-            }
-        }
-        SparseColMat::try_new_from_triplets(rows, cols, &t).unwrap()
-    }
+    use crate::schur::test_data::small_lcp;
 
     /// A solve for the unknowns from `N` on gives them bit for bit as the whole solve does
     /// (the same operations in the same order), the unknowns before `N` zero — with a border
@@ -643,22 +627,7 @@ mod tests {
     #[test]
     fn a_solve_from_the_tableau_on_is_the_whole_solves_tail_bit_for_bit() {
         let (n, big_n) = (4, 5);
-        let lcp = SchurLcp {
-            a: sparse(big_n, big_n, |i, j| {
-                if i == j {
-                    6.0 + i as f64
-                } else {
-                    1.0 / (1.0 + (i + 2 * j) as f64)
-                }
-            }),
-            b: sparse(big_n, n, |i, j| ((i * 3 + j * 5) % 7) as f64 - 3.0),
-            c: sparse(n, big_n, |i, j| ((i * 5 + j * 2) % 5) as f64 - 2.0),
-            d: sparse(n, n, |i, j| if i == j { 9.0 } else { 0.5 }),
-            q0: vec![1.0; n],
-            qa: vec![0.5; big_n],
-            d0: vec![-1.0, 2.0, 0.5, 1.5],
-            da: vec![0.3, -0.2, 0.1, 0.0, 0.7],
-        };
+        let lcp = small_lcp();
         let mut basis = Bordered::slack(&lcp).unwrap();
         // z0 enters for x0, then the driver for x1: two freed fix rows (border columns) and
         // two newly fixed variables (border rows).

@@ -325,21 +325,9 @@ fn verdict(
 #[cfg(test)]
 mod tests {
     use super::StructureJudge;
+    use crate::schur::test_data::{small_lcp, sparse};
     use crate::SchurLcp;
-    use faer::sparse::{SparseColMat, Triplet};
     use faer::Mat;
-
-    fn sparse(m: &Mat<f64>) -> SparseColMat<usize, f64> {
-        let mut t = Vec::new();
-        for j in 0..m.ncols() {
-            for i in 0..m.nrows() {
-                if m[(i, j)] != 0.0 {
-                    t.push(Triplet::new(i, j, m[(i, j)]));
-                }
-            }
-        }
-        SparseColMat::try_new_from_triplets(m.nrows(), m.ncols(), &t).unwrap()
-    }
 
     /// `got` against the dense LU solution of `sys · v = rhs`, entry by entry to 1e-12.
     fn agrees_with_dense_solve(sys: &Mat<f64>, rhs: &Mat<f64>, got: &[f64], what: &str) {
@@ -358,28 +346,8 @@ mod tests {
     /// the basis's columns — the same rates as the judge's solve of the sparse equations.
     #[test]
     fn the_direction_is_that_of_the_formed_problem() {
-        let (n, big_n) = (4, 5);
-        // A well-conditioned `A`, and arbitrary couplings.
-        let a = Mat::<f64>::from_fn(big_n, big_n, |i, j| {
-            if i == j {
-                6.0 + i as f64
-            } else {
-                1.0 / (1.0 + (i + 2 * j) as f64)
-            }
-        });
-        let b = Mat::<f64>::from_fn(big_n, n, |i, j| ((i * 3 + j * 5) % 7) as f64 - 3.0);
-        let c = Mat::<f64>::from_fn(n, big_n, |i, j| ((i * 5 + j * 2) % 5) as f64 - 2.0);
-        let d = Mat::<f64>::from_fn(n, n, |i, j| if i == j { 9.0 } else { 0.5 });
-        let lcp = SchurLcp {
-            a: sparse(&a),
-            b: sparse(&b),
-            c: sparse(&c),
-            d: sparse(&d),
-            q0: vec![1.0; n],
-            qa: vec![0.5; big_n],
-            d0: vec![-1.0, 2.0, 0.5, 1.5],
-            da: vec![0.3, -0.2, 0.1, 0.0, 0.7],
-        };
+        let n = 4;
+        let lcp = small_lcp();
         let dense = lcp.dense();
         let judge = StructureJudge::new(lcp);
         // Basic: x0, z1, x2, z3 and p; entering z0 (its pair's x0 is basic? no: x0 left).

@@ -1062,3 +1062,49 @@ fn lexicographic(
     }
     alive[0]
 }
+
+/// Data shared by the sparse engine's unit tests.
+#[cfg(test)]
+pub(crate) mod test_data {
+    use super::SchurLcp;
+    use faer::sparse::{SparseColMat, Triplet};
+    use faer::Mat;
+
+    /// `m` as a sparse matrix (its non-zero entries).
+    pub fn sparse(m: &Mat<f64>) -> SparseColMat<usize, f64> {
+        let mut t = Vec::new();
+        for j in 0..m.ncols() {
+            for i in 0..m.nrows() {
+                if m[(i, j)] != 0.0 {
+                    t.push(Triplet::new(i, j, m[(i, j)]));
+                }
+            }
+        }
+        SparseColMat::try_new_from_triplets(m.nrows(), m.ncols(), &t).unwrap()
+    }
+
+    /// A small problem (`n = 4`, `N = 5`): a well-conditioned `A` and arbitrary couplings.
+    pub fn small_lcp() -> SchurLcp {
+        let (n, big_n) = (4, 5);
+        let a = Mat::<f64>::from_fn(big_n, big_n, |i, j| {
+            if i == j {
+                6.0 + i as f64
+            } else {
+                1.0 / (1.0 + (i + 2 * j) as f64)
+            }
+        });
+        let b = Mat::<f64>::from_fn(big_n, n, |i, j| ((i * 3 + j * 5) % 7) as f64 - 3.0);
+        let c = Mat::<f64>::from_fn(n, big_n, |i, j| ((i * 5 + j * 2) % 5) as f64 - 2.0);
+        let d = Mat::<f64>::from_fn(n, n, |i, j| if i == j { 9.0 } else { 0.5 });
+        SchurLcp {
+            a: sparse(&a),
+            b: sparse(&b),
+            c: sparse(&c),
+            d: sparse(&d),
+            q0: vec![1.0; n],
+            qa: vec![0.5; big_n],
+            d0: vec![-1.0, 2.0, 0.5, 1.5],
+            da: vec![0.3, -0.2, 0.1, 0.0, 0.7],
+        }
+    }
+}
