@@ -824,6 +824,51 @@ fn a_beam_pushed_sideways_with_nothing_to_hold_it_is_a_mechanism_at_zero() {
     }
 }
 
+/// Two separate beams in one model (an independent reviewer's): beam `a` on two bearings of
+/// friction 0.3 under 200 N/m, pushed sideways by 1000 N at midspan (alone it slides at
+/// `p = 0.3·800/1000 = 0.24`), and beam `c` on two frictionless bearings under 200 N/m, pushed
+/// sideways by `push` N. Nothing holds `c` sideways: by hand a mechanism as soon as the
+/// variable load is applied, `p_lim = 0`, its state the constant load's (400 N on each of the
+/// four bearings, by statics). Pushed by 3e-6…1e-4 N the path "returned to zero" at `p = 0`
+/// instead: once both of `c`'s pairs slip, the load's rate along the slide (1.5e-3 at 1e-4 N)
+/// was round-off of terms of 5e12, and the path left on it. N·m and kN·mm.
+#[test]
+fn a_frictionless_beam_pushed_by_a_small_force_beside_a_frictional_one_is_a_mechanism_at_zero() {
+    for kn_mm in [false, true] {
+        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        for push in [1e-2, 1e-4, 1e-5, 3e-6] {
+            let mut text = steel_beam(kn_mm, false);
+            for (name, y, friction, fx) in [("a", 0.0, 0.3, 1000.0), ("c", 10.0, 0.0, push)] {
+                text += &format!(
+                    "[[members]]\nname = \"{name}\"\nstart = [0.0, {y:e}]\nend = [{x:e}, {y:e}]\n\
+                     divisions = 2\nsection = \"beam\"\n\
+                     [[contact]]\nname = \"{name}L\"\nfrom = \"ground\"\nto = \"{name}.start\"\n\
+                     normal = [0.0, 1.0]\nfriction = {friction}\n\
+                     [[contact]]\nname = \"{name}R\"\nfrom = \"ground\"\nto = \"{name}.end\"\n\
+                     normal = [0.0, 1.0]\nfriction = {friction}\n\
+                     [[loads.constant.distributed]]\nelements = \"{name}\"\nq = [0.0, {q:e}]\n\
+                     [[loads.variable.nodal]]\nnodes = \"{name}.1\"\nfx = {fx:e}\n",
+                    y = y * l,
+                    x = 4.0 * l,
+                    q = -200.0 * f / l,
+                    fx = fx * f,
+                );
+            }
+            let what = format!("kN·mm {kn_mm}, push {push} N");
+            let (p_limit, s) = mechanism(&text, &what);
+            assert_eq!(p_limit, 0.0, "{what}");
+            assert_eq!(s.p, Some(0.0), "{what}: {:?}", s.notes);
+            assert!(s.residual.is_some(), "{what}: a verified state");
+            for r in &s.pairs {
+                assert!(
+                    (r.x_n - 400.0 * f).abs() < 1e-9 * 400.0 * f,
+                    "{what}: {r:?}"
+                );
+            }
+        }
+    }
+}
+
 /// A beam (4 m, on two frictionless bearings, the left one with a gap `gap` m) pushed sideways
 /// and down at midspan by the variable load (1000 N each way), its self-weight `q` N/m (none
 /// when 0), in N·m or kN·mm.

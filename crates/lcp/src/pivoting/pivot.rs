@@ -864,6 +864,25 @@ impl<'a> Pivoter<'a> {
                 }
             }
         }
+        // The driver leaving (the path back at p = 0) is believed only on a rate beyond
+        // round-off of the terms that formed it, as a ray's rows are judged
+        // ([`Pivoter::check_ray`]); the other candidates are then those that decrease beyond
+        // round-off of theirs. A frictionless beam pushed sideways by 1e-4 N beside a
+        // frictional one under 1000 N: once both its pairs slip the direction is a rigid
+        // slide whose load rate (1.5e-3) is round-off of terms of 5e12, and every other rate
+        // in the column was formed from it; the path "returned to zero" at p = 0 where the
+        // structure is a mechanism. Not where the driver is below zero: the path left the
+        // problem's loads there, and leaving is its return to them (a ray there would be read
+        // as a mechanism at a negative load).
+        if let (Some((slot, _)), Some(d)) = (step, self.driver_slot()) {
+            if slot == d && self.beta[d] >= 0.0 {
+                let (check, decreasing) = self.check_ray(entering, &alpha);
+                if check.equation <= crate::ACCEPT_RESIDUAL && !decreasing.contains(&d) {
+                    step = self.ratio_test_over(&alpha, decreasing);
+                    self.ray_check = step.is_none().then_some(check);
+                }
+            }
+        }
         Ok((alpha, step))
     }
 
