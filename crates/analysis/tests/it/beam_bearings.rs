@@ -1112,3 +1112,125 @@ fn the_check_allows_the_same_round_off_in_any_units() {
     let (n_m, kn_mm) = (ratio(false), ratio(true));
     assert!((n_m - kn_mm).abs() < 1e-9 * n_m, "N·m {n_m}, kN·mm {kn_mm}");
 }
+
+/// A reviewer's model (r1592), in N·m or kN·mm: a 4 m beam on four bearings (two with gaps of
+/// 2.2 and 1.3 mm), pressed down at its end by 977.9·p N, and apart from it a portal (3 m tall,
+/// 4 m wide, under 2.944 N/m: W = 11.778 N) on feet of friction 9.86e-12 and 8.67e-8, pushed
+/// sideways at the top of its left column by 1.2838e-4·p N.
+fn reviewer_r1592(kn_mm: bool) -> String {
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    let mut text = format!(
+        "units = \"{units}\"\n\
+         [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
+         [[members]]\nname = \"a\"\nstart = [0.0, 0.0]\nend = [{x:e}, 0.0]\n\
+         divisions = 6\nsection = \"beam\"\n",
+        units = if kn_mm { "kN, mm" } else { "N, m" },
+        e = 2.1e11 * f / (l * l),
+        a = 0.005524057662598866 * l * l,
+        i = 6.419722259239307e-06 * l * l * l * l,
+        x = 4.0 * l,
+    );
+    let pair = |name: &str, node: &str, mu: f64, gap: f64| {
+        format!(
+            "[[contact]]\nname = \"{name}\"\nfrom = \"ground\"\nto = \"{node}\"\n\
+             normal = [0.0, 1.0]\nfriction = {mu:e}\ngap = {gap:e}\n",
+            gap = gap * l
+        )
+    };
+    text += &pair("ac0", "a.0", 8.620724921883926e-05, 0.002171203444068238);
+    text += &pair("ac1", "a.3", 0.0, 0.0);
+    text += &pair("ac2", "a.4", 0.111, 0.0013020917035061138);
+    text += &pair("ac3", "a.6", 0.0, 0.0);
+    text += &format!(
+        "[[loads.variable.nodal]]\nnodes = \"a.0\"\nfy = {:e}\n",
+        -977.9070944290523 * f
+    );
+    let point = |x: f64, y: f64| format!("[{:e}, {:e}]", x * l, y * l);
+    for (name, start, end) in [
+        ("zl", point(0.0, 20.0), point(0.0, 23.0)),
+        ("zr", point(4.0, 20.0), point(4.0, 23.0)),
+        ("zb", "\"zl.end\"".into(), "\"zr.end\"".into()),
+    ] {
+        text += &format!(
+            "[[members]]\nname = \"{name}\"\nstart = {start}\nend = {end}\n\
+             divisions = 2\nsection = \"beam\"\n"
+        );
+    }
+    text += &pair("zf0", "zl.start", 9.860738551916568e-12, 0.0);
+    text += &pair("zf1", "zr.start", 8.674288675989298e-08, 0.0);
+    text += &format!(
+        "[[loads.constant.distributed]]\nelements = \"zb\"\nq = [0.0, {:e}]\n\
+         [[loads.variable.nodal]]\nnodes = \"zl.end\"\nfx = {:e}\n\
+         [solve]\ntarget = 10.0\ntrace = \"end\"\n",
+        -2.9444557240279603 * f / l,
+        0.00012838215995687266 * f
+    );
+    text
+}
+
+/// [`reviewer_r1592`]: the beam finds its supports (its end's gap closes at once) and carries
+/// its load to any p; the portal slides when the push reaches its feet's friction, by statics
+/// `p_lim = (μ0 + μ1)·(W/2) / 1.2838e-4 = 0.0039794` (the horizontal balance there is a
+/// difference of forces 1e8 times the friction: the data fix it to about 1e-5). In N·m the
+/// path "returned to zero" on a load rate of round-off (the driver leaving is now judged on its
+/// terms); in kN·mm it read the slide as a ray to the target p = 10 with slips of 20 km, its
+/// push balanced by round-off of the stiffness, on a load rate of 9.6e-7 of the column but
+/// 1.2e-12 of its terms. Both units: the mechanism at the same limit, its state there.
+#[test]
+fn a_portal_on_nearly_frictionless_feet_slides_at_its_friction_limit_in_any_units() {
+    let weight = 2.9444557240279603 * 4.0;
+    let by_hand =
+        (9.860738551916568e-12 + 8.674288675989298e-08) * weight / 2.0 / 0.00012838215995687266;
+    for kn_mm in [false, true] {
+        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let what = format!("kN·mm {kn_mm}");
+        let (p_limit, s) = mechanism(&reviewer_r1592(kn_mm), &what);
+        assert!(
+            (p_limit - by_hand).abs() < 1e-5 * by_hand,
+            "{what}: p_lim = {p_limit}, by hand {by_hand}"
+        );
+        assert_eq!(s.p, Some(p_limit), "{what}: {:?}", s.notes);
+        assert!(s.residual.is_some(), "{what}: a verified state");
+        let pair = |name: &str| s.pairs.iter().find(|r| r.name == name).unwrap();
+        // The portal's feet carry half its weight each and slip; the larger friction force is
+        // at its limit (the smaller is 1e-11 of the forces, below their round-off), and the
+        // two balance the push. The beam's load goes down through its end.
+        for foot in ["zf0", "zf1"] {
+            let r = pair(foot);
+            assert!(
+                (r.x_n - weight / 2.0 * f).abs() < 1e-5 * weight * f,
+                "{what}: {r:?}"
+            );
+            assert!(
+                matches!(
+                    r.state,
+                    unilateral_contact::PairState::SlipPlus
+                        | unilateral_contact::PairState::SlipMinus
+                ),
+                "{what}: {r:?}"
+            );
+        }
+        let (f0, f1) = (pair("zf0"), pair("zf1"));
+        let mu = 8.674288675989298e-08;
+        assert!(
+            (f1.x_t.abs() - mu * f1.x_n).abs() < 1e-6 * mu * f1.x_n,
+            "{what}: {f1:?}"
+        );
+        let push = 0.00012838215995687266 * p_limit * f;
+        assert!(
+            ((f0.x_t + f1.x_t).abs() - push).abs() < 1e-5 * push,
+            "{what}: {f0:?} {f1:?} against {push}"
+        );
+        let end = pair("ac0");
+        assert!(
+            (end.x_n - 977.9070944290523 * p_limit * f).abs() < 1e-6 * end.x_n,
+            "{what}: {end:?}"
+        );
+        // The slip at the limit: millimetres at most, not kilometres.
+        assert!(
+            pair("zf1").z_t.abs() < 1e-3 * l,
+            "{what}: {:?}",
+            pair("zf1")
+        );
+    }
+}
