@@ -691,14 +691,53 @@ pub(crate) fn basis_point_on_segment(
     match evaluated {
         Ok((x, z, pivots)) => {
             let residual = solver.residual(p, &x, &z);
+            let point = |x, residual| PathPoint {
+                p,
+                x,
+                z: z.clone(),
+                residual,
+                tightening_pivots: pivots,
+                fallback: false,
+            };
             if residual.accepts(&x, &z) {
+                return Ok(point(x, residual));
+            }
+            // The basic `x` formed again from their equations, `q(p) + M z` (the others stay
+            // zero): a row that the data leave empty (a frictionless pair's friction row,
+            // nothing of `q`, `d` or the basic `z` in it) is met only by an exact zero, and
+            // the basis's solve left round-off there (1.4e-17 of forces of 1 beside a beam
+            // whose other support it was, in N·m; in kN·mm the fresh solve failed too).
+            // Before that, a basic `z` whose every term `M_ij z_j` is round-off of the point's
+            // forces (64 ε of the largest row of `q(p)` and `x`) is taken as the zero it is: a
+            // slip that starts at this load read as 2.6e-17 mm put 1.4e-17 kN into such a row
+            // (kN·mm), where N·m had an exact zero.
+            let forces = q_real
+                .iter()
+                .zip(&terms)
+                .zip(&x)
+                .fold(0.0f64, |a, ((_, t), xi)| a.max(*t).max(xi.abs()));
+            let z2: Vec<f64> = z
+                .iter()
+                .enumerate()
+                .map(|(j, &zj)| {
+                    let round_off = zj != 0.0
+                        && zj.abs() * solver.column_max(j) <= 64.0 * f64::EPSILON * forces;
+                    if round_off {
+                        0.0
+                    } else {
+                        zj
+                    }
+                })
+                .collect();
+            let again = solver.x_of(p, &z2);
+            let x2: Vec<f64> = (0..prep.n)
+                .map(|i| if x[i] != 0.0 { again[i] } else { 0.0 })
+                .collect();
+            let residual2 = solver.residual(p, &x2, &z2);
+            if residual2.accepts(&x2, &z2) {
                 Ok(PathPoint {
-                    p,
-                    x,
-                    z,
-                    residual,
-                    tightening_pivots: pivots,
-                    fallback: false,
+                    z: z2,
+                    ..point(x2, residual2)
                 })
             } else {
                 Err(BasisVerdict::Unverified { residual })

@@ -169,6 +169,30 @@ impl PathSolver {
             .collect()
     }
 
+    /// `q0 + p·d + M z` on the original data: the `x` that the equations give `z` at `p`.
+    pub(crate) fn x_of(&self, p: f64, z: &[f64]) -> Vec<f64> {
+        use crate::residual::ColumnSource as _;
+        let n = self.n;
+        let cols = OriginalColumns(&self.prep);
+        let mut x = self.q_at(p);
+        let mut col = vec![0.0; n];
+        for (j, &zj) in z.iter().enumerate() {
+            if zj != 0.0 {
+                cols.column_into(j, 0..n, &mut col);
+                x.iter_mut().zip(&col).for_each(|(xi, c)| *xi += c * zj);
+            }
+        }
+        x
+    }
+
+    /// `max_i |M_ij|` on the original data.
+    pub(crate) fn column_max(&self, j: usize) -> f64 {
+        use crate::residual::ColumnSource as _;
+        let mut col = vec![0.0; self.n];
+        OriginalColumns(&self.prep).column_into(j, 0..self.n, &mut col);
+        col.iter().fold(0.0f64, |a, v| a.max(v.abs()))
+    }
+
     /// Residuals of `(x, z)` at load `p` against the original data.
     pub(crate) fn residual(&self, p: f64, x: &[f64], z: &[f64]) -> crate::Residual {
         let n = self.n;

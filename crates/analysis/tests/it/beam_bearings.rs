@@ -1234,3 +1234,84 @@ fn a_portal_on_nearly_frictionless_feet_slides_at_its_friction_limit_in_any_unit
         );
     }
 }
+
+/// A reviewer's beam (r1606), in N·m or kN·mm: 10 m in six elements, on a frictionless bearing
+/// at its left end (over a pinned pad settled by 0.81 mm, with a gap of 0.39 mm) and a bearing
+/// of friction 0.26 at node 5 (x = 25/3 m); under 1.1468 N/m and 1958.6 N at node 1, and
+/// pushed at node 5 by 334.1·p N and a moment of −625.4·p N·m.
+fn reviewer_r1606(kn_mm: bool) -> String {
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    format!(
+        "units = \"{units}\"\n\
+         [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
+         [[members]]\nname = \"a\"\nstart = [0.0, 0.0]\nend = [{x:e}, 0.0]\n\
+         divisions = 6\nsection = \"beam\"\n\
+         [[nodes]]\nid = \"apad0\"\nx = 0.0\ny = 0.0\n\
+         [[supports]]\nnodes = \"apad0\"\npinned = true\n\
+         [[loads.constant.settlement]]\nnodes = \"apad0\"\ndof = \"uy\"\nvalue = {s:e}\n\
+         [[contact]]\nname = \"ac0\"\nfrom = \"apad0\"\nto = \"a.0\"\nnormal = [0.0, 1.0]\n\
+         friction = 0.0\ngap = {gap:e}\n\
+         [[contact]]\nname = \"ac1\"\nfrom = \"ground\"\nto = \"a.5\"\nnormal = [0.0, 1.0]\n\
+         friction = 0.26\n\
+         [[loads.constant.distributed]]\nelements = \"a\"\nq = [0.0, {q:e}]\n\
+         [[loads.constant.nodal]]\nnodes = \"a.1\"\nfy = {fy:e}\n\
+         [[loads.variable.nodal]]\nnodes = \"a.5\"\nfx = {fx:e}\nm = {m:e}\n\
+         [solve]\ntarget = 0.5\ntrace = \"end\"\n",
+        units = if kn_mm { "kN, mm" } else { "N, m" },
+        e = 2.1e11 * f / (l * l),
+        a = 0.010771046673067755 * l * l,
+        i = 5.71406520555882e-05 * l * l * l * l,
+        x = 10.0 * l,
+        s = -0.0008124372722360949 * l,
+        gap = 0.000394288999077698 * l,
+        q = -1.1467857294642185 * f / l,
+        fy = -1958.6223315688162 * f,
+        fx = 334.10019952314565 * f,
+        m = -625.4169298590359 * f * l,
+    )
+}
+
+/// [`reviewer_r1606`] slides when the friction at node 5 is used up. By statics (the bearings'
+/// normal forces do not depend on the pad's settlement or gap: two supports), node 5 carries
+/// `N(p) = (1958.6·L/6 + 1.1468·L²/2 + 625.4·p) / (5L/6)`, and `0.26·N(p) = 334.1·p` at
+/// `p_lim = 0.329439`. The path's point there failed its check on the frictionless pair's
+/// empty friction rows, where the basis's solve left 1.4e-17 N (N·m; a fresh solve answered,
+/// "may belong to another branch") or a slip read as 2.6e-17 mm put 1.4e-17 kN (kN·mm; the
+/// fresh solve failed too, exit 1). Both units: the path's own state at the limit.
+#[test]
+fn a_beam_on_a_frictionless_and_a_frictional_bearing_reports_its_state_at_the_limit() {
+    let (l, mu, push) = (10.0, 0.26, 334.10019952314565);
+    let n5 = |p: f64| {
+        (1958.6223315688162 * l / 6.0 + 1.1467857294642185 * l * l / 2.0 + 625.4169298590359 * p)
+            / (5.0 * l / 6.0)
+    };
+    // 0.26·N(p) = push·p, linear in p
+    let by_hand = mu * n5(0.0) / (push - mu * (n5(1.0) - n5(0.0)));
+    for kn_mm in [false, true] {
+        let f = if kn_mm { 1e-3 } else { 1.0 };
+        let what = format!("kN·mm {kn_mm}");
+        let (p_limit, s) = mechanism(&reviewer_r1606(kn_mm), &what);
+        assert!(
+            (p_limit - by_hand).abs() < 1e-9 * by_hand,
+            "{what}: p_lim = {p_limit}, by hand {by_hand}"
+        );
+        assert_eq!(s.p, Some(p_limit), "{what}: {:?}", s.notes);
+        assert!(s.residual.is_some(), "{what}: a verified state");
+        assert!(
+            s.notes.iter().all(|n| !n.contains("fresh solve")),
+            "{what}: the path's own state: {:?}",
+            s.notes
+        );
+        let (a0, a1) = (&s.pairs[0], &s.pairs[1]);
+        let n = n5(p_limit) * f;
+        assert!((a1.x_n - n).abs() < 1e-9 * n, "{what}: {a1:?} against {n}");
+        assert!((a1.x_t.abs() - mu * n).abs() < 1e-9 * n, "{what}: {a1:?}");
+        // The rest of the load on the left bearing; no friction there.
+        let total = (1958.6223315688162 + 1.1467857294642185 * l) * f;
+        assert!(
+            (a0.x_n - (total - n)).abs() < 1e-9 * total,
+            "{what}: {a0:?}"
+        );
+        assert_eq!(a0.x_t, 0.0, "{what}: {a0:?}");
+    }
+}
