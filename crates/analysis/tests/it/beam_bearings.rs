@@ -1132,7 +1132,7 @@ fn the_check_allows_the_same_round_off_in_any_units() {
 /// 2.2 and 1.3 mm), pressed down at its end by 977.9·p N, and apart from it a portal (3 m tall,
 /// 4 m wide, under 2.944 N/m: W = 11.778 N) on feet of friction 9.86e-12 and 8.67e-8, pushed
 /// sideways at the top of its left column by 1.2838e-4·p N.
-fn reviewer_r1592(kn_mm: bool) -> String {
+fn reviewer_r1592(kn_mm: bool, trace: &str) -> String {
     let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
     let mut text = format!(
         "units = \"{units}\"\n\
@@ -1176,7 +1176,7 @@ fn reviewer_r1592(kn_mm: bool) -> String {
     text += &format!(
         "[[loads.constant.distributed]]\nelements = \"zb\"\nq = [0.0, {:e}]\n\
          [[loads.variable.nodal]]\nnodes = \"zl.end\"\nfx = {:e}\n\
-         [solve]\ntarget = 10.0\ntrace = \"end\"\n",
+         [solve]\ntarget = 10.0\ntrace = \"{trace}\"\n",
         -2.9444557240279603 * f / l,
         0.00012838215995687266 * f
     );
@@ -1190,16 +1190,23 @@ fn reviewer_r1592(kn_mm: bool) -> String {
 /// path "returned to zero" on a load rate of round-off (the driver leaving is now judged on its
 /// terms); in kN·mm it read the slide as a ray to the target p = 10 with slips of 20 km, its
 /// push balanced by round-off of the stiffness, on a load rate of 9.6e-7 of the column but
-/// 1.2e-12 of its terms. Both units: the mechanism at the same limit, its state there.
+/// 1.2e-12 of its terms (traced to the target, the ray "reached" it: an independent
+/// reviewer). Both units, both traces: the mechanism at the same limit, its state there.
 #[test]
 fn a_portal_on_nearly_frictionless_feet_slides_at_its_friction_limit_in_any_units() {
     let weight = 2.9444557240279603 * 4.0;
     let by_hand =
         (9.860738551916568e-12 + 8.674288675989298e-08) * weight / 2.0 / 0.00012838215995687266;
-    for kn_mm in [false, true] {
+    for (kn_mm, trace) in [
+        (false, "end"),
+        (true, "end"),
+        (false, "target"),
+        (true, "target"),
+    ] {
         let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-        let what = format!("kN·mm {kn_mm}");
-        let (p_limit, s) = state_at_limit(&reviewer_r1592(kn_mm), by_hand, 1e-5, &what);
+        let what = format!("kN·mm {kn_mm}, trace {trace}");
+        let model = reviewer_r1592(kn_mm, trace);
+        let (p_limit, s) = state_at_limit(&model, by_hand, 1e-5, &what);
         let pair = |name: &str| s.pairs.iter().find(|r| r.name == name).unwrap();
         // The portal's feet carry half its weight each and slip; the larger friction force is
         // at its limit (the smaller is 1e-11 of the forces, below their round-off), and the
@@ -1317,4 +1324,37 @@ fn a_beam_on_a_frictionless_and_a_frictional_bearing_reports_its_state_at_the_li
         );
         assert_eq!(a0.x_t, 0.0, "{what}: {a0:?}");
     }
+}
+
+/// A reviewer's beam (r1052, N·m): 4 m under 2.0411 N/m, on a frictionless bearing under its
+/// middle (x = 2 m) and two at x = 0 (friction 8.3e-8, a gap of 0.076 mm) and x = 2/3 m
+/// (friction 0.319), pushed along its axis at its right end by 9.47e-6·p N. By statics it rests
+/// on the middle bearing alone (its weight's centre is there: 8.1646 N) and nothing holds it
+/// along its axis: a mechanism as soon as the load is applied, `p_lim = 0`. The path's loads
+/// never rose above zero; round-off took them to `p = −3.1e-9`, where the limit was read — a
+/// mechanism at a negative load. (Its kN·mm twin rose to `1.9e-7` first and still fails at
+/// `−2.4e-7`: docs/engine.md.)
+#[test]
+fn a_limit_read_below_zero_on_a_path_that_never_rose_is_the_start() {
+    let text = "units = \"N, m\"\n\
+        [[sections]]\nname = \"beam\"\nE = 2.1e11\nA = 0.07527178255464861\n\
+        I = 0.000353085657918322\n\
+        [[members]]\nname = \"a\"\nstart = [0.0, 0.0]\nend = [4.0, 0.0]\ndivisions = 6\n\
+        section = \"beam\"\n\
+        [[contact]]\nname = \"ac0\"\nfrom = \"ground\"\nto = \"a.0\"\nnormal = [0.0, 1.0]\n\
+        friction = 8.307338913864644e-08\ngap = 7.64093937310475e-05\n\
+        [[contact]]\nname = \"ac1\"\nfrom = \"ground\"\nto = \"a.1\"\nnormal = [0.0, 1.0]\n\
+        friction = 0.319\n\
+        [[contact]]\nname = \"ac2\"\nfrom = \"ground\"\nto = \"a.3\"\nnormal = [0.0, 1.0]\n\
+        friction = 0.0\n\
+        [[loads.constant.distributed]]\nelements = \"a\"\nq = [0.0, -2.0411449811236935]\n\
+        [[loads.variable.nodal]]\nnodes = \"a.6\"\nfx = -9.466101387246699e-06\n";
+    let (_, s) = state_at_limit(text, 0.0, 0.0, "r1052");
+    let weight = 2.0411449811236935 * 4.0;
+    let (a0, a1, a2) = (&s.pairs[0], &s.pairs[1], &s.pairs[2]);
+    assert!((a2.x_n - weight).abs() < 1e-9 * weight, "{a2:?}");
+    for r in [a0, a1] {
+        assert!(r.x_n.abs() < 1e-9 * weight, "{r:?}");
+    }
+    assert!(s.steps.iter().all(|st| st.p == 0.0), "{:?}", s.steps);
 }

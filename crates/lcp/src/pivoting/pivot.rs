@@ -1659,8 +1659,16 @@ impl<'a> Pivoter<'a> {
                     // a real way (1e-6 of the target): a block sliding at constant load to a
                     // far stopper moves the load by round-off over a huge step, and stopping
                     // there read the state on another branch.
+                    // On a ray, a rate of the basic load that the ray's check found round-off
+                    // of its sums does not carry the load anywhere: the direction is a
+                    // mechanism's (`parametric::follow`), and its target is not reached. (The
+                    // load entering moves at rate 1: the check has no rate of it; a rate the
+                    // structure's equations judged genuine on this segment is a ray's.)
+                    let fixed = entering != driver
+                        && self.judged_load_segments.last() != Some(&records.len())
+                        && self.ray_check.is_some_and(|c| c.driver_fixed());
                     let hit = match step {
-                        None => t_sure,
+                        None => t_sure && !fixed,
                         Some((_, th)) => {
                             theta_t <= th + TIE * th.abs().max(theta_t.abs())
                                 && (t_sure || th * t_rate > 1e-6 * t_target.abs())
