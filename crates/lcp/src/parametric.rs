@@ -691,38 +691,36 @@ pub(crate) fn basis_point_on_segment(
     match evaluated {
         Ok((x, z, pivots)) => {
             let residual = solver.residual(p, &x, &z);
-            let point = |x, residual| PathPoint {
+            let point = |x, z, residual| PathPoint {
                 p,
                 x,
-                z: z.clone(),
+                z,
                 residual,
                 tightening_pivots: pivots,
                 fallback: false,
             };
             if residual.accepts(&x, &z) {
-                return Ok(point(x, residual));
+                return Ok(point(x, z, residual));
             }
-            // The basic `x` formed again from their equations, `q(p) + M z` (the others stay
-            // zero): a row that the data leave empty (a frictionless pair's friction row,
-            // nothing of `q`, `d` or the basic `z` in it) is met only by an exact zero, and
-            // the basis's solve left round-off there (1.4e-17 of forces of 1 beside a beam
-            // whose other support it was, in N·m; in kN·mm the fresh solve failed too).
-            // Before that, a basic `z` whose every term `M_ij z_j` is round-off of the point's
-            // forces (64 ε of the largest row of `q(p)` and `x`) is taken as the zero it is: a
-            // slip that starts at this load read as 2.6e-17 mm put 1.4e-17 kN into such a row
-            // (kN·mm), where N·m had an exact zero.
-            let forces = q_real
+            // Refused: the point formed once more from its equations. A basic `z` whose every
+            // term `M_ij z_j` is round-off of the point's forces (64 ε of the largest of
+            // `|q0| + |p·d|` and `x`) is the zero it is, and the basic `x` are formed again as
+            // `q(p) + M z` (the others stay zero). A row that the data leave empty (a
+            // frictionless pair's friction row: nothing of `q`, `d` or the basic `z` in it) is
+            // met only by an exact zero, and the basis's solve left round-off there: 1.4e-17 N
+            // beside a beam's other bearing at its limit in N·m; in kN·mm a slip starting at
+            // that load read as 2.6e-17 mm put 1.4e-17 kN into it (the fresh solve failed).
+            let forces = terms
                 .iter()
-                .zip(&terms)
                 .zip(&x)
-                .fold(0.0f64, |a, ((_, t), xi)| a.max(*t).max(xi.abs()));
+                .fold(0.0f64, |a, (t, xi)| a.max(*t).max(xi.abs()));
+            let round_off =
+                |j: usize, zj: f64| zj.abs() * solver.column_max(j) <= 64.0 * f64::EPSILON * forces;
             let z2: Vec<f64> = z
                 .iter()
                 .enumerate()
                 .map(|(j, &zj)| {
-                    let round_off = zj != 0.0
-                        && zj.abs() * solver.column_max(j) <= 64.0 * f64::EPSILON * forces;
-                    if round_off {
+                    if zj != 0.0 && round_off(j, zj) {
                         0.0
                     } else {
                         zj
@@ -735,10 +733,7 @@ pub(crate) fn basis_point_on_segment(
                 .collect();
             let residual2 = solver.residual(p, &x2, &z2);
             if residual2.accepts(&x2, &z2) {
-                Ok(PathPoint {
-                    z: z2,
-                    ..point(x2, residual2)
-                })
+                Ok(point(x2, z2, residual2))
             } else {
                 Err(BasisVerdict::Unverified { residual })
             }
