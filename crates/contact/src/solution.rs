@@ -351,6 +351,13 @@ impl ContactSolution {
         self.zone.is_homogeneous()
     }
 
+    /// The reported solution comes from a fresh solve at its load, not from the path's own
+    /// basis (the note says it may belong to another branch).
+    fn solved_afresh(&self) -> bool {
+        self.path.artificial_mechanism.is_none()
+            && self.path.solution.as_ref().is_some_and(|s| s.fallback)
+    }
+
     /// What the structure itself does, said before the path traced with the paper's
     /// tightening `c > 0` (whose events are at loads that depend on `c`); `None` when the
     /// path was traced without it (it is then the structure's own).
@@ -390,12 +397,7 @@ impl ContactSolution {
                  is the paper's procedure{}",
                 number_text(p),
                 number_text(self.tightening),
-                if self.steps.iter().any(|s| s.turning)
-                    || self
-                        .notes
-                        .iter()
-                        .any(|n| n.contains(crate::solve::ANOTHER_BRANCH))
-                {
+                if self.steps.iter().any(|s| s.turning) || self.solved_afresh() {
                     " (the solution may not be unique: see the notes)"
                 } else {
                     ""

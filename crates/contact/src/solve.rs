@@ -14,10 +14,6 @@ use crate::{
     ContactError, ContactSolution, ContactZone, Event, EventKind, LoadStep, Outcome, SolveSettings,
 };
 
-/// The end of the note that the reported solution comes from a fresh solve, which may have
-/// found another branch than the path's (read by [`ContactSolution::physical_reading`]).
-pub(crate) const ANOTHER_BRANCH: &str = "may belong to another branch";
-
 /// The engine's settings of a solve: the user's (pivot tolerance, pivot cap, …) with the
 /// formulation's lexicographic order and covering direction.
 fn engine_settings(lcp: &ContactLcp, s: &SolveSettings) -> Settings {
@@ -388,8 +384,8 @@ fn solve_with(
     } else if let Some(sol) = &solution {
         if sol.fallback {
             notes.push(format!(
-                "{}; the reported solution comes from a fresh solve at this load and \
-                 {ANOTHER_BRANCH}",
+                "{}; the reported solution comes from a fresh solve at this load and may \
+                 belong to another branch",
                 if settings.tightening > 0.0 {
                     "the tightening could not be removed along the path"
                 } else {
