@@ -313,7 +313,7 @@ impl Engine {
             &sol.x,
             &sol.z,
             &self.names,
-            self.data_force.forces_at(sol.p),
+            &self.data_force.forces_at(sol.p),
             self.data_force.at(sol.p),
         );
         for r in &mut pairs {
@@ -673,8 +673,9 @@ impl ContactSolution {
         let (normal, tangential) = zone_products(zone, &zn, &w);
         // The traced values carry the tightening (`c·t` in `x`): their round-off is judged
         // against the scales that include it.
+        let unit = self.engine.units.user_force(1.0);
         let (fs, ds) = (
-            self.engine.units.user_force(1.0),
+            vec![(unit, unit); m],
             self.engine.units.user_displacement(1.0),
         );
         let mut out = Vec::with_capacity(at.len());
@@ -711,7 +712,7 @@ impl ContactSolution {
                     x[2 * m + i] = -x_t;
                 }
             }
-            let pairs = pair_results_scaled(&x, &zs[j], names, fs, ds);
+            let pairs = pair_results_scaled(&x, &zs[j], names, &fs, ds);
             if let Some(i) = pairs
                 .iter()
                 .position(|r| ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()))
@@ -818,10 +819,12 @@ fn sliding_at_the_limit(pairs: &mut [PairResult], friction: &[f64], mode: &[(f64
 /// Round-off is judged relative to the largest force and displacement of the solution itself;
 /// [`crate::solve`] judges it relative to the scale of the data as well.
 pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
-    pair_results_scaled(x, z, names, 0.0, 0.0)
+    pair_results_scaled(x, z, names, &vec![(0.0, 0.0); x.len() / 3], 0.0)
 }
 
-/// Pair results with round-off judged relative to `max(‖x‖∞, force_scale)` for forces and
+/// Pair results with round-off judged relative to `max(‖x‖∞, force_scale[i])` for the forces of
+/// pair `i` (`force_scale` one a pair: the scales of its normal and its tangential force, the
+/// loads of its own rows) and
 /// `max(‖z‖∞, displacement_scale)` for displacements: a normal force of `4e-16` in a zone whose
 /// loads are of order one is round-off of zero, and the pair is open (touching), not stuck.
 /// The pairs are named by `names` (left unnamed where it has no name: empty for all).
@@ -829,20 +832,25 @@ fn pair_results_scaled(
     x: &[f64],
     z: &[f64],
     names: &[String],
-    force_scale: f64,
+    force_scale: &[(f64, f64)],
     displacement_scale: f64,
 ) -> Vec<PairResult> {
     let m = x.len() / 3;
     // The forces of the pairs, not the friction rows `f·x_n ± x_t` (a friction coefficient of
     // 1e10 would make every normal force round-off of those).
-    let xmax = (0..m).fold(force_scale, |a, i| {
+    let forces = (0..m).fold(0.0f64, |a, i| {
         a.max(x[i].abs())
             .max(((x[m + i] - x[2 * m + i]) / 2.0).abs())
     });
     let zmax = z.iter().fold(displacement_scale, |a, b| a.max(b.abs()));
-    let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
+    let tz = 1e-9 * zmax;
     (0..m)
         .map(|i| {
+            // A pair's forces are judged against the solution's forces and its own loads, not
+            // another pair's: a load that no pair carries as a force (a push that only slides
+            // a frictionless pair) is no scale of their round-off.
+            let (xn_max, xt_max) = (forces.max(force_scale[i].0), forces.max(force_scale[i].1));
+            let (tx, txt) = (1e-9 * xn_max, 1e-9 * xt_max);
             // A normal force or opening below zero by round-off is zero (`x_n, z_n ≥ 0`).
             let x_n = if x[i] < 0.0 && -x[i] <= tx { 0.0 } else { x[i] };
             let x_t = (x[m + i] - x[2 * m + i]) / 2.0;
@@ -861,12 +869,12 @@ fn pair_results_scaled(
             // is kept (a stopper carrying 3 N beside gap forces of 1e11 reads open by the
             // states' margin, but its force is real and the structure's balance needs it),
             // unless it is round-off of the data itself (64 ε of the scale).
-            let x_t = if state == PairState::Open && x_t.abs() <= tx {
+            let x_t = if state == PairState::Open && x_t.abs() <= txt {
                 0.0
             } else {
                 x_t
             };
-            let x_n = if state == PairState::Open && x_n <= 64.0 * f64::EPSILON * xmax {
+            let x_n = if state == PairState::Open && x_n <= 64.0 * f64::EPSILON * xn_max {
                 0.0
             } else {
                 x_n
@@ -993,12 +1001,12 @@ mod tests {
         let x = [4e-16, 0.0, 0.0];
         let z = [0.0; 3];
         assert_eq!(
-            pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
+            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0)[0].state,
             PairState::Open
         );
         // A normal force below zero by round-off reads as zero, not as a tension.
         let x = [-8.67e-19, 0.0, 0.0];
-        let r = &pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0];
+        let r = &pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0)[0];
         assert_eq!(
             (r.state, r.x_n.to_bits()),
             (PairState::Open, 0.0f64.to_bits())
@@ -1006,7 +1014,7 @@ mod tests {
         // A real compression of the zone's scale sticks.
         let x = [0.5, 0.2, 0.2];
         assert_eq!(
-            pair_results_scaled(&x, &z, &names, 1.0, 1.0)[0].state,
+            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0)[0].state,
             PairState::Stick
         );
     }

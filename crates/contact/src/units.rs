@@ -197,41 +197,87 @@ mod tests {
     }
 }
 
-/// The force scales of a (normalised) zone without the tightening: the largest constant load
-/// of a row with the gap forces `R·η` it carries (as the LCP sums them: a row whose terms
-/// cancel to round-off, the gaps a rigid motion closes, carries none — its terms' sizes would
-/// make a pair's real force of a small load read as round-off), and the largest variable load,
-/// both over the normal and tangential rows.
+/// The force scales of a (normalised) zone without the tightening: the constant load of a row
+/// with the gap forces `R·η` it carries (as the LCP sums them: a row whose terms cancel to
+/// round-off, the gaps a rigid motion closes, carries none — its terms' sizes would make a
+/// pair's real force of a small load read as round-off), and the variable load: the largest of
+/// the zone's normal and tangential rows (the displacements' scale), and each pair's own, normal
+/// and tangential (its forces' scales).
 pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
     let m = zone.pairs();
     let (q0, _) = crate::lcp::load_vectors(zone);
     // the rows are [n; f·n + t; f·n − t]: the tangential part is half their difference
-    let constant = (0..m).fold(0.0f64, |a, i| {
-        a.max(q0[i].abs())
-            .max(((q0[m + i] - q0[2 * m + i]) / 2.0).abs())
-    });
-    let largest = |l: &ContactLoad| {
-        l.normal
+    let row = |i: usize, normal: bool| {
+        let (c, v) = if normal {
+            (&zone.constant.normal, &zone.variable.normal)
+        } else {
+            (&zone.constant.tangential, &zone.variable.tangential)
+        };
+        RowLoads {
+            constant: if normal {
+                q0[i].abs()
+            } else {
+                ((q0[m + i] - q0[2 * m + i]) / 2.0).abs()
+            },
+            loads: c[i].abs(),
+            variable: v[i].abs(),
+        }
+    };
+    let pairs: Vec<PairLoads> = (0..m)
+        .map(|i| PairLoads {
+            normal: row(i, true),
+            tangential: row(i, false),
+        })
+        .collect();
+    let largest = |of: fn(&RowLoads) -> f64| {
+        pairs
             .iter()
-            .chain(&l.tangential)
-            .fold(0.0f64, |a, v| a.max(v.abs()))
+            .fold(0.0f64, |a, l| a.max(of(&l.normal)).max(of(&l.tangential)))
     };
     DataForce {
-        constant,
-        loads: largest(&zone.constant),
-        variable: largest(&zone.variable),
+        constant: largest(|r| r.constant),
+        variable: largest(|r| r.variable),
+        pairs,
     }
 }
 
 /// The force scales of the data without the tightening ([`load_scales`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct DataForce {
+    /// The largest constant load with the gap forces.
+    pub constant: f64,
+    /// The largest variable load at p = 1.
+    pub variable: f64,
+    /// Each pair's own loads.
+    pub pairs: Vec<PairLoads>,
+}
+
+/// The loads of one pair ([`load_scales`]): its normal row's and its tangential link's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PairLoads {
+    pub normal: RowLoads,
+    pub tangential: RowLoads,
+}
+
+/// The loads of one row.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct RowLoads {
     /// The constant load with the gap forces.
     pub constant: f64,
     /// The constant load alone.
     pub loads: f64,
     /// The variable load at p = 1.
     pub variable: f64,
+}
+
+impl RowLoads {
+    /// The scale of the row's force at `p`: its loads, and the gap forces' round-off
+    /// ([`GAP_FORCE_SHARE`]).
+    fn at(&self, p: f64) -> f64 {
+        self.loads
+            .max(p.abs() * self.variable)
+            .max(GAP_FORCE_SHARE * self.constant)
+    }
 }
 
 /// The share of the gap forces in the scale the states' forces are judged against: their
@@ -247,11 +293,18 @@ impl DataForce {
         self.constant.max(p.abs() * self.variable)
     }
 
-    /// The scale the forces of a point at `p` are judged against: its loads, and the gap
-    /// forces' round-off ([`GAP_FORCE_SHARE`]).
-    pub fn forces_at(&self, p: f64) -> f64 {
-        self.loads
-            .max(p.abs() * self.variable)
-            .max(GAP_FORCE_SHARE * self.constant)
+    /// The scales each pair's forces at `p` are judged against, `(normal, tangential)`: the
+    /// loads of the pair's own rows ([`RowLoads::at`]); the tangential force, the half
+    /// difference of the friction rows `f·x_n ± x_t`, takes both. Not the zone's largest load:
+    /// a push of 1e12 that only slides a frictionless pair is no normal force of any pair, and
+    /// their compression of 400 beside `1e-9·1e12` read "open".
+    pub fn forces_at(&self, p: f64) -> Vec<(f64, f64)> {
+        self.pairs
+            .iter()
+            .map(|l| {
+                let n = l.normal.at(p);
+                (n, n.max(l.tangential.at(p)))
+            })
+            .collect()
     }
 }

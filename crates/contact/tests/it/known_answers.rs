@@ -386,3 +386,48 @@ fn a_homogeneous_zone_traced_with_the_tightening_says_its_physical_path_first() 
     let sol = solve(&gapped, &example1_paper_settings()).unwrap();
     assert!(!sol.homogeneous());
 }
+
+/// A pressed pair on a soft tangential spring beside a frictionless pair pushed sideways by
+/// `1e12·p`, uncoupled (the rev40 model `z3_k30_K1000_V1e+12`, reduced). By hand at p = 1:
+/// pair 1 is pressed by 400 and pulled by 500 on a spring of 30, so it slips at its limit,
+/// `x_t = −f·x_n = −120`, `z_t = (500 − 120)/30`; pair 2 is pressed by 400 and slides freely,
+/// `x_t = 0`, `z_t = −1e12/1000`. Both are closed. The huge push is carried by neither pair as
+/// a force (it goes into pair 2's slip), so it is no scale for their normal forces: 400 beside
+/// `1e-9·1e12` read "open" with the friction force zeroed. The same in N·m and kN·mm.
+#[test]
+fn a_huge_load_that_only_slides_a_frictionless_pair_leaves_the_others_closed() {
+    for (name, f, u) in [("N·m", 1.0, 1.0), ("kN·mm", 1e-3, 1e3)] {
+        let k = f / u;
+        let mut zone = ContactZone::new(
+            Mat::zeros(2, 2),
+            Mat::from_fn(2, 2, |i, j| match (i, j) {
+                (0, 0) => 30.0 * k,
+                (1, 1) => 1000.0 * k,
+                _ => 0.0,
+            }),
+        );
+        zone.friction = vec![0.3, 0.0];
+        zone.constant.normal = vec![400.0 * f; 2];
+        zone.variable.tangential = vec![-500.0 * f, 1e12 * f];
+        let sol = solve(&zone, &SolveSettings::default()).unwrap();
+        assert_eq!(sol.p, Some(1.0), "{name}");
+        let states: Vec<_> = sol.pairs.iter().map(|r| r.state).collect();
+        assert_eq!(
+            states,
+            [PairState::SlipPlus, PairState::SlipMinus],
+            "{name}: {:?}",
+            sol.pairs
+        );
+        let (a, b) = (&sol.pairs[0], &sol.pairs[1]);
+        assert!((a.x_n - 400.0 * f).abs() <= 1e-12 * f, "{name}: {a:?}");
+        assert!((a.x_t + 120.0 * f).abs() <= 1e-9 * f, "{name}: {a:?}");
+        assert!(
+            (a.z_t - 380.0 / 30.0 * u).abs() <= 1e-9 * u,
+            "{name}: {a:?}"
+        );
+        assert!((b.x_n - 400.0 * f).abs() <= 1e-12 * f, "{name}: {b:?}");
+        assert_eq!(b.x_t, 0.0, "{name}: {b:?}");
+        assert!((b.z_t + 1e9 * u).abs() <= 1e-6 * u, "{name}: {b:?}");
+        assert_matches_enumeration(&zone, 1.0, &sol.pairs);
+    }
+}
