@@ -1326,6 +1326,71 @@ fn a_beam_on_a_frictionless_and_a_frictional_bearing_reports_its_state_at_the_li
     }
 }
 
+/// [`reviewer_r1606`] beside a bar that has nothing to do with it: 1 m long, pinned at one end,
+/// its other end on a bearing of friction 0.5 and held up by a vertical spring of 1e-4 N/m,
+/// weighed down by `W = p_lim − 1e-6` N and lifted by `p` N. By statics the bar's bearing
+/// opens at `p = W` and its end then rises by `(p − W)/k` (10 mm at the beam's limit), and the
+/// beam slides at the `p_lim` of the beam alone. Before, the soft spring's row — weighted by
+/// `1/√k` to compare its terms with the beam's — gave the load's round-off on the sliding
+/// beam's direction (1.4e-15, where the data's own round-off moves it by 8.8e-14) a share of
+/// 5e-13 of the direction's terms, judged genuine: the path turned back to `p = 0` from the
+/// limit (N·m) or ran on as a ray that no point verified (kN·mm, exit 1). Both units.
+#[test]
+fn a_bar_lifted_off_a_soft_spring_does_not_move_the_limit_of_a_beam_beside_it() {
+    let (l, mu, push) = (10.0, 0.26, 334.10019952314565);
+    let n5 = |p: f64| {
+        (1958.6223315688162 * l / 6.0 + 1.1467857294642185 * l * l / 2.0 + 625.4169298590359 * p)
+            / (5.0 * l / 6.0)
+    };
+    let by_hand = mu * n5(0.0) / (push - mu * (n5(1.0) - n5(0.0)));
+    let (k, w) = (1e-4, by_hand - 1e-6);
+    for kn_mm in [false, true] {
+        let (f, len) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let what = format!("kN·mm {kn_mm}");
+        let beam = reviewer_r1606(kn_mm);
+        let at = beam.find("[solve]").expect("a [solve] table");
+        let bar = format!(
+            "[[sections]]\nname = \"bar\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
+             [[nodes]]\nid = \"Bp\"\nx = {x0:e}\ny = {y:e}\n\
+             [[nodes]]\nid = \"Bf\"\nx = {x1:e}\ny = {y:e}\n\
+             [[elements]]\nid = \"Be\"\ntype = \"bar\"\nnodes = [\"Bp\", \"Bf\"]\n\
+             section = \"bar\"\n\
+             [[supports]]\nnodes = \"Bp\"\npinned = true\n\
+             [[springs]]\nnodes = \"Bf\"\ndirection = [0.0, 1.0]\nstiffness = {k:e}\n\
+             [[contact]]\nname = \"Bc\"\nfrom = \"ground\"\nto = \"Bf\"\n\
+             normal = [0.0, 1.0]\nfriction = 0.5\n\
+             [[loads.constant.nodal]]\nnodes = \"Bf\"\nfy = {wy:e}\n\
+             [[loads.variable.nodal]]\nnodes = \"Bf\"\nfy = {u:e}\n",
+            e = 1e6 * f / (len * len),
+            a = len * len,
+            i = 1e-5 * len * len * len * len,
+            x0 = 20.0 * len,
+            x1 = 21.0 * len,
+            y = -20.0 * len,
+            k = k * f / len,
+            wy = -w * f,
+            u = f,
+        );
+        let text = format!("{}{bar}{}", &beam[..at], &beam[at..]);
+        let (p_limit, s) = state_at_limit(&text, by_hand, 1e-9, &what);
+        let a1 = &s.pairs[1];
+        let n = n5(p_limit) * f;
+        assert!((a1.x_n - n).abs() < 1e-9 * n, "{what}: {a1:?} against {n}");
+        assert!((a1.x_t.abs() - mu * n).abs() < 1e-9 * n, "{what}: {a1:?}");
+        let b = &s.pairs[2];
+        assert_eq!(
+            b.state,
+            unilateral_contact::PairState::Open,
+            "{what}: {b:?}"
+        );
+        let lift = (p_limit - w) / k * len;
+        assert!(
+            (b.z_n - lift).abs() < 1e-6 * lift,
+            "{what}: {b:?} against {lift}"
+        );
+    }
+}
+
 /// A reviewer's beam (r1052, N·m): 4 m under 2.0411 N/m, on a frictionless bearing under its
 /// middle (x = 2 m) and two at x = 0 (friction 8.3e-8, a gap of 0.076 mm) and x = 2/3 m
 /// (friction 0.319), pushed along its axis at its right end by 9.47e-6·p N. By statics it rests

@@ -30,7 +30,8 @@ const ZERO_LOAD_RATE: f64 = 1024.0 * f64::EPSILON;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct DirectionVerdict {
     /// The load's rate against the terms of the equations: the largest `w_i·|d_i·dp|` over the
-    /// largest `w_i·Σ_j |a_ij v_j|`, each row weighted to common units ([`row_weights`]).
+    /// largest `w_i·Σ_j |a_ij v_j|`, each row weighted to common units ([`row_weights`]); zero
+    /// where `dp` is within what the data's round-off makes of it.
     pub load: f64,
 }
 
@@ -281,11 +282,18 @@ fn verdict(
     // same units ([`row_weights`]) — a row the direction hardly moves (a beam's vertical DOF
     // while it slides) has the load's share as its only term.
     let largest = terms.largest;
-    // With the driver entering, the load moves by definition.
+    // With the driver entering, the load moves by definition. A load rate within what the
+    // data's round-off makes of it (`spread`, eight times over, as for the decreases below) is
+    // none, however large its weighted share: a row of a node on a soft spring weighs its
+    // terms by `1/√A_ii`, so a beam sliding on its bearings beside a bar held up by a 1e-4 N/m
+    // spring gave the load's round-off (1.4e-15 against a spread of 8.8e-14) a share of 5e-13
+    // of the direction's terms, read as genuine: the path turned back to zero from the beam's
+    // limit (N·m) or ran on as a ray that no point verified (kN·mm).
+    let dp = v[big_n + 2 * n];
     let verdict = DirectionVerdict {
         load: if driver_enters {
             f64::INFINITY
-        } else if terms.load == 0.0 {
+        } else if terms.load == 0.0 || dp.abs() <= 8.0 * spread[big_n + 2 * n] {
             0.0
         } else {
             terms.load / largest
