@@ -951,7 +951,21 @@ impl Reader<'_> {
                 let slid: f64 = (0..m).map(|j| (b[(i, j)] * excursion[j]).abs()).sum();
                 sum += slid;
                 terms[i][usize::from(!normal)] = sum;
-                let scale = size.max(xs).max(ROUNDOFF_TERMS * slid / VERIFIED);
+                // The tangential force is formed from the friction parts `x_t± = f·x_n ± x_t`
+                // (`(x_t+ − x_t-)/2`), which carry f times the normal row's terms: its
+                // round-off is theirs too (64 ε, as the signs are judged below). An open pair
+                // on a stiff mount keeps its gap's term `R_nn·η` (1e7 N for 1 mm on 1e10 N/m)
+                // in both parts; with its tangential load back at zero nothing else is in its
+                // row, and the residual of 4.5e-10 N read 1.0 against itself.
+                let parts = if normal {
+                    0.0
+                } else {
+                    zone.friction[i] * terms[i][0] + sum
+                };
+                let scale = size
+                    .max(xs)
+                    .max(ROUNDOFF_TERMS * slid / VERIFIED)
+                    .max(ROUNDOFF_TERMS * parts / VERIFIED);
                 equation = equation.max(r.abs() / scale);
             }
         }
