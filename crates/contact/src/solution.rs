@@ -315,6 +315,7 @@ impl Engine {
             &self.names,
             &self.data_force.forces_at(sol.p),
             self.data_force.at(sol.p),
+            &self.data_force.component,
         );
         for r in &mut pairs {
             r.x_n = self.units.user_force(r.x_n);
@@ -678,6 +679,7 @@ impl ContactSolution {
             vec![(unit, unit); m],
             self.engine.units.user_displacement(1.0),
         );
+        let parts = &self.engine.data_force.component;
         let mut out = Vec::with_capacity(at.len());
         for &j in &cols {
             if j == usize::MAX {
@@ -712,7 +714,7 @@ impl ContactSolution {
                     x[2 * m + i] = -x_t;
                 }
             }
-            let pairs = pair_results_scaled(&x, &zs[j], names, &fs, ds);
+            let pairs = pair_results_scaled(&x, &zs[j], names, &fs, ds, parts);
             if let Some(i) = pairs
                 .iter()
                 .position(|r| ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()))
@@ -819,34 +821,44 @@ fn sliding_at_the_limit(pairs: &mut [PairResult], friction: &[f64], mode: &[(f64
 /// Round-off is judged relative to the largest force and displacement of the solution itself;
 /// [`crate::solve`] judges it relative to the scale of the data as well.
 pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
-    pair_results_scaled(x, z, names, &vec![(0.0, 0.0); x.len() / 3], 0.0)
+    let m = x.len() / 3;
+    pair_results_scaled(x, z, names, &vec![(0.0, 0.0); m], 0.0, &vec![0; m])
 }
 
 /// Pair results with round-off judged relative to `max(‖x‖∞, force_scale[i])` for the forces of
 /// pair `i` (`force_scale` one a pair: the scales of its normal and its tangential force, the
-/// loads of its own rows) and
-/// `max(‖z‖∞, displacement_scale)` for displacements: a normal force of `4e-16` in a zone whose
-/// loads are of order one is round-off of zero, and the pair is open (touching), not stuck.
-/// The pairs are named by `names` (left unnamed where it has no name: empty for all).
+/// loads of its own rows) and `max(‖z‖∞, displacement_scale)` for its displacements, the
+/// norms over the pairs of its part of the zone (`part`, [`crate::units::components`]): a
+/// normal force of `4e-16` in a zone whose loads are of order one is round-off of zero, and the
+/// pair is open (touching), not stuck; a force of 400 N is none beside another structure's
+/// 1e12 N. The pairs are named by `names` (left unnamed where it has no name: empty for all).
 fn pair_results_scaled(
     x: &[f64],
     z: &[f64],
     names: &[String],
     force_scale: &[(f64, f64)],
     displacement_scale: f64,
+    part: &[usize],
 ) -> Vec<PairResult> {
     let m = x.len() / 3;
+    let parts = part.iter().max().map_or(0, |&c| c + 1);
     // The forces of the pairs, not the friction rows `f·x_n ± x_t` (a friction coefficient of
-    // 1e10 would make every normal force round-off of those).
-    let forces = (0..m).fold(0.0f64, |a, i| {
-        a.max(x[i].abs())
-            .max(((x[m + i] - x[2 * m + i]) / 2.0).abs())
-    });
-    let zmax = z.iter().fold(displacement_scale, |a, b| a.max(b.abs()));
-    let tz = 1e-9 * zmax;
+    // 1e10 would make every normal force round-off of those), and their displacements, the
+    // largest of each part.
+    let (mut forces, mut zmax) = (vec![0.0f64; parts], vec![0.0f64; parts]);
+    for i in 0..m {
+        let c = part[i];
+        forces[c] = forces[c]
+            .max(x[i].abs())
+            .max(((x[m + i] - x[2 * m + i]) / 2.0).abs());
+        zmax[c] = [z[i], z[m + i], z[2 * m + i]]
+            .iter()
+            .fold(zmax[c].max(displacement_scale), |a, b| a.max(b.abs()));
+    }
     (0..m)
         .map(|i| {
-            // A pair's forces are judged against the solution's forces and its own loads, not
+            let (forces, tz) = (forces[part[i]], 1e-9 * zmax[part[i]]);
+            // A pair's forces are judged against its part's forces and its own loads, not
             // another pair's: a load that no pair carries as a force (a push that only slides
             // a frictionless pair) is no scale of their round-off.
             let (xn_max, xt_max) = (forces.max(force_scale[i].0), forces.max(force_scale[i].1));
@@ -1001,12 +1013,12 @@ mod tests {
         let x = [4e-16, 0.0, 0.0];
         let z = [0.0; 3];
         assert_eq!(
-            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0)[0].state,
+            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0])[0].state,
             PairState::Open
         );
         // A normal force below zero by round-off reads as zero, not as a tension.
         let x = [-8.67e-19, 0.0, 0.0];
-        let r = &pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0)[0];
+        let r = &pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0])[0];
         assert_eq!(
             (r.state, r.x_n.to_bits()),
             (PairState::Open, 0.0f64.to_bits())
@@ -1014,7 +1026,7 @@ mod tests {
         // A real compression of the zone's scale sticks.
         let x = [0.5, 0.2, 0.2];
         assert_eq!(
-            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0)[0].state,
+            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0])[0].state,
             PairState::Stick
         );
     }

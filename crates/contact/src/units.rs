@@ -200,9 +200,9 @@ mod tests {
 /// The force scales of a (normalised) zone without the tightening: the constant load of a row
 /// with the gap forces `R·η` it carries (as the LCP sums them: a row whose terms cancel to
 /// round-off, the gaps a rigid motion closes, carries none — its terms' sizes would make a
-/// pair's real force of a small load read as round-off), and the variable load: the largest of
-/// the zone's normal and tangential rows (the displacements' scale), and each pair's own, normal
-/// and tangential (its forces' scales).
+/// pair's real force of a small load read as round-off), and the variable load, each pair's
+/// own, normal and tangential (its forces' scales; the largest of its part of the zone, its
+/// displacements' scale), and the parts of the zone ([`components`]).
 pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
     let m = zone.pairs();
     let (q0, _) = crate::lcp::load_vectors(zone);
@@ -229,27 +229,63 @@ pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
             tangential: row(i, false),
         })
         .collect();
-    let largest = |of: fn(&RowLoads) -> f64| {
-        pairs
-            .iter()
-            .fold(0.0f64, |a, l| a.max(of(&l.normal)).max(of(&l.tangential)))
-    };
     DataForce {
-        constant: largest(|r| r.constant),
-        variable: largest(|r| r.variable),
         pairs,
+        component: components(zone),
     }
+}
+
+/// The parts of a zone that do not act on each other, as a part's number for each pair: pairs
+/// `i` and `j` are in one part where a stiffness couples them (an entry of `R_nn`, `R_nt`,
+/// `R_tn` or `R_tt` at `(i, j)` or `(j, i)`), directly or through other pairs. Parts are
+/// numbered by their first pair, in order. Round-off of one part's values is no scale of
+/// another's: two structures in one model, one carrying forces of 1e9 N, the other 400 N.
+pub(crate) fn components(zone: &ContactZone) -> Vec<usize> {
+    let m = zone.pairs();
+    let mut parent: Vec<usize> = (0..m).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let coupled = |i: usize, j: usize| {
+        [&zone.rnn, &zone.rnt, &zone.rtn, &zone.rtt]
+            .iter()
+            .any(|r| r[(i, j)] != 0.0 || r[(j, i)] != 0.0)
+    };
+    for i in 0..m {
+        for j in i + 1..m {
+            if coupled(i, j) {
+                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+                if a != b {
+                    parent[a.max(b)] = a.min(b);
+                }
+            }
+        }
+    }
+    let mut number = vec![usize::MAX; m];
+    let mut next = 0;
+    (0..m)
+        .map(|i| {
+            let r = root(&mut parent, i);
+            if number[r] == usize::MAX {
+                number[r] = next;
+                next += 1;
+            }
+            number[r]
+        })
+        .collect()
 }
 
 /// The force scales of the data without the tightening ([`load_scales`]).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct DataForce {
-    /// The largest constant load with the gap forces.
-    pub constant: f64,
-    /// The largest variable load at p = 1.
-    pub variable: f64,
     /// Each pair's own loads.
     pub pairs: Vec<PairLoads>,
+    /// The part of the zone each pair belongs to ([`components`]).
+    pub component: Vec<usize>,
 }
 
 /// The loads of one pair ([`load_scales`]): its normal row's and its tangential link's.
@@ -288,9 +324,17 @@ const GAP_FORCE_SHARE: f64 = 1e-4;
 
 impl DataForce {
     /// The scale of the displacements a point at `p` carries (the gaps' own size in it: its
-    /// force equivalent, the gap forces).
+    /// force equivalent, the gap forces): the largest constant load with the gap forces and
+    /// variable load of a row of the zone. The zone's, not a part's ([`components`]): in the
+    /// normalised units a part's loads are no measure of its displacements (a flexible beam
+    /// beside a stiff one), and on the paper's Example 1 zone beside two pairs of any size
+    /// (`a_zone_of_two_parts_that_do_not_touch_gives_each_its_own_answer`) the zone's is right.
     pub fn at(&self, p: f64) -> f64 {
-        self.constant.max(p.abs() * self.variable)
+        self.pairs.iter().fold(0.0f64, |a, l| {
+            [&l.normal, &l.tangential]
+                .iter()
+                .fold(a, |a, r| a.max(r.constant).max(p.abs() * r.variable))
+        })
     }
 
     /// The scales each pair's forces at `p` are judged against, `(normal, tangential)`: the

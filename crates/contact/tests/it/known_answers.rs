@@ -431,3 +431,97 @@ fn a_huge_load_that_only_slides_a_frictionless_pair_leaves_the_others_closed() {
         assert_matches_enumeration(&zone, 1.0, &sol.pairs);
     }
 }
+
+/// Two zones that do not act on each other, solved as one: each keeps the states and forces it
+/// has alone, however much larger the other's forces. Part A is the paper's Example 1 zone
+/// under a constant pressure and a variable load with a tangential part; part B two pairs of
+/// their own (one lifted off at `p = 1`), its stiffness and loads multiplied by `s` (its
+/// displacements unchanged, its forces `s` times). Before round 41 a pair's state was judged
+/// against the largest force of the whole solution: beside `s = 1e9` every pair of part A read
+/// "open" and its friction forces were zeroed as an open pair's round-off. Each part alone is
+/// checked against the exact enumeration of its LCP.
+#[test]
+fn a_zone_of_two_parts_that_do_not_touch_gives_each_its_own_answer() {
+    let part_a = |zone: &mut ContactZone, at: usize| {
+        let ex = example1_zone();
+        for i in 0..3 {
+            for j in 0..3 {
+                zone.rnn[(at + i, at + j)] = ex.rnn[(i, j)];
+                zone.rtt[(at + i, at + j)] = ex.rtt[(i, j)];
+            }
+            zone.friction[at + i] = 0.6;
+            zone.constant.normal[at + i] = 0.6875;
+        }
+        zone.variable.normal[at..at + 3].copy_from_slice(&[-0.09375, 0.6875, 0.40625]);
+        zone.variable.tangential[at..at + 3].copy_from_slice(&[0.5, -0.1, 0.2]);
+    };
+    let part_b = |zone: &mut ContactZone, at: usize, s: f64| {
+        let (rnn, rtt) = ([[2.0, -1.0], [-1.0, 2.0]], [[3.0, -1.0], [-1.0, 3.0]]);
+        for i in 0..2 {
+            for j in 0..2 {
+                zone.rnn[(at + i, at + j)] = s * rnn[i][j];
+                zone.rtt[(at + i, at + j)] = s * rtt[i][j];
+            }
+            zone.friction[at + i] = 0.3;
+            zone.constant.normal[at + i] = s;
+        }
+        zone.variable.normal[at..at + 2].copy_from_slice(&[-1.5 * s, 0.3 * s]);
+        zone.variable.tangential[at..at + 2].copy_from_slice(&[0.4 * s, 0.1 * s]);
+    };
+    let empty = |m: usize| ContactZone::new(Mat::zeros(m, m), Mat::zeros(m, m));
+    let settings = SolveSettings::default();
+    let mut a = empty(3);
+    part_a(&mut a, 0);
+    let mut b = empty(2);
+    part_b(&mut b, 0, 1.0);
+    let alone: Vec<_> = [&a, &b]
+        .iter()
+        .map(|zone| {
+            let sol = solve(zone, &settings).unwrap();
+            assert_eq!(sol.p, Some(1.0));
+            assert_matches_enumeration(zone, 1.0, &sol.pairs);
+            sol.pairs
+        })
+        .collect();
+    let states = |pairs: &[unilateral_contact::PairResult]| -> Vec<PairState> {
+        pairs.iter().map(|r| r.state).collect()
+    };
+    // The parts have what the test is about: an open pair, a slipping one and sticking ones.
+    assert_eq!(
+        [states(&alone[0]), states(&alone[1])].concat(),
+        [
+            PairState::SlipMinus,
+            PairState::Stick,
+            PairState::Stick,
+            PairState::Open,
+            PairState::Stick
+        ]
+    );
+    for s in [1e-9, 1.0, 1e6, 1e9, 1e12] {
+        for b_first in [false, true] {
+            let what = format!("s = {s:e}, part B first {b_first}");
+            let mut zone = empty(5);
+            let (at_a, at_b) = if b_first { (2, 0) } else { (0, 3) };
+            part_a(&mut zone, at_a);
+            part_b(&mut zone, at_b, s);
+            let sol = solve(&zone, &settings).unwrap();
+            assert_eq!(sol.p, Some(1.0), "{what}");
+            for (part, at, k, scale) in [(&alone[0], at_a, 3, 1.0), (&alone[1], at_b, 2, s)] {
+                let got = &sol.pairs[at..at + k];
+                assert_eq!(states(got), states(part), "{what}: {got:?}");
+                for (g, r) in got.iter().zip(part.iter()) {
+                    let close = |x: f64, y: f64, size: f64| (x - y).abs() <= 1e-12 * size;
+                    let force = scale * (r.x_n.abs() + r.x_t.abs());
+                    let slip = r.z_n.abs() + r.z_t.abs();
+                    assert!(
+                        close(g.x_n, scale * r.x_n, force)
+                            && close(g.x_t, scale * r.x_t, force)
+                            && close(g.z_n, r.z_n, slip)
+                            && close(g.z_t, r.z_t, slip),
+                        "{what}: {g:?} against {r:?}"
+                    );
+                }
+            }
+        }
+    }
+}
