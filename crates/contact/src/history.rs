@@ -401,7 +401,11 @@ pub fn follow_history_judged(
         stages: Vec::new(),
         notes: coupling_notes(zone),
     };
-    let Some(mut state) = solver.start() else {
+    // The unloaded structure: every pair at its gap, no slip, no force (`history.md`).
+    let rest: Vec<f64> = (0..n)
+        .map(|i| if i < m { normalised.gap[i] } else { 0.0 })
+        .collect();
+    let Some(mut state) = solver.start_at_rest(&rest) else {
         return Err(ContactError::OutOfRange(
             "the unloaded structure has no state with every pair at its gap (the gaps are \
              inconsistent with the contact stiffness)"

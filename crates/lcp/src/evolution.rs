@@ -29,6 +29,11 @@ use crate::{LcpError, MechanismMode, Settings, Var};
 /// the pivots that settle the scheme there). The size of a tie in the ratio test.
 const S_ROUNDOFF: f64 = 1e-9;
 
+/// The round-off, relative to a row's terms, within which a caller's state at rest solves the
+/// problem at zero load ([`EvolutionSolver::start_at_rest`]): the contact crate's ceiling for
+/// gap forces that cancel (`load_vectors`).
+const REST_ROUNDOFF: f64 = 1e-9;
+
 /// The data of an evolution: `x = q0 + ℓ + M z` at load `ℓ` (zero at the start).
 #[derive(Debug, Clone)]
 pub struct EvolutionProblem {
@@ -235,6 +240,47 @@ impl EvolutionSolver {
             z,
             basis: Some(basis),
         })
+    }
+
+    /// [`EvolutionSolver::start`] where the caller knows the state at zero load: `rest`, a `z`
+    /// at which every `x = q0 + M·rest` is zero (for contact, every pair at its gap with no
+    /// slip and no force, `history.md`). The state is `rest` with `x = 0`, from the basis that
+    /// [`EvolutionSolver::start`] finds. Where the gaps' stiffness is regular that basis's
+    /// values are `rest` itself; where a motion that no force resists closes a gap (a beam held
+    /// only by its pairs, turning about one of them), `rest` is no basic solution at all (every
+    /// basic solution of `q0 = 0` is `z = 0`), and the basis's values are `rest` moved along
+    /// that free motion (the gap shut at no force): the state the first load that presses the
+    /// pair takes at once (`load_vectors`' rigid motions in the contact crate). The state
+    /// reported is `rest` all the same — a stage that ends where nothing moved holds it (a
+    /// mechanism at its start) — and the basis stays the one to go on from. `rest` is taken
+    /// only where it solves the problem within 1e-9 of each row's terms (`|q0| + |M|·rest`,
+    /// the contact crate's round-off of cancelled gap forces) and the basis's own state
+    /// carries no more force than that (two states of the same forces); otherwise the state
+    /// is [`EvolutionSolver::start`]'s.
+    pub fn start_at_rest(&self, rest: &[f64]) -> Option<EvolutionState> {
+        let mut state = self.start()?;
+        let n = self.n;
+        if rest.len() != n || rest.iter().any(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Some(state);
+        }
+        let m = &self.problem.m;
+        let q0 = &self.problem.q0;
+        let unloaded = (0..n).all(|i| {
+            let (mut sum, mut terms) = (q0[i], q0[i].abs());
+            for (j, &r) in rest.iter().enumerate() {
+                if r != 0.0 {
+                    sum += m[(i, j)] * r;
+                    terms += (m[(i, j)] * r).abs();
+                }
+            }
+            let tol = REST_ROUNDOFF * terms;
+            sum.abs() <= tol && state.x[i].abs() <= tol
+        });
+        if unloaded {
+            state.x = vec![0.0; n];
+            state.z = rest.to_vec();
+        }
+        Some(state)
     }
 
     /// The right-hand side `q0 + ℓ + M_inc z_inc` of the LCP in the increments at `state`.
@@ -613,7 +659,7 @@ impl EvolutionSolver {
                 .expect("only the driver has no complement");
         };
         let completed = ending == StageEnding::Completed;
-        let s_end = if completed {
+        let s_end = if ending == StageEnding::Completed {
             1.0
         } else {
             piv.cols.driver_real(piv.driver_value_scaled())
@@ -636,8 +682,15 @@ impl EvolutionSolver {
         // a stage: after its last pair but the toe opened, the toe's slip increment stopped at
         // no step and that basis's values had the block rotated by 8 mm (its check failing at
         // 3.5e-3); in kN·mm, with no such pivot, the fresh values failed it.
+        // Where no step moved, that is the stage's start, as the stage received it: for the
+        // first, the unloaded structure with every pair at its gap (`start_at_rest`), which no
+        // basis may hold where a free motion closes a gap. A frame held only by its pairs,
+        // pushed at a pair that its gap keeps open, is a mechanism at once: the basis's values
+        // had the gap shut by a rigid turn, whose round-off a stiff spring made forces of
+        // against a state of no load (out of balance by 1.0, exit 1).
         let (x, z) = match (&ending, moved) {
             (StageEnding::Mechanism(_), Some(i)) => (points[i].x.clone(), points[i].z.clone()),
+            (StageEnding::Mechanism(_), None) => (from.x.clone(), from.z.clone()),
             _ => point(&piv, &acc),
         };
         let load = from

@@ -270,3 +270,145 @@ fn an_open_pair_on_springs_pushed_and_released_passes_its_check() {
         }
     }
 }
+
+/// The structural model of `text`, written to a file and read back, and its history analysed.
+fn analyse_text(
+    text: &str,
+    what: &str,
+) -> Result<unilateral_analysis::HistoryAnalysis, unilateral_analysis::AnalysisError> {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("model.toml");
+    std::fs::write(&file, text).unwrap();
+    let Ok(Problem::Structural(p)) = read_problem(&file) else {
+        panic!("{what}: a structural model")
+    };
+    analyze_history(&p.model, p.history.as_ref().unwrap(), &p.settings.engine)
+}
+
+/// A frame of 3 m (4 elements: nodes `m.0` … `m.4` at x = 0, 0.75, …, 3 m; E = 2e11 Pa,
+/// A = 0.02 m², I = 1e-5 m⁴) on two ground pairs and nothing else that holds it upright: `c.1`
+/// under `m.0` with a gap of 1 mm (f = 0.3), `c.2` under `m.1` with none (f = 0.6). Its
+/// vertical motion is held only by the pairs, so a turn about `m.1` that shuts `c.1`'s gap
+/// costs nothing (`R_nn = 0`). `tipping`: a spring of 5.35e14 N/m along x at `m.0` and a dead
+/// load of (1, 2, 1, 1, 1) kN down at `m.0` … `m.4`; otherwise no spring and a push of
+/// (25, −2.5) N at `m.0`. One stage, the load from zero to its full value. N·m or kN·mm.
+fn frame_held_by_its_pairs_text(kn_mm: bool, tipping: bool) -> String {
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    let mut s = format!(
+        r#"units = "{units}"
+
+[[sections]]
+name = "s"
+E = {e:e}
+A = {a:e}
+I = {i:e}
+
+[[members]]
+name = "m"
+type = "frame"
+start = [0.0, 0.0]
+end = [{len:e}, 0.0]
+divisions = 4
+section = "s"
+
+[[contact]]
+name = "c"
+from = "ground"
+to = ["m.0", "m.1"]
+normal = [0.0, 1.0]
+friction = [0.3, 0.6]
+gap = [{gap:e}, 0.0]
+"#,
+        units = if kn_mm { "kN, mm" } else { "N, m" },
+        e = 2.0e11 * f / (l * l),
+        a = 0.02 * l * l,
+        i = 1e-5 * l * l * l * l,
+        len = 3.0 * l,
+        gap = 1e-3 * l,
+    );
+    if tipping {
+        s += &format!(
+            "\n[[springs]]\nnodes = \"m.0\"\ndirection = [1.0, 0.0]\nstiffness = {:e}\n",
+            535333538613848.8 * f / l
+        );
+        for (node, w) in [
+            (0, 1000.0),
+            (1, 2000.0),
+            (2, 1000.0),
+            (3, 1000.0),
+            (4, 1000.0),
+        ] {
+            s += &format!(
+                "\n[[loads.dead.nodal]]\nnodes = \"m.{node}\"\nfy = {:e}\n",
+                -w * f
+            );
+        }
+        s += "\n[[history]]\nname = \"dead\"\nfactors = { dead = 1.0 }\n";
+    } else {
+        s += &format!(
+            "\n[[loads.push.nodal]]\nnodes = \"m.0\"\nfx = {:e}\nfy = {:e}\n",
+            25.0 * f,
+            -2.5 * f
+        );
+        s += "\n[[history]]\nname = \"push\"\nfactors = { push = 1.0 }\n";
+    }
+    s
+}
+
+/// [`frame_held_by_its_pairs_text`] by hand (statics), both a mechanism at s = 0:
+///
+/// * the push: at s = 0 `c.1` is open by its gap, so the push's 2.5 N down at `m.0` turns the
+///   frame about `m.1` with nothing to resist it; and were that gap shut, `c.1` would carry
+///   all of the 2.5 N (the load stands on it: moments about `m.1`) and friction at most
+///   0.3 · 2.5 = 0.75 N of the push's 25 N;
+/// * the dead load: its moment about `m.1` is −1·0.75 + 1·0.75 + 1·1.5 + 1·2.25 = 3.75 kN·m,
+///   turning the frame's right part down and lifting `m.0` off `c.1`, which only an anchor
+///   could hold: `c.1` opens (the mode), `c.2` neither opens nor slides (the spring holds x).
+///
+/// The state at the mechanism is the unloaded start (`history.md`: every pair at its gap, no
+/// slip, no force): zero displacements, `c.1` open by 1 mm. The program exited 1: the start
+/// came from a basis of the zero-load LCP, and where a free turn shuts a gap every basic
+/// solution has it shut (`z = 0`); the recovery turned the frame by 1 mm/0.75 m about `m.1`,
+/// and its round-off against a state of no load read "out of balance (relative residual
+/// 1.0)" at s = 0 of stage 1 — with the stiff spring, and without it.
+#[test]
+fn a_frame_held_only_by_its_pairs_is_a_mechanism_at_its_unloaded_start() {
+    for tipping in [false, true] {
+        for kn_mm in [false, true] {
+            let what = format!("tipping {tipping}, kN·mm {kn_mm}");
+            let l = if kn_mm { 1e3 } else { 1.0 };
+            let a = analyse_text(&frame_held_by_its_pairs_text(kn_mm, tipping), &what)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let stages = &a.history.stages;
+            assert_eq!(stages.len(), 1, "{what}");
+            let st = &stages[0];
+            assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
+            assert_eq!(st.s_end, 0.0, "{what}");
+            // The unloaded start: every pair at its gap, no slip, no force.
+            for (c, gap) in st.pairs.iter().zip([1e-3 * l, 0.0]) {
+                assert!(c.x_n == 0.0 && c.x_t == 0.0, "{what}: {c:?}");
+                assert!((c.z_n - gap).abs() <= 1e-12 * l, "{what}: {c:?}");
+                assert!(c.z_t == 0.0, "{what}: {c:?}");
+            }
+            if tipping {
+                // c.1 lifts off; c.2 neither opens nor slides.
+                let mode = st.mechanism.as_ref().expect("a mode");
+                assert!(
+                    mode[0].0 > 0.5 && mode[0].1.abs() < 1e-9,
+                    "{what}: {mode:?}"
+                );
+                assert!(
+                    mode[1].0.abs() < 1e-9 && mode[1].1.abs() < 1e-9,
+                    "{what}: {mode:?}"
+                );
+            }
+            // The structure where it was built, carrying nothing.
+            assert_eq!(a.stage_results.len(), 1, "{what}");
+            let r = &a.stage_results[0];
+            for u in &r.displacements {
+                assert!(u.iter().all(|v| v.abs() <= 1e-12 * l), "{what}: {u:?}");
+            }
+            assert!(r.spring_forces.iter().all(|&v| v == 0.0), "{what}");
+        }
+    }
+}
