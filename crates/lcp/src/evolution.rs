@@ -659,10 +659,30 @@ impl EvolutionSolver {
                 .expect("only the driver has no complement");
         };
         let completed = ending == StageEnding::Completed;
-        let s_end = if ending == StageEnding::Completed {
-            1.0
-        } else {
-            piv.cols.driver_real(piv.driver_value_scaled())
+        // The breakpoint whose state a mechanism holds: its last step that moved, unless that
+        // step is at the stage's start (`s` read 0, as the pivots that settle the scheme there
+        // are): there the load is the one the stage received, and so is the state (below).
+        let held = match (&ending, moved) {
+            (StageEnding::Mechanism(_), Some(i)) if points[i].s != 0.0 => Some(i),
+            _ => None,
+        };
+        // A mechanism's `s` is that of the state it holds (else the stage's start), as every
+        // breakpoint's is: the driver's value there carries the round-off of the pivots of no
+        // step after it (a bar that nothing holds sideways, pushed with every pair open: a
+        // mechanism read at s = 1.1e-13, its state checked against the load there and
+        // refused, 2.1e-8 > 1e-8).
+        let raw = piv.cols.driver_real(piv.driver_value_scaled());
+        let s_end = match &ending {
+            StageEnding::Completed => 1.0,
+            StageEnding::Mechanism(_) => {
+                let at = held.map_or(0.0, |i| points[i].s);
+                if (raw - at).abs() <= S_ROUNDOFF {
+                    at
+                } else {
+                    raw
+                }
+            }
+            _ => raw,
         };
         // The increments of the last segment: the incremental values since the last rebase.
         let increments = |piv: &Pivoter| {
@@ -682,13 +702,15 @@ impl EvolutionSolver {
         // a stage: after its last pair but the toe opened, the toe's slip increment stopped at
         // no step and that basis's values had the block rotated by 8 mm (its check failing at
         // 3.5e-3); in kN·mm, with no such pivot, the fresh values failed it.
-        // Where no step moved, that is the stage's start, as the stage received it: for the
-        // first, the unloaded structure with every pair at its gap (`start_at_rest`), which no
-        // basis may hold where a free motion closes a gap. A frame held only by its pairs,
-        // pushed at a pair that its gap keeps open, is a mechanism at once: the basis's values
-        // had the gap shut by a rigid turn, whose round-off a stiff spring made forces of
-        // against a state of no load (out of balance by 1.0, exit 1).
-        let (x, z) = match (&ending, moved) {
+        // Where no step moved, or none after the stage's start, that is the stage's start as
+        // the stage received it — for the first, the unloaded structure with every pair at its
+        // gap (`start_at_rest`), which no basis may hold where a free motion closes a gap. A
+        // frame held only by its pairs, pushed at a pair that its gap keeps open, is a
+        // mechanism at once: the basis's values had the gap shut by a rigid turn, whose
+        // round-off a stiff spring made forces of against a state of no load (out of balance
+        // by 1.0, exit 1); a beam that nothing holds sideways held a step at s = 0 that moved
+        // by round-off, its forces of 1e-10 N against no load.
+        let (x, z) = match (&ending, held) {
             (StageEnding::Mechanism(_), Some(i)) => (points[i].x.clone(), points[i].z.clone()),
             (StageEnding::Mechanism(_), None) => (from.x.clone(), from.z.clone()),
             _ => point(&piv, &acc),

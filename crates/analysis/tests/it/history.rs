@@ -412,3 +412,148 @@ fn a_frame_held_only_by_its_pairs_is_a_mechanism_at_its_unloaded_start() {
         }
     }
 }
+
+/// Two structures that nothing holds along x but their pairs' friction (numbers of a
+/// generated sweep's models, its horizontal springs taken away), in N·m or kN·mm:
+///
+/// * `beam`: a frame of 3 m (2 elements; E = 1e10 Pa, A = 0.01 m², I = 1e-4 m⁴) on three
+///   ground pairs at x = 0, 1.5, 3 m (`c.1` with a gap of 1 mm and f = 0, `c.2` f = 0.1,
+///   `c.3` f = 0.6), one stage from zero to its dead load of 10, 20, 10 kN down at the three
+///   nodes with 0.15 times a push of (30, 3) kN at x = 0;
+/// * `bar`: a bar of 2 m (E = 1e10 Pa, A = 0.02 m²) on vertical springs of 7.17e6 N/m at
+///   x = 0 and 9.49e10 N/m at x = 2 m, over ground pairs with gaps of 1 mm (f = 0.2) and
+///   0.01 mm (f = 0.6): its dead load of 1 kN down at each end, then 1.5 times a push of
+///   500 N along x at x = 0.
+fn free_along_x_text(kn_mm: bool, bar: bool) -> String {
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    let units = if kn_mm { "kN, mm" } else { "N, m" };
+    let (e, a, i, len, kind, div) = if bar {
+        (1e10, 0.02, 1e-4, 2.0, "bar", 1)
+    } else {
+        (1e10, 0.01, 1e-4, 3.0, "frame", 2)
+    };
+    let mut s = format!(
+        "units = \"{units}\"\n\n[[sections]]\nname = \"s\"\nE = {:e}\nA = {:e}\nI = {:e}\n\n\
+         [[members]]\nname = \"m\"\ntype = \"{kind}\"\nstart = [0.0, 0.0]\nend = [{:e}, 0.0]\n\
+         divisions = {div}\nsection = \"s\"\n",
+        e * f / (l * l),
+        a * (l * l),
+        i * (l * l * l * l),
+        len * l,
+    );
+    let (nodes, friction, gaps, dead, push, stages): (&str, &str, Vec<f64>, Vec<f64>, _, &str) =
+        if bar {
+            (
+                "[\"m.0\", \"m.1\"]",
+                "[0.2, 0.6]",
+                vec![0.001, 1e-05],
+                vec![-1000.0, -1000.0],
+                (500.0, 0.0),
+                "[[history]]\nfactors = { dead = 1.0 }\n\n[[history]]\nfactors = { push = 1.5 }\n",
+            )
+        } else {
+            (
+                "[\"m.0\", \"m.1\", \"m.2\"]",
+                "[0.0, 0.1, 0.6]",
+                vec![0.001, 0.0, 0.0],
+                vec![-10000.0, -20000.0, -10000.0],
+                (30000.0, 3000.0),
+                "[[history]]\nfactors = { dead = 1.0, push = 0.15000000000000002 }\n",
+            )
+        };
+    let gaps: Vec<String> = gaps.iter().map(|g| format!("{:e}", g * l)).collect();
+    s += &format!(
+        "\n[[contact]]\nname = \"c\"\nfrom = \"ground\"\nto = {nodes}\nnormal = [0.0, 1.0]\n\
+         friction = {friction}\ngap = [{}]\n",
+        gaps.join(", ")
+    );
+    if bar {
+        for (node, k) in [(0, 7169800.778579375), (1, 94932209261.33934)] {
+            s += &format!(
+                "\n[[springs]]\nnodes = \"m.{node}\"\ndirection = [0.0, 1.0]\nstiffness = {:e}\n",
+                k * f / l
+            );
+        }
+    }
+    for (node, w) in dead.iter().enumerate() {
+        s += &format!(
+            "\n[[loads.dead.nodal]]\nnodes = \"m.{node}\"\nfx = 0.0\nfy = {:e}\n",
+            w * f
+        );
+    }
+    s += &format!(
+        "\n[[loads.push.nodal]]\nnodes = \"m.0\"\nfx = {:e}\nfy = {:e}\n\n{stages}",
+        push.0 * f,
+        push.1 * f
+    );
+    s
+}
+
+/// [`free_along_x_text`] by hand (statics), each a mechanism at s = 0 of its stage:
+///
+/// * `beam`: `c.1` open by its gap while the load is small, the beam stands on `c.2` and
+///   `c.3`; moments about x = 1.5 m give `c.3` (15 − 1.5·9.55)/1.5 = 0.45 kN per unit of
+///   s and `c.2` 39.55 − 0.45 = 39.1 kN: friction holds 0.1·39.1 + 0.6·0.45 = 4.18 kN per
+///   unit of s of the push's 4.5 kN. (The overhang's tip sinks 9.55 kN·1.5²·3/(3EI) = 21.5 mm
+///   per unit of s: `c.1` shuts only at s = 0.047.) It slides at once, every pair alike, from
+///   the unloaded start (`c.1` open by 1 mm, no force).
+/// * `bar`: under its dead load the springs sink 1000/7.17e6 = 0.139 mm < 1 mm and
+///   1000/9.49e10 = 1.05e-5 mm < 0.01 mm: both pairs stay open, `z_n` the gap less the sink.
+///   Then nothing holds the push along x: it slides at once, both pairs alike, from the dead
+///   load's state.
+///
+/// The program reported a numerical failure (exit 1): the beam's stage "at s = 1.1e-16"
+/// failing its check by 1.0 in both units, the bar's second stage "at s = 0" failing it by
+/// 2.1e-8 in N·m and a mechanism "at s = 1.1e-13" in kN·mm. Such a stage's `s_end` was the
+/// driver's value read off the last basis, round-off of the start never brought back to it
+/// as the breakpoints' `s` are; and its state was a basis's at s = 0 (the beam's a step that
+/// moved by round-off: forces of 1e-10 N against a load of 1e-16 of its own), not the state
+/// the stage started from, checked against the load at that `s`.
+#[test]
+fn a_structure_free_along_x_pushed_is_a_mechanism_at_the_stages_start() {
+    for bar in [false, true] {
+        for kn_mm in [false, true] {
+            let what = format!("bar {bar}, kN·mm {kn_mm}");
+            let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+            let a = analyse_text(&free_along_x_text(kn_mm, bar), &what)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let stages = &a.history.stages;
+            assert_eq!(stages.len(), if bar { 2 } else { 1 }, "{what}");
+            let st = stages.last().unwrap();
+            assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
+            assert_eq!(st.s_end, 0.0, "{what}");
+            // Every pair slides alike, none opens.
+            let mode = st.mechanism.as_ref().expect("a mode");
+            for &(dn, dt) in mode {
+                assert!(dn.abs() < 1e-9, "{what}: {mode:?}");
+                assert!(
+                    (dt - mode[0].1).abs() < 1e-9 && dt.abs() > 0.5,
+                    "{what}: {mode:?}"
+                );
+            }
+            // The state the stage started from, by hand.
+            let open = if bar {
+                vec![
+                    1e-3 - 1000.0 / 7169800.778579375,
+                    1e-5 - 1000.0 / 94932209261.33934,
+                ]
+            } else {
+                vec![1e-3, 0.0, 0.0]
+            };
+            for (c, z_n) in st.pairs.iter().zip(&open) {
+                assert!(c.x_n == 0.0 && c.x_t == 0.0, "{what}: {c:?}");
+                assert!((c.z_n - z_n * l).abs() <= 1e-12 * l, "{what}: {c:?} {z_n}");
+                assert!(c.z_t.abs() <= 1e-12 * l, "{what}: {c:?}");
+            }
+            if bar {
+                // The dead load's state, as the first stage ended.
+                assert_eq!(stages[0].status, StageStatus::Completed, "{what}");
+                assert_eq!(stages[0].pairs, st.pairs, "{what}");
+                let r = &a.stage_results[1];
+                let w: f64 = r.spring_forces.iter().map(|v| v.abs()).sum();
+                assert!((w - 2000.0 * f).abs() <= 1e-9 * f, "{what}: {w}");
+            }
+            assert_eq!(a.stage_results.len(), stages.len(), "{what}");
+        }
+    }
+}
