@@ -426,6 +426,8 @@ pub fn follow_history_judged(
         zone,
         units,
         names: &names,
+        part: crate::units::components(zone),
+        part_loads: part_loads(&probe),
     };
     for (k, (stage, (start, end))) in history.stages.iter().zip(&table).enumerate() {
         let mut d = vec![0.0; n];
@@ -838,6 +840,44 @@ struct Reader<'a> {
     zone: &'a ContactZone,
     units: Units,
     names: &'a [String],
+    /// The part of the zone each pair belongs to ([`crate::units::components`]).
+    part: Vec<usize>,
+    /// The largest load of each part over the largest of the zone ([`part_loads`]).
+    part_loads: Vec<f64>,
+}
+
+/// The largest load of each part of the zone ([`crate::units::components`]) — of its pairs'
+/// rows as the stages apply them (`probe`'s variable load, from which the units are made) and
+/// of their gap forces (a gap times its column of `R_nn`, `R_tn`) — over the zone's largest:
+/// the floor of a part's force scale in [`Reader::pairs`], whose normalised units make the
+/// zone's largest load about 1 (a zone of one part keeps the floor 1; so does a part with
+/// neither loads nor gaps). Another structure's loads are no scale of a part's forces.
+fn part_loads(probe: &ContactZone) -> Vec<f64> {
+    let m = probe.pairs();
+    let part = crate::units::components(probe);
+    let parts = part.iter().max().map_or(0, |&c| c + 1);
+    let mut loads = vec![0.0f64; parts];
+    for i in 0..m {
+        let gap = (0..m)
+            .flat_map(|j| [probe.rnn[(j, i)], probe.rtn[(j, i)]])
+            .fold(0.0f64, |a, r| a.max((r * probe.gap[i]).abs()));
+        let l = gap
+            .max(probe.variable.normal[i].abs())
+            .max(probe.variable.tangential[i].abs());
+        loads[part[i]] = loads[part[i]].max(l);
+    }
+    let all = loads.iter().fold(0.0f64, |a, &b| a.max(b));
+    loads
+        .iter()
+        .map(|&l| {
+            // A part with neither loads nor gaps carries nothing: the zone's floor.
+            if l > 0.0 && all.is_finite() {
+                l / all
+            } else {
+                1.0
+            }
+        })
+        .collect()
 }
 
 impl Reader<'_> {
@@ -849,12 +889,22 @@ impl Reader<'_> {
     /// pair `i` on the segment that follows (which decides slip against stick).
     fn pairs(&self, x: &[f64], z: &[f64], rate: impl Fn(usize) -> (f64, f64)) -> Vec<PairResult> {
         let m = self.names.len();
-        let xmax = x.iter().fold(1.0f64, |a, b| a.max(b.abs()));
-        let zmax = z.iter().fold(1.0f64, |a, b| a.max(b.abs()));
-        let (tx, tz) = (1e-9 * xmax, 1e-9 * zmax);
+        // The largest force and displacement of each part of the zone, over the floors of the
+        // normalised units: a part's loads for forces, the zone's for displacements (as the
+        // load path's states are judged, `solution.rs`).
+        let mut xmax = self.part_loads.clone();
+        let mut zmax = vec![1.0f64; xmax.len()];
+        for i in 0..m {
+            let c = self.part[i];
+            for r in [i, m + i, 2 * m + i] {
+                xmax[c] = xmax[c].max(x[r].abs());
+                zmax[c] = zmax[c].max(z[r].abs());
+            }
+        }
         let u = &self.units;
         (0..m)
             .map(|i| {
+                let (tx, tz) = (1e-9 * xmax[self.part[i]], 1e-9 * zmax[self.part[i]]);
                 let x_n = x[i];
                 let x_t = (x[m + i] - x[2 * m + i]) / 2.0;
                 let (dp, dm) = rate(i);

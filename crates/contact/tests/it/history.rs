@@ -127,6 +127,65 @@ fn single_pair_loaded_released_reversed_released_by_hand() {
     }
 }
 
+/// The cycle above beside a pair of another structure (no stiffness couples them) pressed by
+/// `w` (1 to 1e12 times the cycle's load), in either order: the cycle's pair has the hand
+/// values and states above, the other pair sticks under `w` with no slip. Before round 41 a
+/// history's states were judged against the largest force of the whole zone: beside 1e12 the
+/// cycle's pressed pair read "open" and its friction force was zeroed.
+#[test]
+fn a_cycle_beside_a_structure_a_trillion_times_heavier_keeps_its_states() {
+    let expect = [
+        (0.0, 0.0, PairState::Stick),
+        (-0.15, 0.5, PairState::SlipMinus),
+        (-0.15, -0.3, PairState::Stick),
+        (0.15, -0.5, PairState::SlipPlus),
+        (0.15, 0.3, PairState::Stick),
+    ];
+    for w in [1.0, 1e6, 1e9, 1e12] {
+        for first in [true, false] {
+            let (a, b) = if first { (0, 1) } else { (1, 0) };
+            let (mut kn, mut kt) = (mat![[0.0, 0.0], [0.0, 0.0]], mat![[0.0, 0.0], [0.0, 0.0]]);
+            kn[(a, a)] = 10.0;
+            kt[(a, a)] = 2.0;
+            kn[(b, b)] = 10.0 * w;
+            kt[(b, b)] = 2.0 * w;
+            let mut zone = ContactZone::new(kn, kt);
+            zone.friction = vec![0.5; 2];
+            let mut dead = vec![0.0; 2];
+            dead[a] = 1.0;
+            dead[b] = w;
+            let mut push = vec![0.0; 2];
+            push[a] = 0.8;
+            let history = History {
+                cases: vec![
+                    case("dead", dead, vec![0.0; 2]),
+                    case("push", vec![0.0; 2], push),
+                ],
+                stages: vec![
+                    stage("dead", vec![Some(1.0), None]),
+                    stage("push", vec![None, Some(1.0)]),
+                    stage("release", vec![None, Some(0.0)]),
+                    stage("pull", vec![None, Some(-1.0)]),
+                    stage("release again", vec![None, Some(0.0)]),
+                ],
+            };
+            let h = follow_history(&zone, &history, &Default::default()).unwrap();
+            for (st, (z_t, x_t, state)) in h.stages.iter().zip(expect) {
+                let at = format!("w = {w:e}, first {first}, {}", st.name);
+                assert_eq!(st.status, StageStatus::Completed, "{at}");
+                let (p, q) = (&st.pairs[a], &st.pairs[b]);
+                assert_eq!(p.state, state, "{at}: {p:?}");
+                assert!((p.z_t - z_t).abs() < 1e-12, "{at}: {p:?}");
+                assert!((p.x_t - x_t).abs() < 1e-12, "{at}: {p:?}");
+                assert!((p.x_n - 1.0).abs() < 1e-12, "{at}: {p:?}");
+                assert_eq!(q.state, PairState::Stick, "{at}: {q:?}");
+                assert!((q.x_n - w).abs() <= 1e-12 * w, "{at}: {q:?}");
+                assert_eq!((q.x_t, q.z_t), (0.0, 0.0), "{at}: {q:?}");
+            }
+        }
+    }
+}
+
 /// The same cycle (hand values above) with the loads written otherwise: an extra case no
 /// stage uses (8e10, a load of another study kept in the file), and the push written as
 /// 8e9 with factors of 1e-10 — the loads the stages apply are the same, so are the answers.
