@@ -45,6 +45,26 @@ fn stage(name: &str, factors: Vec<Option<f64>>) -> Stage {
     }
 }
 
+/// The stages of the cycle below: a dead load, a push to `push`, released, reversed, released.
+fn cycle_stages(push: f64) -> Vec<Stage> {
+    vec![
+        stage("dead", vec![Some(1.0), None]),
+        stage("push", vec![None, Some(push)]),
+        stage("release", vec![None, Some(0.0)]),
+        stage("pull", vec![None, Some(-push)]),
+        stage("release again", vec![None, Some(0.0)]),
+    ]
+}
+
+/// The cycle's `(z_t, x_t, state)` at each stage's end, by hand (below).
+const CYCLE_BY_HAND: [(f64, f64, PairState); 5] = [
+    (0.0, 0.0, PairState::Stick),
+    (-0.15, 0.5, PairState::SlipMinus),
+    (-0.15, -0.3, PairState::Stick),
+    (0.15, -0.5, PairState::SlipPlus),
+    (0.15, 0.3, PairState::Stick),
+];
+
 /// One pair on rigid ground, `k_t = 2`, `f = 0.5`, a constant compression `N = 1` and a
 /// tangential force `T` taken to `T* = 0.8 > f·N`, released, reversed to `−T*`, released.
 ///
@@ -67,23 +87,11 @@ fn single_pair_loaded_released_reversed_released_by_hand() {
                 case("dead", vec![scale], vec![0.0]),
                 case("push", vec![0.0], vec![0.8 * scale]),
             ],
-            stages: vec![
-                stage("dead", vec![Some(1.0), None]),
-                stage("push", vec![None, Some(1.0)]),
-                stage("release", vec![None, Some(0.0)]),
-                stage("pull", vec![None, Some(-1.0)]),
-                stage("release again", vec![None, Some(0.0)]),
-            ],
+            stages: cycle_stages(1.0),
         };
         let h = follow_history(&zone, &history, &Default::default()).unwrap();
         assert_eq!(h.stages.len(), 5);
-        let expect = [
-            (0.0, 0.0, PairState::Stick),
-            (-0.15, 0.5, PairState::SlipMinus),
-            (-0.15, -0.3, PairState::Stick),
-            (0.15, -0.5, PairState::SlipPlus),
-            (0.15, 0.3, PairState::Stick),
-        ];
+        let expect = CYCLE_BY_HAND;
         for (st, (z_t, x_t, state)) in h.stages.iter().zip(expect) {
             assert_eq!(st.status, StageStatus::Completed, "{}", st.name);
             let p = &st.pairs[0];
@@ -134,13 +142,7 @@ fn single_pair_loaded_released_reversed_released_by_hand() {
 /// cycle's pressed pair read "open" and its friction force was zeroed.
 #[test]
 fn a_cycle_beside_a_structure_a_trillion_times_heavier_keeps_its_states() {
-    let expect = [
-        (0.0, 0.0, PairState::Stick),
-        (-0.15, 0.5, PairState::SlipMinus),
-        (-0.15, -0.3, PairState::Stick),
-        (0.15, -0.5, PairState::SlipPlus),
-        (0.15, 0.3, PairState::Stick),
-    ];
+    let expect = CYCLE_BY_HAND;
     for w in [1.0, 1e6, 1e9, 1e12] {
         for first in [true, false] {
             let (a, b) = if first { (0, 1) } else { (1, 0) };
@@ -161,13 +163,7 @@ fn a_cycle_beside_a_structure_a_trillion_times_heavier_keeps_its_states() {
                     case("dead", dead, vec![0.0; 2]),
                     case("push", vec![0.0; 2], push),
                 ],
-                stages: vec![
-                    stage("dead", vec![Some(1.0), None]),
-                    stage("push", vec![None, Some(1.0)]),
-                    stage("release", vec![None, Some(0.0)]),
-                    stage("pull", vec![None, Some(-1.0)]),
-                    stage("release again", vec![None, Some(0.0)]),
-                ],
+                stages: cycle_stages(1.0),
             };
             let h = follow_history(&zone, &history, &Default::default()).unwrap();
             for (st, (z_t, x_t, state)) in h.stages.iter().zip(expect) {
@@ -201,13 +197,7 @@ fn states_do_not_depend_on_cases_no_stage_uses_or_on_how_a_case_is_written() {
             case("dead", vec![1.0], vec![0.0]),
             case("push", vec![0.0], vec![0.8 * unit]),
         ];
-        let mut stages = vec![
-            stage("dead", vec![Some(1.0), None]),
-            stage("push", vec![None, Some(1.0 / unit)]),
-            stage("release", vec![None, Some(0.0)]),
-            stage("pull", vec![None, Some(-1.0 / unit)]),
-            stage("release again", vec![None, Some(0.0)]),
-        ];
+        let mut stages = cycle_stages(1.0 / unit);
         if let Some(u) = unused {
             cases.push(case("impact", vec![0.0], vec![u]));
             for s in &mut stages {
@@ -216,13 +206,7 @@ fn states_do_not_depend_on_cases_no_stage_uses_or_on_how_a_case_is_written() {
         }
         History { cases, stages }
     };
-    let expect = [
-        (0.0, 0.0, PairState::Stick),
-        (-0.15, 0.5, PairState::SlipMinus),
-        (-0.15, -0.3, PairState::Stick),
-        (0.15, -0.5, PairState::SlipPlus),
-        (0.15, 0.3, PairState::Stick),
-    ];
+    let expect = CYCLE_BY_HAND;
     for (unit, unused) in [(1e10, None), (1.0, Some(8e10)), (1e12, Some(1e15))] {
         let h = follow_history(&zone, &cycle(unit, unused), &Default::default())
             .unwrap_or_else(|e| panic!("unit {unit}, unused {unused:?}: {e}"));
