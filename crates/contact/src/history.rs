@@ -427,7 +427,7 @@ pub fn follow_history_judged(
         units,
         names: &names,
         part: crate::units::components(zone),
-        part_loads: part_loads(&probe),
+        floors: pair_floors(&probe),
     };
     for (k, (stage, (start, end))) in history.stages.iter().zip(&table).enumerate() {
         let mut d = vec![0.0; n];
@@ -842,42 +842,44 @@ struct Reader<'a> {
     names: &'a [String],
     /// The part of the zone each pair belongs to ([`crate::units::components`]).
     part: Vec<usize>,
-    /// The largest load of each part over the largest of the zone ([`part_loads`]).
-    part_loads: Vec<f64>,
+    /// The floors of each pair's force scales ([`pair_floors`]).
+    floors: Vec<(f64, f64)>,
 }
 
-/// The largest load of each part of the zone ([`crate::units::components`]) — of its pairs'
-/// rows as the stages apply them (`probe`'s variable load, from which the units are made) and
-/// of their gap forces (a gap times its column of `R_nn`, `R_tn`) — over the zone's largest:
-/// the floor of a part's force scale in [`Reader::pairs`], whose normalised units make the
-/// zone's largest load about 1 (a zone of one part keeps the floor 1; so does a part with
-/// neither loads nor gaps). Another structure's loads are no scale of a part's forces.
-fn part_loads(probe: &ContactZone) -> Vec<f64> {
+/// The floors of each pair's force scales in [`Reader::pairs`], `(normal, tangential)`, over
+/// the zone's largest load (the normalised units make that about 1): the loads the stages apply
+/// to the pair's own rows (`probe`'s variable load, from which the units are made), its normal
+/// force's taking a share of its gap force (a gap times its column of `R_nn`, `R_tn`: as the
+/// load path's states, `units::GAP_FORCE_SHARE`), its tangential force's both — as the load
+/// path judges a pair's forces (`units::DataForce::forces_at`). Another pair's loads are no
+/// scale of its forces: a frictionless pair pushed sideways by 1e12 slides, and the 400 N that
+/// press it are no round-off of that.
+fn pair_floors(probe: &ContactZone) -> Vec<(f64, f64)> {
     let m = probe.pairs();
-    let part = crate::units::components(probe);
-    let parts = part.iter().max().map_or(0, |&c| c + 1);
-    let mut loads = vec![0.0f64; parts];
-    for i in 0..m {
-        let gap = (0..m)
-            .flat_map(|j| [probe.rnn[(j, i)], probe.rtn[(j, i)]])
-            .fold(0.0f64, |a, r| a.max((r * probe.gap[i]).abs()));
-        let l = gap
-            .max(probe.variable.normal[i].abs())
-            .max(probe.variable.tangential[i].abs());
-        loads[part[i]] = loads[part[i]].max(l);
-    }
-    let all = loads.iter().fold(0.0f64, |a, &b| a.max(b));
-    loads
-        .iter()
-        .map(|&l| {
-            // A part with neither loads nor gaps carries nothing: the zone's floor.
-            if l > 0.0 && all.is_finite() {
-                l / all
-            } else {
-                1.0
-            }
+    let gap: Vec<f64> = (0..m)
+        .map(|i| {
+            (0..m)
+                .flat_map(|j| [probe.rnn[(j, i)], probe.rtn[(j, i)]])
+                .fold(0.0f64, |a, r| a.max((r * probe.gap[i]).abs()))
         })
-        .collect()
+        .collect();
+    let floors: Vec<(f64, f64)> = (0..m)
+        .map(|i| {
+            let n = probe.variable.normal[i]
+                .abs()
+                .max(crate::units::GAP_FORCE_SHARE * gap[i]);
+            (n, n.max(probe.variable.tangential[i].abs()))
+        })
+        .collect();
+    let all = (0..m).fold(0.0f64, |a, i| {
+        a.max(gap[i])
+            .max(probe.variable.normal[i].abs())
+            .max(probe.variable.tangential[i].abs())
+    });
+    if !(all > 0.0 && all.is_finite()) {
+        return vec![(1.0, 1.0); m];
+    }
+    floors.iter().map(|&(n, t)| (n / all, t / all)).collect()
 }
 
 impl Reader<'_> {
@@ -889,11 +891,11 @@ impl Reader<'_> {
     /// pair `i` on the segment that follows (which decides slip against stick).
     fn pairs(&self, x: &[f64], z: &[f64], rate: impl Fn(usize) -> (f64, f64)) -> Vec<PairResult> {
         let m = self.names.len();
-        // The largest force and displacement of each part of the zone, over the floors of the
-        // normalised units: a part's loads for forces, the zone's for displacements (as the
-        // load path's states are judged, `solution.rs`).
-        let mut xmax = self.part_loads.clone();
-        let mut zmax = vec![1.0f64; xmax.len()];
+        // The largest force and displacement of each part of the zone; a pair's forces are
+        // judged against its part's and its own loads ([`pair_floors`]), its displacements
+        // against its part's and the zone's floor (as the load path's states, `solution.rs`).
+        let parts = self.part.iter().max().map_or(0, |&c| c + 1);
+        let (mut xmax, mut zmax) = (vec![0.0f64; parts], vec![1.0f64; parts]);
         for i in 0..m {
             let c = self.part[i];
             for r in [i, m + i, 2 * m + i] {
@@ -904,7 +906,9 @@ impl Reader<'_> {
         let u = &self.units;
         (0..m)
             .map(|i| {
-                let (tx, tz) = (1e-9 * xmax[self.part[i]], 1e-9 * zmax[self.part[i]]);
+                let (c, (fn_, ft)) = (self.part[i], self.floors[i]);
+                let (tx, txt) = (1e-9 * xmax[c].max(fn_), 1e-9 * xmax[c].max(ft));
+                let tz = 1e-9 * zmax[c];
                 let x_n = x[i];
                 let x_t = (x[m + i] - x[2 * m + i]) / 2.0;
                 let (dp, dm) = rate(i);
@@ -917,7 +921,11 @@ impl Reader<'_> {
                 } else {
                     PairState::Stick
                 };
-                let x_t = if state == PairState::Open && x_t.abs() <= tx {
+                // Round-off of an open pair's friction rows is no force, nor a tangential force
+                // where `f·x_n` is zero: the friction law allows none there
+                // (`pair_results_scaled` in `solution.rs`).
+                let zero = self.zone.friction[i] * x_n == 0.0;
+                let x_t = if zero || (state == PairState::Open && x_t.abs() <= txt) {
                     0.0
                 } else {
                     x_t

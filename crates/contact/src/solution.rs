@@ -316,6 +316,7 @@ impl Engine {
             &self.data_force.forces_at(sol.p),
             self.data_force.at(sol.p),
             &self.data_force.component,
+            &self.data_force.friction,
         );
         for r in &mut pairs {
             r.x_n = self.units.user_force(r.x_n);
@@ -480,7 +481,8 @@ impl ContactSolution {
         if let Outcome::Mechanism { p_limit, mode } = &self.outcome {
             // the reported load is p_lim to round-off (a target equal to f·W/H by hand)
             if (sol.p - p_limit).abs() <= 1e-12 * sol.p.abs().max(p_limit.abs()) {
-                sliding_at_the_limit(&mut self.pairs, &self.zone.friction, mode);
+                let part = &self.engine.data_force.component;
+                sliding_at_the_limit(&mut self.pairs, &self.zone.friction, mode, part);
             }
         }
         self.p = Some(sol.p);
@@ -680,6 +682,13 @@ impl ContactSolution {
             self.engine.units.user_displacement(1.0),
         );
         let parts = &self.engine.data_force.component;
+        // With the tightening in them the friction rows carry `max(1, f)·c` beside `f·x_n`: a
+        // pair without friction may carry a traced tangential force (`ContactLcp::build`).
+        let friction: &[f64] = if c == 0.0 {
+            &self.engine.data_force.friction
+        } else {
+            &[]
+        };
         let mut out = Vec::with_capacity(at.len());
         for &j in &cols {
             if j == usize::MAX {
@@ -714,7 +723,7 @@ impl ContactSolution {
                     x[2 * m + i] = -x_t;
                 }
             }
-            let pairs = pair_results_scaled(&x, &zs[j], names, &fs, ds, parts);
+            let pairs = pair_results_scaled(&x, &zs[j], names, &fs, ds, parts, friction);
             if let Some(i) = pairs
                 .iter()
                 .position(|r| ![r.x_n, r.x_t, r.z_n, r.z_t].iter().all(|v| v.is_finite()))
@@ -790,21 +799,28 @@ impl ContactSolution {
 /// mode slid it with the others. "To round-off" is 1e-8 of the largest force: the condensed
 /// data's accuracy at such a limit (the pair whose start of slip completes a 450-bearing
 /// beam's sliding mechanism stood 1.2e-9 of the largest force off its limit, and read "stick"
-/// at 1e-9).
-fn sliding_at_the_limit(pairs: &mut [PairResult], friction: &[f64], mode: &[(f64, f64)]) {
+/// at 1e-9). The largest force is that of the pair's part of the zone (`part`,
+/// [`crate::units::components`]), as its state's margins are; the rates are the one mode's.
+fn sliding_at_the_limit(
+    pairs: &mut [PairResult],
+    friction: &[f64],
+    mode: &[(f64, f64)],
+    part: &[usize],
+) {
     let top = mode
         .iter()
         .fold(0.0f64, |a, &(n, t)| a.max(n.abs()).max(t.abs()));
-    let force = pairs
-        .iter()
-        .fold(0.0f64, |a, r| a.max(r.x_n.abs()).max(r.x_t.abs()));
-    for ((r, &f), &(_, dz_t)) in pairs.iter_mut().zip(friction).zip(mode) {
+    let mut force = vec![0.0f64; part.iter().max().map_or(0, |&c| c + 1)];
+    for (r, &c) in pairs.iter().zip(part) {
+        force[c] = force[c].max(r.x_n.abs()).max(r.x_t.abs());
+    }
+    for (((r, &f), &(_, dz_t)), &c) in pairs.iter_mut().zip(friction).zip(mode).zip(part) {
         if r.state != PairState::Stick || dz_t.abs() <= 1e-9 * top {
             continue;
         }
         // the friction force opposes the slip: slip + with x_t = −f·x_n
         let limit = -dz_t.signum() * f * r.x_n;
-        if (r.x_t - limit).abs() <= 1e-8 * force {
+        if (r.x_t - limit).abs() <= 1e-8 * force[c] {
             r.state = if dz_t > 0.0 {
                 PairState::SlipPlus
             } else {
@@ -822,7 +838,7 @@ fn sliding_at_the_limit(pairs: &mut [PairResult], friction: &[f64], mode: &[(f64
 /// [`crate::solve`] judges it relative to the scale of the data as well.
 pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
     let m = x.len() / 3;
-    pair_results_scaled(x, z, names, &vec![(0.0, 0.0); m], 0.0, &vec![0; m])
+    pair_results_scaled(x, z, names, &vec![(0.0, 0.0); m], 0.0, &vec![0; m], &[])
 }
 
 /// Pair results with round-off judged relative to `max(‖x‖∞, force_scale[i])` for the forces of
@@ -831,7 +847,8 @@ pub fn pair_results(x: &[f64], z: &[f64], names: &[String]) -> Vec<PairResult> {
 /// norms over the pairs of its part of the zone (`part`, [`crate::units::components`]): a
 /// normal force of `4e-16` in a zone whose loads are of order one is round-off of zero, and the
 /// pair is open (touching), not stuck; a force of 400 N is none beside another structure's
-/// 1e12 N. The pairs are named by `names` (left unnamed where it has no name: empty for all).
+/// 1e12 N. Where `friction` is given (one a pair), a pair whose `f·x_n` is zero carries no
+/// tangential force. The pairs are named by `names` (left unnamed where it has no name: empty for all).
 fn pair_results_scaled(
     x: &[f64],
     z: &[f64],
@@ -839,6 +856,7 @@ fn pair_results_scaled(
     force_scale: &[(f64, f64)],
     displacement_scale: f64,
     part: &[usize],
+    friction: &[f64],
 ) -> Vec<PairResult> {
     let m = x.len() / 3;
     let parts = part.iter().max().map_or(0, |&c| c + 1);
@@ -890,6 +908,16 @@ fn pair_results_scaled(
                 0.0
             } else {
                 x_n
+            };
+            // Where `f·x_n` is zero (a frictionless pair, or one that carries no normal force)
+            // the friction law allows no tangential force: what the solve left there is
+            // round-off of the terms that formed it (of metres of another pair's slip times
+            // its stiffness: 7e-4 N on an open pair beside a slide of 8e9 m, in one unit and
+            // not the other).
+            let x_t = if friction.get(i).is_some_and(|&f| f * x_n == 0.0) {
+                0.0
+            } else {
+                x_t
             };
             PairResult {
                 name: names.get(i).cloned().unwrap_or_default(),
@@ -1013,12 +1041,12 @@ mod tests {
         let x = [4e-16, 0.0, 0.0];
         let z = [0.0; 3];
         assert_eq!(
-            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0])[0].state,
+            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0], &[])[0].state,
             PairState::Open
         );
         // A normal force below zero by round-off reads as zero, not as a tension.
         let x = [-8.67e-19, 0.0, 0.0];
-        let r = &pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0])[0];
+        let r = &pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0], &[])[0];
         assert_eq!(
             (r.state, r.x_n.to_bits()),
             (PairState::Open, 0.0f64.to_bits())
@@ -1026,7 +1054,7 @@ mod tests {
         // A real compression of the zone's scale sticks.
         let x = [0.5, 0.2, 0.2];
         assert_eq!(
-            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0])[0].state,
+            pair_results_scaled(&x, &z, &names, &[(1.0, 1.0)], 1.0, &[0], &[])[0].state,
             PairState::Stick
         );
     }

@@ -195,6 +195,26 @@ mod tests {
         assert_eq!(exponent(f64::NAN), None);
         assert_eq!(exponent(-3.0), Some(1));
     }
+
+    /// The parts of a zone, by hand: six pairs, 0–2 chained through `R_nn` (0, 1) and a single
+    /// entry of `R_tn` (1 → 2, one direction only), 3 and 5 through `R_nt` (5 → 3), 4 alone
+    /// with a diagonal only. Numbered by their first pair.
+    #[test]
+    fn parts_are_the_pairs_that_stiffness_joins_directly_or_through_others() {
+        let m = 6;
+        let diag = Mat::from_fn(m, m, |i, j| if i == j { 1.0 } else { 0.0 });
+        let mut zone = ContactZone::new(diag.clone(), diag);
+        zone.rnn[(0, 1)] = -0.5;
+        zone.rnn[(1, 0)] = -0.5;
+        zone.rtn[(2, 1)] = 1e-300;
+        zone.rnt[(5, 3)] = 2.0;
+        assert_eq!(components(&zone), [0, 0, 0, 1, 2, 1]);
+        // No coupling at all: every pair its own part; a full matrix: one part.
+        let alone = ContactZone::new(Mat::identity(m, m), Mat::identity(m, m));
+        assert_eq!(components(&alone), [0, 1, 2, 3, 4, 5]);
+        let full = ContactZone::new(Mat::from_fn(m, m, |_, _| 1.0), Mat::identity(m, m));
+        assert_eq!(components(&full), [0; 6]);
+    }
 }
 
 /// The force scales of a (normalised) zone without the tightening: the constant load of a row
@@ -232,6 +252,7 @@ pub(crate) fn load_scales(zone: &ContactZone) -> DataForce {
     DataForce {
         pairs,
         component: components(zone),
+        friction: zone.friction.clone(),
     }
 }
 
@@ -286,6 +307,9 @@ pub(crate) struct DataForce {
     pub pairs: Vec<PairLoads>,
     /// The part of the zone each pair belongs to ([`components`]).
     pub component: Vec<usize>,
+    /// Each pair's friction coefficient: where `f·x_n` is zero the friction law allows no
+    /// tangential force at all.
+    pub friction: Vec<f64>,
 }
 
 /// The loads of one pair ([`load_scales`]): its normal row's and its tangential link's.
@@ -320,7 +344,7 @@ impl RowLoads {
 /// round-off is about 1e-16 of them times the conditioning, which 1e-4 × the states' margin
 /// (1e-9) covers up to 1e3; a full share would read a stopper's 3 N beside gap forces of 1e10
 /// (1000 m × 1e7 N/m) as round-off, the stopper "open" while it carries the push.
-const GAP_FORCE_SHARE: f64 = 1e-4;
+pub(crate) const GAP_FORCE_SHARE: f64 = 1e-4;
 
 impl DataForce {
     /// The scale of the displacements a point at `p` carries (the gaps' own size in it: its
