@@ -525,3 +525,59 @@ fn a_zone_of_two_parts_that_do_not_touch_gives_each_its_own_answer() {
         }
     }
 }
+
+/// A reviewer's zone: pair 1 behind a gap of 1 mm that nothing closes, pair 2 frictionless and
+/// pushed sideways by 5.5e11, pair 3 (f = 0.4) tied to pair 2 by `R_tt`. Pair 2 slides some 8e9
+/// m; its slip's terms (1e13) leave round-off in the tangential rows of the pairs beside it.
+/// The friction law allows no tangential force where `f·x_n` is zero: pair 1 (open, no normal
+/// force) and pair 2 (no friction) carry exactly none, in N·m and kN·mm alike — before, 7e-4 N
+/// and 1.2e-4 N in N·m, 0.21 N on pair 1 in kN·mm.
+#[test]
+fn no_tangential_force_where_the_friction_law_allows_none() {
+    let rtt = [
+        [701.5463661686019, -690.2486213647242, 0.0],
+        [-690.2486213647242, 752.6400131971335, -32.956212316547955],
+        [0.0, -32.956212316547955, 329.56212316547953],
+    ];
+    let rnn = [1243.1526306379114, 1000.0, 800.0];
+    for (name, f, u) in [("N·m", 1.0, 1.0), ("kN·mm", 1e-3, 1e3)] {
+        let k = f / u;
+        let mut zone = ContactZone::new(
+            Mat::from_fn(3, 3, |i, j| if i == j { rnn[i] * k } else { 0.0 }),
+            Mat::from_fn(3, 3, |i, j| rtt[i][j] * k),
+        );
+        zone.friction = vec![0.3, 0.0, 0.4];
+        zone.gap = vec![0.001 * u, 0.0, 0.0];
+        zone.constant.normal = vec![0.0, 389.89821295774766 * f, 430.3185945445526 * f];
+        zone.variable.tangential = vec![
+            0.5774467022710263 * f,
+            546929793387.11743 * f,
+            -47.16525234779937 * f,
+        ];
+        let sol = solve(&zone, &SolveSettings::default()).unwrap();
+        assert_eq!(sol.p, Some(1.0), "{name}");
+        let states: Vec<_> = sol.pairs.iter().map(|r| r.state).collect();
+        assert_eq!(
+            states,
+            [PairState::Open, PairState::SlipMinus, PairState::SlipMinus],
+            "{name}: {:?}",
+            sol.pairs
+        );
+        let (a, b, c) = (&sol.pairs[0], &sol.pairs[1], &sol.pairs[2]);
+        assert_eq!((a.x_n, a.x_t), (0.0, 0.0), "{name}: {a:?}");
+        assert_eq!(b.x_t, 0.0, "{name}: {b:?}");
+        // By hand: no normal coupling, so each normal force is its own load and pair 1 keeps
+        // its gap; pair 3 slides with x_t = +f·x_n.
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-12 * y.abs();
+        assert!(close(a.z_n, 0.001 * u), "{name}: {a:?}");
+        assert!(close(b.x_n, 389.89821295774766 * f), "{name}: {b:?}");
+        assert!(close(c.x_n, 430.3185945445526 * f), "{name}: {c:?}");
+        // Its tangential row sums pair 2's slip times `R_tt` (33 × 7.8e9 = 2.6e11 N): 1.7e-5 N
+        // of round-off beside its 172 N.
+        let terms = 32.956212316547955 * b.z_t.abs() * k;
+        assert!(
+            (c.x_t - 0.4 * c.x_n).abs() <= 1e3 * f64::EPSILON * terms,
+            "{name}: {c:?}"
+        );
+    }
+}
