@@ -146,21 +146,28 @@ fn a_stage_ends_in_a_mechanism_with_its_limit_factor() {
     assert_eq!(a.stage_results.len(), 2);
 }
 
+/// The start of a model's text in N·m or kN·mm: its units and a steel section `s` of area `a`
+/// (m²) and second moment 1e-5 m⁴.
+fn steel_section_text(kn_mm: bool, a: f64) -> String {
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    format!(
+        "units = \"{}\"\n\n[[sections]]\nname = \"s\"\nE = {:e}\nA = {:e}\nI = {:e}\n",
+        if kn_mm { "kN, mm" } else { "N, m" },
+        2.0e11 * f / (l * l),
+        a * l * l,
+        1e-5 * l * l * l * l,
+    )
+}
+
 /// A beam of 1 m (EA = 2e9 N) on an elastic mount at its left end (springs of 1e10 N/m along
 /// x and y and 1e10 N·m/rad), with a frictional pair (f = 0.3) under that end whose gap of
 /// 1 mm never closes, as text in N·m or kN·mm: its weight of 1 kN on the mount, then a push
 /// of 1 kN along the beam at its right end, taken off again.
 fn open_pair_on_a_mount_text(kn_mm: bool) -> String {
     let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-    format!(
-        r#"units = "{units}"
-
-[[sections]]
-name = "s"
-E = {e:e}
-A = {a:e}
-I = {i:e}
-
+    steel_section_text(kn_mm, 0.01)
+        + &format!(
+            r#"
 [[members]]
 name = "m"
 start = [0.0, 0.0]
@@ -207,17 +214,13 @@ factors = {{ push = 1.0 }}
 [[history]]
 factors = {{ push = 0.0 }}
 "#,
-        units = if kn_mm { "kN, mm" } else { "N, m" },
-        e = 2.0e11 * f / (l * l),
-        a = 0.01 * l * l,
-        i = 1e-5 * l * l * l * l,
-        len = l,
-        k = 1e10 * f / l,
-        kr = 1e10 * f * l,
-        gap = 1e-3 * l,
-        w = -1000.0 * f,
-        p = 1000.0 * f,
-    )
+            len = l,
+            k = 1e10 * f / l,
+            kr = 1e10 * f * l,
+            gap = 1e-3 * l,
+            w = -1000.0 * f,
+            p = 1000.0 * f,
+        )
 }
 
 /// [`open_pair_on_a_mount_text`] by hand: the pair never closes (the mount sinks 1e-7 m under
@@ -294,15 +297,9 @@ fn analyse_text(
 /// (25, −2.5) N at `m.0`. One stage, the load from zero to its full value. N·m or kN·mm.
 fn frame_held_by_its_pairs_text(kn_mm: bool, tipping: bool) -> String {
     let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-    let mut s = format!(
-        r#"units = "{units}"
-
-[[sections]]
-name = "s"
-E = {e:e}
-A = {a:e}
-I = {i:e}
-
+    let mut s = steel_section_text(kn_mm, 0.02);
+    s += &format!(
+        r#"
 [[members]]
 name = "m"
 type = "frame"
@@ -319,10 +316,6 @@ normal = [0.0, 1.0]
 friction = [0.3, 0.6]
 gap = [{gap:e}, 0.0]
 "#,
-        units = if kn_mm { "kN, mm" } else { "N, m" },
-        e = 2.0e11 * f / (l * l),
-        a = 0.02 * l * l,
-        i = 1e-5 * l * l * l * l,
         len = 3.0 * l,
         gap = 1e-3 * l,
     );
