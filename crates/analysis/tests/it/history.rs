@@ -406,6 +406,62 @@ fn a_frame_held_only_by_its_pairs_is_a_mechanism_at_its_unloaded_start() {
     }
 }
 
+/// The frame of [`frame_held_by_its_pairs_text`] (no spring) pushed at `m.0` by (0.5, −2.5) N,
+/// then the push taken off. By hand: the 2.5 N down at `m.0` turn the frame freely about `m.1`
+/// until `c.1` (its gap of 1 mm) shuts, and `c.1` then carries it, sticking (0.5 N against
+/// 0.3·2.5 = 0.75 N); taken off, nothing carries anything. The frame stays turned by the gap
+/// (1e-3/0.75 rad: no force undoes a free turn) and its end-force terms of 5e6 N leave
+/// residuals of 5e-11 N, which read "out of balance (relative residual 1.0)" against a state
+/// of no load: exit 1. In N·m and kN·mm.
+#[test]
+fn a_frame_pushed_onto_its_gapped_pair_and_released_carries_nothing() {
+    for kn_mm in [false, true] {
+        let what = format!("kN·mm {kn_mm}");
+        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let text = steel_section_text(kn_mm, 0.02)
+            + &format!(
+                "\n[[members]]\nname = \"m\"\ntype = \"frame\"\nstart = [0.0, 0.0]\n\
+                 end = [{len:e}, 0.0]\ndivisions = 4\nsection = \"s\"\n\n\
+                 [[contact]]\nname = \"c\"\nfrom = \"ground\"\nto = [\"m.0\", \"m.1\"]\n\
+                 normal = [0.0, 1.0]\nfriction = [0.3, 0.6]\ngap = [{gap:e}, 0.0]\n\n\
+                 [[loads.push.nodal]]\nnodes = \"m.0\"\nfx = {fx:e}\nfy = {fy:e}\n\n\
+                 [[history]]\nname = \"push\"\nfactors = {{ push = 1.0 }}\n\n\
+                 [[history]]\nname = \"off\"\nfactors = {{ push = 0.0 }}\n",
+                len = 3.0 * l,
+                gap = 1e-3 * l,
+                fx = 0.5 * f,
+                fy = -2.5 * f,
+            );
+        let a = analyse_text(&text, &what).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let stages = &a.history.stages;
+        assert_eq!(stages.len(), 2, "{what}");
+        for st in stages {
+            assert_eq!(st.status, StageStatus::Completed, "{what}: {:?}", st.reason);
+        }
+        let (c1, c2) = (&stages[0].pairs[0], &stages[0].pairs[1]);
+        assert!((c1.x_n - 2.5 * f).abs() <= 1e-12 * f, "{what}: {c1:?}");
+        assert!(
+            (c1.x_t.abs() - 0.5 * f).abs() <= 1e-12 * f,
+            "{what}: {c1:?}"
+        );
+        assert!(
+            c1.z_n.abs() <= 1e-12 * l && c1.z_t.abs() <= 1e-12 * l,
+            "{what}: {c1:?}"
+        );
+        assert!(c2.x_n.abs() <= 1e-12 * f, "{what}: {c2:?}");
+        for c in &stages[1].pairs {
+            assert!(c.x_n == 0.0 && c.x_t == 0.0, "{what}: {c:?}");
+        }
+        // Turned about m.1 (x = 0.75 m) by the gap: m.0 down by it.
+        let r = &a.stage_results[1];
+        assert!(
+            (r.displacements[0][1] + 1e-3 * l).abs() <= 1e-9 * l,
+            "{what}: {:?}",
+            r.displacements[0]
+        );
+    }
+}
+
 /// Two structures that nothing holds along x but their pairs' friction (numbers of a
 /// generated sweep's models, its horizontal springs taken away), in N·m or kN·mm:
 ///
