@@ -742,3 +742,41 @@ impl EvolutionSolver {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn solver(m: Mat<f64>, q0: Vec<f64>) -> EvolutionSolver {
+        let n = q0.len();
+        let problem = EvolutionProblem {
+            m,
+            q0,
+            incremental: vec![false; n],
+            guard: vec![None; n],
+            start_direction: vec![1.0; n],
+        };
+        EvolutionSolver::new(problem, Settings::default()).expect("a valid problem")
+    }
+
+    /// By hand, `x = q0 + M z` at zero load: `x = −1 + 2z` rests at `z = 1/2`, `x = 0`, which
+    /// the start's basis finds too; a rest that does not solve it (`z = 0.3`, `x = −0.4`) is
+    /// refused for the start's own state. With `M = 0` and `q0 = 0` (a gap that a free motion
+    /// shuts) every basic solution has `z = 0`, and the rest at the gap, `z = 1e-3`, which
+    /// solves it as well, is the start.
+    #[test]
+    fn the_start_at_rest_is_the_callers_state_where_it_solves_the_problem() {
+        let s = solver(Mat::from_fn(1, 1, |_, _| 2.0), vec![-1.0]);
+        let at_rest = s.start_at_rest(&[0.5]).unwrap();
+        assert_eq!((at_rest.z, at_rest.x), (vec![0.5], vec![0.0]));
+        assert_eq!(s.start().unwrap().z, vec![0.5]);
+        assert_eq!(s.start_at_rest(&[0.3]).unwrap().z, vec![0.5]);
+        let free = solver(Mat::zeros(1, 1), vec![0.0]);
+        assert_eq!(free.start().unwrap().z, vec![0.0]);
+        let at_gap = free.start_at_rest(&[1e-3]).unwrap();
+        assert!(at_gap.can_continue());
+        assert_eq!((at_gap.z, at_gap.x), (vec![1e-3], vec![0.0]));
+        // Not a state at all: refused for the start's.
+        assert_eq!(free.start_at_rest(&[-1.0]).unwrap().z, vec![0.0]);
+    }
+}
