@@ -894,15 +894,9 @@ impl Reader<'_> {
         // The largest force and displacement of each part of the zone; a pair's forces are
         // judged against its part's and its own loads ([`pair_floors`]), its displacements
         // against its part's and the zone's floor (as the load path's states, `solution.rs`).
-        let parts = self.part.iter().max().map_or(0, |&c| c + 1);
-        let (mut xmax, mut zmax) = (vec![0.0f64; parts], vec![1.0f64; parts]);
-        for i in 0..m {
-            let c = self.part[i];
-            for r in [i, m + i, 2 * m + i] {
-                xmax[c] = xmax[c].max(x[r].abs());
-                zmax[c] = zmax[c].max(z[r].abs());
-            }
-        }
+        let rows = |v: &[f64], i: usize| v[i].abs().max(v[m + i].abs()).max(v[2 * m + i].abs());
+        let xmax = crate::units::largest_by_part(&self.part, 0.0, |i| rows(x, i));
+        let zmax = crate::units::largest_by_part(&self.part, 1.0, |i| rows(z, i));
         let u = &self.units;
         (0..m)
             .map(|i| {

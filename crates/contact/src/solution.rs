@@ -810,10 +810,8 @@ fn sliding_at_the_limit(
     let top = mode
         .iter()
         .fold(0.0f64, |a, &(n, t)| a.max(n.abs()).max(t.abs()));
-    let mut force = vec![0.0f64; part.iter().max().map_or(0, |&c| c + 1)];
-    for (r, &c) in pairs.iter().zip(part) {
-        force[c] = force[c].max(r.x_n.abs()).max(r.x_t.abs());
-    }
+    let force =
+        crate::units::largest_by_part(part, 0.0, |i| pairs[i].x_n.abs().max(pairs[i].x_t.abs()));
     for (((r, &f), &(_, dz_t)), &c) in pairs.iter_mut().zip(friction).zip(mode).zip(part) {
         if r.state != PairState::Stick || dz_t.abs() <= 1e-9 * top {
             continue;
@@ -859,20 +857,15 @@ fn pair_results_scaled(
     friction: &[f64],
 ) -> Vec<PairResult> {
     let m = x.len() / 3;
-    let parts = part.iter().max().map_or(0, |&c| c + 1);
     // The forces of the pairs, not the friction rows `f·x_n ± x_t` (a friction coefficient of
     // 1e10 would make every normal force round-off of those), and their displacements, the
     // largest of each part.
-    let (mut forces, mut zmax) = (vec![0.0f64; parts], vec![0.0f64; parts]);
-    for i in 0..m {
-        let c = part[i];
-        forces[c] = forces[c]
-            .max(x[i].abs())
-            .max(((x[m + i] - x[2 * m + i]) / 2.0).abs());
-        zmax[c] = [z[i], z[m + i], z[2 * m + i]]
-            .iter()
-            .fold(zmax[c].max(displacement_scale), |a, b| a.max(b.abs()));
-    }
+    let forces = crate::units::largest_by_part(part, 0.0, |i| {
+        x[i].abs().max(((x[m + i] - x[2 * m + i]) / 2.0).abs())
+    });
+    let zmax = crate::units::largest_by_part(part, displacement_scale, |i| {
+        z[i].abs().max(z[m + i].abs()).max(z[2 * m + i].abs())
+    });
     (0..m)
         .map(|i| {
             let (forces, tz) = (forces[part[i]], 1e-9 * zmax[part[i]]);

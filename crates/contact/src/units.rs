@@ -300,6 +300,21 @@ pub(crate) fn components(zone: &ContactZone) -> Vec<usize> {
         .collect()
 }
 
+/// The largest of `value(i)` over the pairs `i` of each part of the zone (`part` numbers them
+/// as [`components`] does), and at least `floor`: the scales a pair's round-off is judged
+/// against in its own part.
+pub(crate) fn largest_by_part(
+    part: &[usize],
+    floor: f64,
+    value: impl Fn(usize) -> f64,
+) -> Vec<f64> {
+    let mut largest = vec![floor; part.iter().max().map_or(0, |&c| c + 1)];
+    for (i, &c) in part.iter().enumerate() {
+        largest[c] = largest[c].max(value(i));
+    }
+    largest
+}
+
 /// The force scales of the data without the tightening ([`load_scales`]).
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct DataForce {
