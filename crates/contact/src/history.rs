@@ -846,40 +846,23 @@ struct Reader<'a> {
     floors: Vec<(f64, f64)>,
 }
 
-/// The floors of each pair's force scales in [`Reader::pairs`], `(normal, tangential)`, over
-/// the zone's largest load (the normalised units make that about 1): the loads the stages apply
-/// to the pair's own rows (`probe`'s variable load, from which the units are made), its normal
-/// force's taking a share of its gap force (a gap times its column of `R_nn`, `R_tn`: as the
-/// load path's states, `units::GAP_FORCE_SHARE`), its tangential force's both — as the load
-/// path judges a pair's forces (`units::DataForce::forces_at`). Another pair's loads are no
-/// scale of its forces: a frictionless pair pushed sideways by 1e12 slides, and the 400 N that
-/// press it are no round-off of that.
+/// The floors of each pair's force scales in [`Reader::pairs`], `(normal, tangential)`: the
+/// load path's scales of a pair's forces ([`crate::units::DataForce::forces_at`]) for the loads
+/// the stages apply (`probe`'s variable load, from which the units are made, at `p = 1`), over
+/// the zone's largest load (the normalised units make that about 1). Another pair's loads are
+/// no scale of its forces: a frictionless pair pushed sideways by 1e12 slides, and the 400 N
+/// that press it are no round-off of that.
 fn pair_floors(probe: &ContactZone) -> Vec<(f64, f64)> {
-    let m = probe.pairs();
-    let gap: Vec<f64> = (0..m)
-        .map(|i| {
-            (0..m)
-                .flat_map(|j| [probe.rnn[(j, i)], probe.rtn[(j, i)]])
-                .fold(0.0f64, |a, r| a.max((r * probe.gap[i]).abs()))
-        })
-        .collect();
-    let floors: Vec<(f64, f64)> = (0..m)
-        .map(|i| {
-            let n = probe.variable.normal[i]
-                .abs()
-                .max(crate::units::GAP_FORCE_SHARE * gap[i]);
-            (n, n.max(probe.variable.tangential[i].abs()))
-        })
-        .collect();
-    let all = (0..m).fold(0.0f64, |a, i| {
-        a.max(gap[i])
-            .max(probe.variable.normal[i].abs())
-            .max(probe.variable.tangential[i].abs())
-    });
+    let scales = crate::units::load_scales(probe);
+    let all = scales.at(1.0);
     if !(all > 0.0 && all.is_finite()) {
-        return vec![(1.0, 1.0); m];
+        return vec![(1.0, 1.0); probe.pairs()];
     }
-    floors.iter().map(|&(n, t)| (n / all, t / all)).collect()
+    scales
+        .forces_at(1.0)
+        .iter()
+        .map(|&(n, t)| (n / all, t / all))
+        .collect()
 }
 
 impl Reader<'_> {

@@ -359,7 +359,7 @@ impl RowLoads {
 /// round-off is about 1e-16 of them times the conditioning, which 1e-4 × the states' margin
 /// (1e-9) covers up to 1e3; a full share would read a stopper's 3 N beside gap forces of 1e10
 /// (1000 m × 1e7 N/m) as round-off, the stopper "open" while it carries the push.
-pub(crate) const GAP_FORCE_SHARE: f64 = 1e-4;
+const GAP_FORCE_SHARE: f64 = 1e-4;
 
 impl DataForce {
     /// The scale of the displacements a point at `p` carries (the gaps' own size in it: its
