@@ -422,12 +422,13 @@ pub fn follow_history_judged(
             let lcp = sp.lcp();
             (sp, lcp)
         });
+    let scales = crate::units::load_scales(&probe);
     let reader = Reader {
         zone,
         units,
         names: &names,
-        part: crate::units::components(zone),
-        floors: pair_floors(&probe),
+        floors: pair_floors(&scales),
+        part: scales.component,
     };
     for (k, (stage, (start, end))) in history.stages.iter().zip(&table).enumerate() {
         let mut d = vec![0.0; n];
@@ -848,15 +849,14 @@ struct Reader<'a> {
 
 /// The floors of each pair's force scales in [`Reader::pairs`], `(normal, tangential)`: the
 /// load path's scales of a pair's forces ([`crate::units::DataForce::forces_at`]) for the loads
-/// the stages apply (`probe`'s variable load, from which the units are made, at `p = 1`), over
+/// the stages apply (the variable load of the zone the units are made from, at `p = 1`), over
 /// the zone's largest load (the normalised units make that about 1). Another pair's loads are
 /// no scale of its forces: a frictionless pair pushed sideways by 1e12 slides, and the 400 N
 /// that press it are no round-off of that.
-fn pair_floors(probe: &ContactZone) -> Vec<(f64, f64)> {
-    let scales = crate::units::load_scales(probe);
+fn pair_floors(scales: &crate::units::DataForce) -> Vec<(f64, f64)> {
     let all = scales.at(1.0);
     if !(all > 0.0 && all.is_finite()) {
-        return vec![(1.0, 1.0); probe.pairs()];
+        return vec![(1.0, 1.0); scales.pairs.len()];
     }
     scales
         .forces_at(1.0)
