@@ -66,37 +66,41 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     };
     let progress = &settings.progress;
     progress.phase(crate::Phase::Start);
-    let (start_basis, start_pivots) = match start_basis(prep, solver.d(), &h, &phase1_dir, settings)
-    {
-        (Some(b), pivots, _) => (b, pivots),
-        (None, start_pivots, capped) => {
-            return LoadPath {
-                // The pivot cap ended the search for the start: not a proof that there is
-                // none.
-                status: if capped {
-                    PathStatus::IterationLimit
-                } else {
-                    PathStatus::NoSolutionAtStart
-                },
-                steps: vec![],
-                breakpoints: vec![],
-                p_max: 0.0,
-                p_limit: None,
-                mechanism: None,
-                last_entering: None,
-                solution: None,
-                start_pivots,
-                refactorizations: 0,
-                artificial_mechanism: None,
-                unreported: None,
-                unloaded_at_start: false,
-                start_slots: (0..n).collect(),
-                records: vec![],
-                target_segment: None,
-                judged_load_segments: Vec::new(),
-            };
-        }
-    };
+    // The start on the scaling before any raise ([`PathSolver`]'s `start_prep`); its basis is
+    // the same on both (a complementary basis holds no column of `h` or `d`, and `E M D` is
+    // the same), its values are formed on this one by the pivoting.
+    let start_prep = solver.start_prep.as_ref().unwrap_or(prep);
+    let (start_basis, start_pivots) =
+        match start_basis(start_prep, solver.d(), &h, &phase1_dir, settings) {
+            (Some(b), pivots, _) => (b, pivots),
+            (None, start_pivots, capped) => {
+                return LoadPath {
+                    // The pivot cap ended the search for the start: not a proof that there is
+                    // none.
+                    status: if capped {
+                        PathStatus::IterationLimit
+                    } else {
+                        PathStatus::NoSolutionAtStart
+                    },
+                    steps: vec![],
+                    breakpoints: vec![],
+                    p_max: 0.0,
+                    p_limit: None,
+                    mechanism: None,
+                    last_entering: None,
+                    solution: None,
+                    start_pivots,
+                    refactorizations: 0,
+                    artificial_mechanism: None,
+                    unreported: None,
+                    unloaded_at_start: false,
+                    start_slots: (0..n).collect(),
+                    records: vec![],
+                    target_segment: None,
+                    judged_load_segments: Vec::new(),
+                };
+            }
+        };
     let start_slots = start_basis.slot_var.clone();
     let mut piv = Pivoter::new(
         &cols,

@@ -58,6 +58,9 @@ pub struct PathSolver {
     pub(crate) c0: f64,
     /// The tightening's direction (zeros without one).
     pub(crate) cov: Vec<f64>,
+    /// `prep` on the scaling before its parts were raised, where any was
+    /// ([`Prepared::from_owned_raising`]): the start at `p = 0` is found on it.
+    pub(crate) start_prep: Option<Prepared>,
     /// The settings' row relations that the data satisfy, in the equilibrated rows.
     pub(crate) relations: std::sync::Arc<crate::pivoting::relations::Relations>,
     /// The structure's own equations, judging the load rates the data cannot tell from
@@ -88,15 +91,35 @@ impl PathSolver {
     ) -> Result<Self, LcpError> {
         let n = validate(&problem, &options, &settings)?;
         let ParametricLcp { m, q0, d } = problem;
-        let mut prep = Prepared::from_owned(m);
         let (c0, cov) = tightening_of(&options, n);
+        // Without a tightening each part of the problem that neither `M` nor a row relation
+        // couples to the others (a structure beside another) is raised to the size of the
+        // largest part's loads, so that its loads are not round-off of the others' in the
+        // columns they share along the path. The start at `p = 0` is found on the scaling
+        // before the raise: one tightening drives every part there, and its size is set by the
+        // largest part's constant load, so that a raised part's would swamp a small negative
+        // load of another (a portal's thrust on frictionless feet beside a raised beam). With a
+        // tightening the traced path is the tightened problem's, whose direction the caller
+        // chose: scaled as given.
+        let (mut prep, unraised) = if c0 == 0.0 {
+            let tied: Vec<Vec<usize>> = settings
+                .row_relations
+                .iter()
+                .map(|r| r.terms.iter().map(|&(i, _)| i).collect())
+                .collect();
+            Prepared::from_owned_raising(m, &[&q0, &d], &tied)
+        } else {
+            (Prepared::from_owned(m), None)
+        };
         let relations = std::sync::Arc::new(crate::pivoting::relations::Relations::new(
             &prep,
             &settings.row_relations,
         ));
         prep.derive_rows(&relations);
+        let start_prep = unraised.map(|scaling| prep.rescaled(scaling));
         Ok(Self {
             relations,
+            start_prep,
             judge: None,
             q0,
             d,

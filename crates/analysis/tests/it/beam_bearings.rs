@@ -1423,3 +1423,180 @@ fn a_limit_read_below_zero_on_a_path_that_never_rose_is_the_start() {
     }
     assert!(s.steps.iter().all(|st| st.p == 0.0), "{:?}", s.steps);
 }
+
+/// Two beams that share nothing but the model file, in N·m or kN·mm: beam `a` (4 m under
+/// 25 kN/m, on two bearings of friction 0.4, pushed along its axis by 100 kN·p) and, 10 m above
+/// it, beam `b` (4 m under 0.5 N/m, on two frictionless bearings, pushed along its axis by
+/// `push`·p N).
+fn two_beams(push: f64, kn_mm: bool) -> String {
+    let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+    let beam = |name: &str, y: f64, friction: f64, q: f64, fx: f64| {
+        format!(
+            "[[members]]\nname = \"{name}\"\nstart = [0.0, {y:e}]\nend = [{x:e}, {y:e}]\n\
+             divisions = 4\nsection = \"beam\"\n\
+             [[contact]]\nname = \"{name}0\"\nfrom = \"ground\"\nto = \"{name}.0\"\n\
+             normal = [0.0, 1.0]\nfriction = {friction}\n\
+             [[contact]]\nname = \"{name}1\"\nfrom = \"ground\"\nto = \"{name}.4\"\n\
+             normal = [0.0, 1.0]\nfriction = {friction}\n\
+             [[loads.constant.distributed]]\nelements = \"{name}\"\nq = [0.0, {q:e}]\n\
+             [[loads.variable.nodal]]\nnodes = \"{name}.2\"\nfx = {fx:e}\n",
+            x = 4.0 * l,
+            y = y * l,
+            q = -q * f / l,
+            fx = fx * f,
+        )
+    };
+    format!(
+        "units = \"{units}\"\n\
+         [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n{}{}\
+         [solve]\ntrace = \"end\"\n",
+        beam("a", 0.0, 0.4, 25000.0, 100000.0),
+        beam("b", 10.0, 0.0, 0.5, push),
+        units = if kn_mm { "kN, mm" } else { "N, m" },
+        e = 2.1e11 * f / (l * l),
+        a = 0.01 * l * l,
+        i = 0.0008 * l * l * l * l,
+    )
+}
+
+/// [`two_beams`] with beam `b` pushed by 1e-6 N (5e-7 of its weight, 1e-11 of the push on
+/// `a`): nothing holds `b` along its axis, a mechanism as soon as the load is applied
+/// (`p_lim = 0`), and at `p = 0` each bearing carries half its beam's weight by statics
+/// (50 kN and 1 N), without friction. Before, the engine's columns held both beams' loads at
+/// the size of `a`'s, `b`'s push was below their pivot tolerance, and the path ran to `a`'s
+/// sliding at `p = 0.4` (its friction 0.4 · 100 kN against 100 kN·p): a wrong limit, reported
+/// as verified (exit 0). The friction rows of `b`'s frictionless pairs, which no row of `M`
+/// and no friction relation ties to anything else, carry only the push: the engine now raises
+/// them until it is as large as `a`'s (`Scaling::raise_parts`). Both units; pushes of 1e-7 N
+/// (1e-12 of `a`'s) and 1e-3 N (answered before too).
+#[test]
+fn a_frictionless_beam_pushed_beside_a_heavy_one_slides_from_the_start() {
+    for kn_mm in [false, true] {
+        for push in [1e-3, 1e-6, 1e-7] {
+            let f = if kn_mm { 1e-3 } else { 1.0 };
+            let what = format!("kN·mm {kn_mm}, push {push}");
+            let (_, s) = state_at_limit(&two_beams(push, kn_mm), 0.0, 0.0, &what);
+            let halves = [50000.0, 50000.0, 1.0, 1.0];
+            for (pair, half) in s.pairs.iter().zip(halves) {
+                let n = half * f;
+                assert!(
+                    (pair.x_n - n).abs() <= 1e-9 * n,
+                    "{what}: {pair:?} against {n}"
+                );
+                assert_eq!(pair.x_t, 0.0, "{what}: {pair:?}");
+            }
+        }
+    }
+}
+
+/// A reviewer's portal (r1186, N·m): legs 8 m high 4 m apart on feet of friction 0.511 and
+/// 0.513, its beam under 3.2004 N/m, pushed at the left leg's top by (−119.99, 18.98)·p N —
+/// beside a beam 20 m above it on three bearings under 6.9e10 N/m that carries 5.3e11 N·p and
+/// 7.8e11 N·m·p (r1186's beam, its constant load made a billion times heavier too). By statics
+/// the portal tips about its left foot when the push's moment there, `119.99·p · 8`, reaches
+/// its weight's, `3.2004 · 4 · 2` (the lift acts through the foot): `p_lim = 0.026672`,
+/// before it could slide (`0.0504`, where `119.99·p` meets `0.51·(12.8 − 18.98·p)`). The
+/// heavy beam does not tip (its loads lie between its bearings). Before, the portal's loads
+/// were below the pivot tolerance of the columns the two structures share, and the path
+/// stopped at a singular basis (exit 1). Now the portal's part of the problem, a billion
+/// times below the beam's in both its constant load and its load's direction, is raised
+/// (`Scaling::raise_parts`). At the limit the right foot carries nothing and the left one the
+/// weight less the lift and the whole push. Both units. (With r1186's own beam, whose
+/// constant load is of the portal's size, the portal is not raised — its constant load would
+/// pass the beam's — and the path still goes on to the sliding: docs/engine.md.)
+#[test]
+fn a_portal_beside_a_beam_a_billion_times_heavier_tips_at_the_load_by_hand() {
+    let (q, fx, fy, h, span) = (
+        3.2003877157554554,
+        119.99177709586304,
+        18.98167211400592,
+        8.0,
+        4.0,
+    );
+    let by_hand = q * span * (span / 2.0) / (fx * h);
+    for kn_mm in [false, true] {
+        let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
+        let what = format!("kN·mm {kn_mm}");
+        let leg = |name: &str, x: f64| {
+            format!(
+                "[[members]]\nname = \"{name}\"\nstart = [{x:e}, 0.0]\nend = [{x:e}, {h:e}]\n\
+                 divisions = 2\nsection = \"beam\"\n",
+                x = x * l,
+                h = h * l,
+            )
+        };
+        let foot = |name: &str, node: &str, friction: f64| {
+            format!(
+                "[[contact]]\nname = \"{name}\"\nfrom = \"ground\"\nto = \"{node}\"\n\
+                 normal = [0.0, 1.0]\nfriction = {friction}\n"
+            )
+        };
+        let pad = |id: &str, x: f64, settle: f64, node: &str, name: &str, friction: f64| {
+            format!(
+                "[[nodes]]\nid = \"{id}\"\nx = {x:e}\ny = {y:e}\n\
+                 [[supports]]\nnodes = \"{id}\"\npinned = true\n\
+                 [[loads.constant.settlement]]\nnodes = \"{id}\"\ndof = \"uy\"\n\
+                 value = {s:e}\n{}",
+                foot(name, node, friction).replace("\"ground\"", &format!("\"{id}\"")),
+                x = x * l,
+                y = 20.0 * l,
+                s = settle * l,
+            )
+        };
+        let text = format!(
+            "units = \"{units}\"\n\
+             [[sections]]\nname = \"beam\"\nE = {e:e}\nA = {a:e}\nI = {i:e}\n\
+             {}{}\
+             [[members]]\nname = \"ab\"\nstart = \"al.end\"\nend = \"ar.end\"\ndivisions = 2\n\
+             section = \"beam\"\n{}{}\
+             [[loads.constant.distributed]]\nelements = \"ab\"\nq = [0.0, {q:e}]\n\
+             [[loads.variable.nodal]]\nnodes = \"al.end\"\nfx = {fx:e}\nfy = {fy:e}\n\
+             [[members]]\nname = \"z\"\nstart = [0.0, {zy:e}]\nend = [{zx:e}, {zy:e}]\n\
+             divisions = 6\nsection = \"beam\"\n{}{}{}\
+             [[loads.constant.distributed]]\nelements = \"z\"\nq = [0.0, {zq:e}]\n\
+             [[loads.variable.nodal]]\nnodes = \"z.2\"\nfy = {zf:e}\nm = {zm:e}\n\
+             [solve]\ntarget = 0.5\n",
+            leg("al", 0.0),
+            leg("ar", span),
+            foot("af0", "al.start", 0.511),
+            foot("af1", "ar.start", 0.513),
+            foot("zc0", "z.0", 1.0906483041406449e-10),
+            pad(
+                "zpad1",
+                5.0,
+                -6.439771413010225e-05,
+                "z.5",
+                "zc1",
+                4.939280362207199e-11
+            ),
+            pad("zpad2", 6.0, -3.039781976825294e-05, "z.6", "zc2", 0.58),
+            units = if kn_mm { "kN, mm" } else { "N, m" },
+            e = 2.1e11 * f / (l * l),
+            a = 0.0033676743541390555 * l * l,
+            i = 0.00041153332398919816 * l * l * l * l,
+            q = -q * f / l,
+            fx = -fx * f,
+            fy = fy * f,
+            zy = 20.0 * l,
+            zx = 6.0 * l,
+            zq = -69289075446.48867 * f / l,
+            zf = -531683148930.02405 * f,
+            zm = -775498540334.4701 * f * l,
+        );
+        let (p, s) = state_at_limit(&text, by_hand, 1e-9, &what);
+        let (left, right) = (&s.pairs[0], &s.pairs[1]);
+        let weight = q * span * f;
+        let n = weight - fy * p * f;
+        assert!(
+            (left.x_n - n).abs() <= 1e-9 * weight,
+            "{what}: {left:?} against {n}"
+        );
+        let t = fx * p * f;
+        assert!(
+            (left.x_t.abs() - t).abs() <= 1e-9 * weight,
+            "{what}: {left:?} against {t}"
+        );
+        assert!(right.x_n.abs() <= 1e-9 * weight, "{what}: {right:?}");
+        assert!(right.x_t.abs() <= 1e-9 * weight, "{what}: {right:?}");
+    }
+}

@@ -69,7 +69,11 @@ pub(crate) struct Prepared {
 impl Prepared {
     /// The equilibration of `m`, which the caller keeps (nothing of it is held here).
     pub fn new(m: &Mat<f64>) -> Self {
-        let scaling = Scaling::equilibrate(m, &[]);
+        Self::with_scaling(m, Scaling::equilibrate(m, &[]))
+    }
+
+    /// `m` scaled by `scaling`.
+    fn with_scaling(m: &Mat<f64>, scaling: Scaling) -> Self {
         let (scaled, exact) = scaling.scale_matrix(m);
         Self {
             n: m.nrows(),
@@ -95,6 +99,39 @@ impl Prepared {
             prep.original = Some(m);
         }
         prep
+    }
+
+    /// [`Prepared::from_owned`], each part of the problem that neither `M` nor the rows tied in
+    /// `tied` couple to the others raised to the size of the largest part's `loads`
+    /// ([`Scaling::raise_parts`]), and the scaling before the raise where it raised any part
+    /// (`E M D` is the same on both).
+    pub fn from_owned_raising(
+        m: Mat<f64>,
+        loads: &[&[f64]],
+        tied: &[Vec<usize>],
+    ) -> (Self, Option<Scaling>) {
+        let mut scaling = Scaling::equilibrate(&m, &[]);
+        let before = scaling.clone();
+        let raised = scaling.raise_parts(&m, loads, tied).iter().any(|&s| s != 0);
+        let mut prep = Self::with_scaling(&m, scaling);
+        if !prep.exact {
+            prep.original = Some(m);
+        }
+        (prep, raised.then_some(before))
+    }
+
+    /// The same problem on another `scaling` of the same `E M D` (one of the two
+    /// [`Prepared::from_owned_raising`] gives): the scaled matrix and the derived rows are
+    /// shared (a relation's rows are raised together, so that its derived row is the same).
+    pub fn rescaled(&self, scaling: Scaling) -> Self {
+        Self {
+            n: self.n,
+            scaling,
+            m_scaled: self.m_scaled.clone(),
+            exact: self.exact,
+            original: self.original.clone(),
+            derived: self.derived.clone(),
+        }
     }
 
     /// Entry `(i, j)` of the original `M`, bit for bit (for a [`Prepared::from_owned`]).

@@ -26,6 +26,54 @@ const MAX_EXP: i32 = 1000;
 /// within a factor of two, which usually takes a handful.
 const MAX_SWEEPS: usize = 64;
 
+/// The parts of a problem are raised to the largest part's loads only from within `2^-42`
+/// (about `2.3e-13`) of them ([`Scaling::raise_parts`]): a few hundred times the round-off
+/// of sums of the largest loads, so that no part whose loads could be that round-off is taken
+/// for a load.
+pub(crate) const RAISE_FLOOR: i32 = 42;
+
+/// ... and only from `2^-20` (about `1e-6`) of them down: a part within that is seen by the
+/// engine's relative tolerances (the pivot tolerance, `1e-9` of a column) with a margin of a
+/// thousand, and raising it would only move it against the parts of the same structure beside
+/// it (a frictionless pair's friction rows, which `M` does not couple to its normal row), whose
+/// round-off the engine's checks judge together: the friction rows of a portal on frictionless
+/// feet, raised by 4, put their round-off of `3.4e-12` beyond the start's allowance.
+pub(crate) const RAISE_FROM: i32 = 20;
+
+/// The set of each row `i` (index `i`) and column `j` (index `n + j`) of `m`: rows and columns
+/// joined by the non-zeros of `m`, and the rows of each of `tied` with each other, each set
+/// named by one of its members.
+fn coupled_sets(m: &Mat<f64>, tied: &[Vec<usize>]) -> Vec<usize> {
+    let n = m.nrows();
+    let mut parent: Vec<usize> = (0..2 * n).collect();
+    fn find(p: &mut [usize], mut x: usize) -> usize {
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    for j in 0..n {
+        for (i, &v) in m.col_as_slice(j).iter().enumerate() {
+            if v != 0.0 {
+                let (ri, rj) = (find(&mut parent, i), find(&mut parent, n + j));
+                if ri != rj {
+                    parent[ri] = rj;
+                }
+            }
+        }
+    }
+    for rows in tied {
+        for w in rows.windows(2) {
+            let (ra, rb) = (find(&mut parent, w[0]), find(&mut parent, w[1]));
+            if ra != rb {
+                parent[ra] = rb;
+            }
+        }
+    }
+    (0..2 * n).map(|x| find(&mut parent, x)).collect()
+}
+
 /// Diagonal scalings `E` (rows) and `D` (columns), powers of two.
 #[derive(Debug, Clone)]
 pub(crate) struct Scaling {
@@ -110,46 +158,96 @@ impl Scaling {
         };
         let (mut a, mut b) = Self::ruiz(m, &[], a0, b0);
         if let Some(q) = q {
-            // Union-find over rows 0..n and columns n..2n joined by the non-zeros of M.
-            let mut parent: Vec<usize> = (0..2 * n).collect();
-            fn find(p: &mut [usize], mut x: usize) -> usize {
-                while p[x] != x {
-                    p[x] = p[p[x]];
-                    x = p[x];
-                }
-                x
-            }
-            for j in 0..n {
-                for i in 0..n {
-                    if m[(i, j)] != 0.0 {
-                        let (ri, rj) = (find(&mut parent, i), find(&mut parent, n + j));
-                        if ri != rj {
-                            parent[ri] = rj;
-                        }
-                    }
-                }
-            }
+            let set = coupled_sets(m, &[]);
             let mut top = vec![f64::NEG_INFINITY; 2 * n];
             for i in 0..n {
                 if let Some(l) = log2_of(q[i]) {
-                    let r = find(&mut parent, i);
-                    top[r] = top[r].max(l + a[i]);
+                    top[set[i]] = top[set[i]].max(l + a[i]);
                 }
             }
             for i in 0..n {
-                let t = top[find(&mut parent, i)];
+                let t = top[set[i]];
                 if t.is_finite() {
                     a[i] -= t;
                 }
             }
             for j in 0..n {
-                let t = top[find(&mut parent, n + j)];
+                let t = top[set[n + j]];
                 if t.is_finite() {
                     b[j] += t;
                 }
             }
         }
         Self::from_exponents(&a, &b)
+    }
+
+    /// Raises each part of the problem that no entry of `M` and no row relation joins to the
+    /// others (a set of rows and columns that `M` couples, with the rows each of `tied` ties:
+    /// a structure beside another in one contact zone, or the friction rows of a body that
+    /// slides on frictionless pairs, which no relation ties to its normal rows) by a power of
+    /// two `2^s`: as far as each kind of its loads (each of `loads`, the right-hand sides the
+    /// scaled rows carry: the constant load, the load's direction) reaches the largest of that
+    /// kind over all parts, and no further (the smallest of the kinds' gaps). `E M D` does not
+    /// change (the part's rows times `2^s`, its columns over `2^s`), only the size of the
+    /// part's values: a part whose loads are a billionth of another's is no longer below the
+    /// pivot tolerance of the columns both share (the load's). A part is raised only by
+    /// `2^RAISE_FROM` ([`RAISE_FROM`]) to `2^RAISE_FLOOR` ([`RAISE_FLOOR`]): closer, the engine
+    /// sees it as it is; farther, its loads could be round-off of the others' terms. No kind
+    /// of its loads passes the largest of that kind: a part's constant load raised past the
+    /// others' (its load's direction far below theirs) would make their values at the start
+    /// round-off of its own. Returns `s` a row (zero where nothing was raised).
+    pub fn raise_parts(&mut self, m: &Mat<f64>, loads: &[&[f64]], tied: &[Vec<usize>]) -> Vec<i32> {
+        let n = m.nrows();
+        let set = coupled_sets(m, tied);
+        // The largest binary exponent of each kind of load in each set, and over all sets.
+        let mut top = vec![vec![i32::MIN; 2 * n]; loads.len()];
+        for (k, v) in loads.iter().enumerate() {
+            for i in 0..n {
+                if let Some(e) = exponent(v[i]) {
+                    top[k][set[i]] = top[k][set[i]].max(e + self.row_exp[i]);
+                }
+            }
+        }
+        let largest: Vec<i32> = top
+            .iter()
+            .map(|t| t.iter().copied().max().unwrap_or(i32::MIN))
+            .collect();
+        let mut shift = vec![0i32; 2 * n];
+        for (x, s) in shift.iter_mut().enumerate() {
+            if set[x] != x {
+                continue;
+            }
+            // The smallest gap over the kinds of load this set carries.
+            let gap = (0..loads.len())
+                .filter(|&k| top[k][x] != i32::MIN)
+                .map(|k| largest[k] - top[k][x])
+                .min();
+            if let Some(g) = gap.filter(|g| (RAISE_FROM..=RAISE_FLOOR).contains(g)) {
+                *s = g;
+            }
+        }
+        // A set whose scales would leave the range of the exponents is left as it is.
+        for i in 0..n {
+            let r = set[i];
+            if shift[r] != 0 && self.row_exp[i] + shift[r] > MAX_EXP {
+                shift[r] = 0;
+            }
+            let c = set[n + i];
+            if shift[c] != 0 && self.col_exp[i] - shift[c] < -MAX_EXP {
+                shift[c] = 0;
+            }
+        }
+        let mut shifts = vec![0; n];
+        for (i, s) in shifts.iter_mut().enumerate() {
+            *s = shift[set[i]];
+            self.row_exp[i] += *s;
+            self.row[i] = ldexp(1.0, self.row_exp[i]);
+        }
+        for j in 0..n {
+            self.col_exp[j] -= shift[set[n + j]];
+            self.col[j] = ldexp(1.0, self.col_exp[j]);
+        }
+        shifts
     }
 
     fn from_exponents(a: &[f64], b: &[f64]) -> Self {
@@ -289,5 +387,55 @@ impl Scaling {
     /// `z = D ẑ`.
     pub fn unscale_z(&self, z: &[f64]) -> Vec<f64> {
         z.iter().zip(&self.col).map(|(a, d)| a * d).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Parts that `M` does not couple — rows and columns {0, 1}, {2}, {3}, {4}, {5} and {6} —
+    /// whose constant loads are 2^0, 2^-30, 2^-50, none, 2^-10 and 2^0 and whose loads'
+    /// directions are 2^-1 (the largest), none, none, none, none and 2^-31, after the
+    /// equilibration: by hand the second is raised by 2^30 (its row scale times 2^30, its
+    /// column scale over 2^30, so that `E M D` keeps every bit), the third is left (below
+    /// `2^-RAISE_FLOOR`), the fourth has nothing to raise, the fifth is left (within
+    /// `2^-RAISE_FROM`), and the sixth is left: its direction is 2^30 below the largest, but
+    /// its constant load is as large as the largest already.
+    #[test]
+    fn raise_parts_brings_each_part_to_the_largest_parts_loads() {
+        let m = Mat::from_fn(7, 7, |i, j| match (i, j) {
+            (0, 0) | (1, 1) => 2.0,
+            (0, 1) | (1, 0) => 1.0,
+            (2, 2) | (3, 3) | (4, 4) | (5, 5) | (6, 6) => 4.0,
+            _ => 0.0,
+        });
+        let mut s = Scaling::equilibrate(&m, &[]);
+        let before = s.clone();
+        let (scaled, _) = s.scale_matrix(&m);
+        let q0 = [
+            -ldexp(1.0, -before.row_exp[0]),
+            0.0,
+            -ldexp(1.0, -30 - before.row_exp[2]),
+            ldexp(1.0, -50 - before.row_exp[3]),
+            0.0,
+            ldexp(1.0, -10 - before.row_exp[5]),
+            ldexp(1.0, -before.row_exp[6]),
+        ];
+        let mut d = [0.0; 7];
+        d[1] = ldexp(0.5, -before.row_exp[1]);
+        d[6] = ldexp(1.0, -31 - before.row_exp[6]);
+        let shifts = s.raise_parts(&m, &[&q0, &d], &[]);
+        assert_eq!(shifts, vec![0, 0, 30, 0, 0, 0, 0]);
+        for (i, &shift) in shifts.iter().enumerate() {
+            assert_eq!(s.row_exp[i], before.row_exp[i] + shift);
+            assert_eq!(s.col_exp[i], before.col_exp[i] - shift);
+            assert_eq!(s.row[i], ldexp(1.0, s.row_exp[i]));
+            assert_eq!(s.col[i], ldexp(1.0, s.col_exp[i]));
+        }
+        assert_eq!(s.scale_matrix(&m).0, scaled, "E M D keeps every bit");
+        // The raised part's load is now as large as the first part's.
+        let q_hat = s.scale_rows(&q0);
+        assert_eq!(q_hat[2], q_hat[0]);
     }
 }
