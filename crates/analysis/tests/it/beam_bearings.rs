@@ -1491,19 +1491,17 @@ fn a_frictionless_beam_pushed_beside_a_heavy_one_slides_from_the_start() {
 
 /// A reviewer's portal (r1186, N·m): legs 8 m high 4 m apart on feet of friction 0.511 and
 /// 0.513, its beam under 3.2004 N/m, pushed at the left leg's top by (−119.99, 18.98)·p N —
-/// beside a beam 20 m above it on three bearings under 6.9e10 N/m that carries 5.3e11 N·p and
-/// 7.8e11 N·m·p (r1186's beam, its constant load made a billion times heavier too). By statics
-/// the portal tips about its left foot when the push's moment there, `119.99·p · 8`, reaches
-/// its weight's, `3.2004 · 4 · 2` (the lift acts through the foot): `p_lim = 0.026672`,
-/// before it could slide (`0.0504`, where `119.99·p` meets `0.51·(12.8 − 18.98·p)`). The
-/// heavy beam does not tip (its loads lie between its bearings). Before, the portal's loads
-/// were below the pivot tolerance of the columns the two structures share, and the path
-/// stopped at a singular basis (exit 1). Now the portal's part of the problem, a billion
-/// times below the beam's in both its constant load and its load's direction, is raised
-/// (`Scaling::raise_parts`). At the limit the right foot carries nothing and the left one the
-/// weight less the lift and the whole push. Both units. (With r1186's own beam, whose
-/// constant load is of the portal's size, the portal is not raised — its constant load would
-/// pass the beam's — and the path still goes on to the sliding: docs/engine.md.)
+/// beside a beam 20 m above it on three bearings that carries 5.3e11 N·p and 7.8e11 N·m·p,
+/// under 69.3 N/m (r1186's) or 6.9e10 N/m (its constant load a billion times heavier too).
+/// By statics the portal tips about its left foot when the push's moment there,
+/// `119.99·p · 8`, reaches its weight's, `3.2004 · 4 · 2` (the lift acts through the foot):
+/// `p_lim = 0.026672`, before it could slide (`0.0504`, where `119.99·p` meets
+/// `0.51·(12.8 − 18.98·p)`). The heavy beam does not tip (its loads lie between its
+/// bearings). Before, the portal's loads were below the pivot tolerance of the columns the two
+/// structures share: the path went on to the portal's sliding, whose point failed its check,
+/// or stopped at a singular basis (exit 1 either way). Now the portal's part of the problem is
+/// raised (`Scaling::raise_parts`). At the limit the right foot carries nothing and the left
+/// one the weight less the lift and the whole push. Both units.
 #[test]
 fn a_portal_beside_a_beam_a_billion_times_heavier_tips_at_the_load_by_hand() {
     let (q, fx, fy, h, span) = (
@@ -1514,9 +1512,14 @@ fn a_portal_beside_a_beam_a_billion_times_heavier_tips_at_the_load_by_hand() {
         4.0,
     );
     let by_hand = q * span * (span / 2.0) / (fx * h);
-    for kn_mm in [false, true] {
+    for (kn_mm, heavy) in [(false, false), (true, false), (false, true), (true, true)] {
         let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
-        let what = format!("kN·mm {kn_mm}");
+        let what = format!("kN·mm {kn_mm}, heavy {heavy}");
+        let zq = if heavy {
+            69289075446.48867
+        } else {
+            69.28907544648867
+        };
         let leg = |name: &str, x: f64| {
             format!(
                 "[[members]]\nname = \"{name}\"\nstart = [{x:e}, 0.0]\nend = [{x:e}, {h:e}]\n\
@@ -1579,7 +1582,7 @@ fn a_portal_beside_a_beam_a_billion_times_heavier_tips_at_the_load_by_hand() {
             fy = fy * f,
             zy = 20.0 * l,
             zx = 6.0 * l,
-            zq = -69289075446.48867 * f / l,
+            zq = -zq * f / l,
             zf = -531683148930.02405 * f,
             zm = -775498540334.4701 * f * l,
         );

@@ -32,14 +32,6 @@ const MAX_SWEEPS: usize = 64;
 /// for a load.
 pub(crate) const RAISE_FLOOR: i32 = 42;
 
-/// ... and only from `2^-20` (about `1e-6`) of them down: a part within that is seen by the
-/// engine's relative tolerances (the pivot tolerance, `1e-9` of a column) with a margin of a
-/// thousand, and raising it would only move it against the parts of the same structure beside
-/// it (a frictionless pair's friction rows, which `M` does not couple to its normal row), whose
-/// round-off the engine's checks judge together: the friction rows of a portal on frictionless
-/// feet, raised by 4, put their round-off of `3.4e-12` beyond the start's allowance.
-pub(crate) const RAISE_FROM: i32 = 20;
-
 /// The set of each row `i` (index `i`) and column `j` (index `n + j`) of `m`: rows and columns
 /// joined by the non-zeros of `m`, and the rows of each of `tied` with each other, each set
 /// named by one of its members.
@@ -190,9 +182,9 @@ impl Scaling {
     /// kind over all parts, and no further (the smallest of the kinds' gaps). `E M D` does not
     /// change (the part's rows times `2^s`, its columns over `2^s`), only the size of the
     /// part's values: a part whose loads are a billionth of another's is no longer below the
-    /// pivot tolerance of the columns both share (the load's). A part is raised only by
-    /// `2^RAISE_FROM` ([`RAISE_FROM`]) to `2^RAISE_FLOOR` ([`RAISE_FLOOR`]): closer, the engine
-    /// sees it as it is; farther, its loads could be round-off of the others' terms. No kind
+    /// pivot tolerance of the columns both share (the load's). A part is raised by at most
+    /// `2^RAISE_FLOOR` ([`RAISE_FLOOR`]): farther, its loads could be round-off of the others'
+    /// terms, and it is left as it is. No kind
     /// of its loads passes the largest of that kind: a part's constant load raised past the
     /// others' (its load's direction far below theirs) would make their values at the start
     /// round-off of its own. Returns `s` a row (zero where nothing was raised).
@@ -222,7 +214,7 @@ impl Scaling {
                 .filter(|&k| top[k][x] != i32::MIN)
                 .map(|k| largest[k] - top[k][x])
                 .min();
-            if let Some(g) = gap.filter(|g| (RAISE_FROM..=RAISE_FLOOR).contains(g)) {
+            if let Some(g) = gap.filter(|g| (1..=RAISE_FLOOR).contains(g)) {
                 *s = g;
             }
         }
@@ -398,10 +390,10 @@ mod tests {
     /// whose constant loads are 2^0, 2^-30, 2^-50, none, 2^-10 and 2^0 and whose loads'
     /// directions are 2^-1 (the largest), none, none, none, none and 2^-31, after the
     /// equilibration: by hand the second is raised by 2^30 (its row scale times 2^30, its
-    /// column scale over 2^30, so that `E M D` keeps every bit), the third is left (below
-    /// `2^-RAISE_FLOOR`), the fourth has nothing to raise, the fifth is left (within
-    /// `2^-RAISE_FROM`), and the sixth is left: its direction is 2^30 below the largest, but
-    /// its constant load is as large as the largest already.
+    /// column scale over 2^30, so that `E M D` keeps every bit) and the fifth by 2^10, the
+    /// third is left (below `2^-RAISE_FLOOR`), the fourth has nothing to raise, and the sixth
+    /// is left: its direction is 2^30 below the largest, but its constant load is as large as
+    /// the largest already.
     #[test]
     fn raise_parts_brings_each_part_to_the_largest_parts_loads() {
         let m = Mat::from_fn(7, 7, |i, j| match (i, j) {
@@ -426,7 +418,7 @@ mod tests {
         d[1] = ldexp(0.5, -before.row_exp[1]);
         d[6] = ldexp(1.0, -31 - before.row_exp[6]);
         let shifts = s.raise_parts(&m, &[&q0, &d], &[]);
-        assert_eq!(shifts, vec![0, 0, 30, 0, 0, 0, 0]);
+        assert_eq!(shifts, vec![0, 0, 30, 0, 0, 10, 0]);
         for (i, &shift) in shifts.iter().enumerate() {
             assert_eq!(s.row_exp[i], before.row_exp[i] + shift);
             assert_eq!(s.col_exp[i], before.col_exp[i] - shift);
@@ -434,8 +426,9 @@ mod tests {
             assert_eq!(s.col[i], ldexp(1.0, s.col_exp[i]));
         }
         assert_eq!(s.scale_matrix(&m).0, scaled, "E M D keeps every bit");
-        // The raised part's load is now as large as the first part's.
+        // The raised parts' loads are now as large as the first part's.
         let q_hat = s.scale_rows(&q0);
         assert_eq!(q_hat[2], q_hat[0]);
+        assert_eq!(q_hat[5], -q_hat[0]);
     }
 }
