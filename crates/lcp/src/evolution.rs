@@ -150,6 +150,9 @@ pub struct EvolutionSolver {
     /// The settings' row relations that the data satisfy, in the equilibrated rows: they
     /// decide the ties of a step judged on the structure's equations.
     relations: std::sync::Arc<crate::pivoting::relations::Relations>,
+    /// The parts of the problem that `M` and the row relations couple
+    /// ([`crate::pivoting::scaling::coupled_sets`]): each stage raises them to one size.
+    sets: Vec<usize>,
 }
 
 impl std::fmt::Debug for EvolutionSolver {
@@ -189,12 +192,19 @@ impl EvolutionSolver {
             &prep,
             &settings.row_relations,
         ));
+        let tied: Vec<Vec<usize>> = settings
+            .row_relations
+            .iter()
+            .map(|r| r.terms.iter().map(|&(i, _)| i).collect())
+            .collect();
+        let sets = crate::pivoting::scaling::coupled_sets(&problem.m, &tied);
         Ok(Self {
             problem,
             settings,
             n,
             prep,
             relations,
+            sets,
         })
     }
 
@@ -206,6 +216,17 @@ impl EvolutionSolver {
     /// The problem as given.
     pub fn problem(&self) -> &EvolutionProblem {
         &self.problem
+    }
+
+    /// The problem's parts raised to one size on a stage's right-hand side `h` and direction
+    /// `d` (`Scaling::raise_sets`), where any part is raised.
+    fn stage_prep(&self, h: &[f64], d: &[f64]) -> Option<Prepared> {
+        let mut scaling = self.prep.scaling.clone();
+        let raised = scaling
+            .raise_sets(&self.sets, &[h, d])
+            .iter()
+            .any(|&s| s != 0);
+        raised.then(|| self.prep.rescaled(scaling))
     }
 
     fn tolerances(&self) -> Tolerances {
@@ -404,7 +425,12 @@ impl EvolutionSolver {
         let n = self.n;
         let progress = &self.settings.progress;
         let h = self.rhs_at(from);
-        let cols = self.prep.columns(&h, d);
+        // The stage's parts raised to one size, as a path's (`Scaling::raise_parts`, on the
+        // stage's right-hand side and direction): the basis it goes on from is the same on
+        // both scalings (`E M D` is).
+        let raised = self.stage_prep(&h, d);
+        let prep = raised.as_ref().unwrap_or(&self.prep);
+        let cols = prep.columns(&h, d);
         let tol = self.tolerances();
         let mut piv = Pivoter::new(
             &cols,
@@ -422,8 +448,8 @@ impl EvolutionSolver {
             .filter(|j| j.order() == n)
             .map(|judge| crate::pivoting::pivot::Judging {
                 judge,
-                row: self.prep.scaling.row.clone(),
-                col: self.prep.scaling.col.clone(),
+                row: prep.scaling.row.clone(),
+                col: prep.scaling.col.clone(),
                 relations: Some(self.relations.clone()),
             });
         let reset = &self.problem.incremental;
@@ -448,8 +474,8 @@ impl EvolutionSolver {
                     zc[v - n] += piv.beta[slot].max(0.0);
                 }
             }
-            let x = self.prep.scaling.unscale_x(&piv.cols.values(&xc));
-            let dz = self.prep.scaling.unscale_z(&piv.cols.values(&zc));
+            let x = prep.scaling.unscale_x(&piv.cols.values(&xc));
+            let dz = prep.scaling.unscale_z(&piv.cols.values(&zc));
             let z = from.z.iter().zip(&dz).enumerate().map(
                 |(j, (z0, dzj))| {
                     if reset[j] {
@@ -601,9 +627,7 @@ impl EvolutionSolver {
             }
             let Some((slot, theta)) = step else {
                 if t_rate == 0.0 {
-                    break StageEnding::Mechanism(mechanism_mode(
-                        &self.prep, &piv, entering, &alpha,
-                    ));
+                    break StageEnding::Mechanism(mechanism_mode(prep, &piv, entering, &alpha));
                 }
                 break StageEnding::TurnsBack;
             };
@@ -692,7 +716,7 @@ impl EvolutionSolver {
                     last[v - n] = piv.beta[slot].max(0.0);
                 }
             }
-            self.prep.scaling.unscale_z(&piv.cols.values(&last))
+            prep.scaling.unscale_z(&piv.cols.values(&last))
         };
         let last_increment = increments(&piv);
         // A mechanism holds the state of the last step that moved, as that step formed it

@@ -1428,7 +1428,7 @@ fn a_limit_read_below_zero_on_a_path_that_never_rose_is_the_start() {
 /// 25 kN/m, on two bearings of friction 0.4, pushed along its axis by 100 kN·p) and, 10 m above
 /// it, beam `b` (4 m under 0.5 N/m, on two frictionless bearings, pushed along its axis by
 /// `push`·p N).
-fn two_beams(push: f64, kn_mm: bool) -> String {
+pub(crate) fn two_beams(push: f64, kn_mm: bool) -> String {
     let (f, l) = if kn_mm { (1e-3, 1e3) } else { (1.0, 1.0) };
     let beam = |name: &str, y: f64, friction: f64, q: f64, fx: f64| {
         format!(

@@ -606,3 +606,49 @@ fn a_structure_free_along_x_pushed_is_a_mechanism_at_the_stages_start() {
         }
     }
 }
+
+/// [`crate::beam_bearings::two_beams`] as a history: the weights, then the pushes (beam `b`'s
+/// 1e-6 N, 1e-11 of `a`'s). By statics `b` slides as soon as it is pushed — nothing holds it
+/// along its axis: a mechanism at `s = 0` of the second stage, `b`'s two pairs sliding alike,
+/// `a`'s still — from the weights' state (half of each beam's weight on each bearing, no
+/// friction). Before, the stage's columns held both beams' loads at the size of `a`'s: it went
+/// on to `a`'s sliding at `s = 0.4`, whose state failed its check (exit 1). Each stage now
+/// raises the parts of the problem to one size, as a path does (`Scaling::raise_sets`). Both
+/// units.
+#[test]
+fn a_frictionless_beam_pushed_beside_a_heavy_one_in_a_history_slides_from_the_stages_start() {
+    for kn_mm in [false, true] {
+        let what = format!("kN·mm {kn_mm}");
+        let f = if kn_mm { 1e-3 } else { 1.0 };
+        let text = crate::beam_bearings::two_beams(1e-6, kn_mm)
+            .replace("[[loads.constant.", "[[loads.dead.")
+            .replace("[[loads.variable.", "[[loads.push.")
+            .replace("[solve]\ntrace = \"end\"\n", "")
+            + "[[history]]\nname = \"weights\"\nfactors = { dead = 1.0 }\n\
+               [[history]]\nname = \"pushes\"\nfactors = { push = 1.0 }\n";
+        let a = analyse_text(&text, &what).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let stages = &a.history.stages;
+        assert_eq!(stages.len(), 2, "{what}");
+        assert_eq!(stages[0].status, StageStatus::Completed, "{what}");
+        let st = &stages[1];
+        assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
+        assert_eq!(st.s_end, 0.0, "{what}");
+        let mode = st.mechanism.as_ref().expect("a mode");
+        for (k, &(dn, dt)) in mode.iter().enumerate() {
+            assert!(dn.abs() < 1e-9, "{what}: {mode:?}");
+            if k < 2 {
+                assert!(dt.abs() < 1e-9, "{what}: {mode:?}");
+            } else {
+                assert!(
+                    (dt - mode[2].1).abs() < 1e-9 && dt.abs() > 0.5,
+                    "{what}: {mode:?}"
+                );
+            }
+        }
+        for (c, half) in st.pairs.iter().zip([50000.0, 50000.0, 1.0, 1.0]) {
+            let n = half * f;
+            assert!((c.x_n - n).abs() <= 1e-9 * n, "{what}: {c:?} against {n}");
+            assert_eq!(c.x_t, 0.0, "{what}: {c:?}");
+        }
+    }
+}

@@ -35,7 +35,7 @@ pub(crate) const RAISE_FLOOR: i32 = 42;
 /// The set of each row `i` (index `i`) and column `j` (index `n + j`) of `m`: rows and columns
 /// joined by the non-zeros of `m`, and the rows of each of `tied` with each other, each set
 /// named by one of its members.
-fn coupled_sets(m: &Mat<f64>, tied: &[Vec<usize>]) -> Vec<usize> {
+pub(crate) fn coupled_sets(m: &Mat<f64>, tied: &[Vec<usize>]) -> Vec<usize> {
     let n = m.nrows();
     let mut parent: Vec<usize> = (0..2 * n).collect();
     fn find(p: &mut [usize], mut x: usize) -> usize {
@@ -189,8 +189,12 @@ impl Scaling {
     /// others' (its load's direction far below theirs) would make their values at the start
     /// round-off of its own. Returns `s` a row (zero where nothing was raised).
     pub fn raise_parts(&mut self, m: &Mat<f64>, loads: &[&[f64]], tied: &[Vec<usize>]) -> Vec<i32> {
-        let n = m.nrows();
-        let set = coupled_sets(m, tied);
+        self.raise_sets(&coupled_sets(m, tied), loads)
+    }
+
+    /// [`Scaling::raise_parts`] on the sets [`coupled_sets`] gave.
+    pub fn raise_sets(&mut self, set: &[usize], loads: &[&[f64]]) -> Vec<i32> {
+        let n = set.len() / 2;
         // The largest binary exponent of each kind of load in each set, and over all sets.
         let mut top = vec![vec![i32::MIN; 2 * n]; loads.len()];
         for (k, v) in loads.iter().enumerate() {
