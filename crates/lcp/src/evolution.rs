@@ -192,12 +192,7 @@ impl EvolutionSolver {
             &prep,
             &settings.row_relations,
         ));
-        let tied: Vec<Vec<usize>> = settings
-            .row_relations
-            .iter()
-            .map(|r| r.terms.iter().map(|&(i, _)| i).collect())
-            .collect();
-        let sets = crate::pivoting::scaling::coupled_sets(&problem.m, &tied);
+        let sets = crate::pivoting::scaling::coupled_sets(&problem.m, &settings.relation_rows());
         Ok(Self {
             problem,
             settings,

@@ -135,6 +135,15 @@ impl Settings {
         self.pivot_tolerance.unwrap_or(1e-9)
     }
 
+    /// The rows of each row relation (the rows a relation ties belong to one part of the
+    /// problem: `Scaling::raise_parts`).
+    pub(crate) fn relation_rows(&self) -> Vec<Vec<usize>> {
+        self.row_relations
+            .iter()
+            .map(|r| r.terms.iter().map(|&(i, _)| i).collect())
+            .collect()
+    }
+
     pub(crate) fn cap(&self, n: usize) -> usize {
         self.max_pivots.unwrap_or(20 * n + 100)
     }

@@ -102,12 +102,7 @@ impl PathSolver {
         // tightening the traced path is the tightened problem's, whose direction the caller
         // chose: scaled as given.
         let (mut prep, unraised) = if c0 == 0.0 {
-            let tied: Vec<Vec<usize>> = settings
-                .row_relations
-                .iter()
-                .map(|r| r.terms.iter().map(|&(i, _)| i).collect())
-                .collect();
-            Prepared::from_owned_raising(m, &[&q0, &d], &tied)
+            Prepared::from_owned_raising(m, &[&q0, &d], &settings.relation_rows())
         } else {
             (Prepared::from_owned(m), None)
         };

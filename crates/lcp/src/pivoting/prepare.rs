@@ -60,8 +60,9 @@ pub(crate) struct Prepared {
     pub m_scaled: std::sync::Arc<ColumnStore>,
     /// Every original entry is recovered exactly from `m_scaled`.
     exact: bool,
-    /// The original `M`, kept only when it is not recovered exactly.
-    original: Option<Mat<f64>>,
+    /// The original `M`, kept only when it is not recovered exactly (shared with the
+    /// [`Prepared::rescaled`] copies).
+    original: Option<std::sync::Arc<Mat<f64>>>,
     /// Rows of `M` that the slack-row pass forms from row relations ([`Prepared::derive_rows`]).
     pub derived: Option<std::sync::Arc<DerivedRows>>,
 }
@@ -94,9 +95,15 @@ impl Prepared {
     /// The equilibration of `m`, which it takes: one copy of the matrix is held (the
     /// equilibrated one), and the original as well only if it cannot be recovered exactly.
     pub fn from_owned(m: Mat<f64>) -> Self {
-        let mut prep = Self::new(&m);
+        let scaling = Scaling::equilibrate(&m, &[]);
+        Self::owning(m, scaling)
+    }
+
+    /// `m` scaled by `scaling`, kept only where its entries are not recovered exactly.
+    fn owning(m: Mat<f64>, scaling: Scaling) -> Self {
+        let mut prep = Self::with_scaling(&m, scaling);
         if !prep.exact {
-            prep.original = Some(m);
+            prep.original = Some(std::sync::Arc::new(m));
         }
         prep
     }
@@ -113,16 +120,12 @@ impl Prepared {
         let mut scaling = Scaling::equilibrate(&m, &[]);
         let before = scaling.clone();
         let raised = scaling.raise_parts(&m, loads, tied).iter().any(|&s| s != 0);
-        let mut prep = Self::with_scaling(&m, scaling);
-        if !prep.exact {
-            prep.original = Some(m);
-        }
-        (prep, raised.then_some(before))
+        (Self::owning(m, scaling), raised.then_some(before))
     }
 
     /// The same problem on another `scaling` of the same `E M D` (one of the two
-    /// [`Prepared::from_owned_raising`] gives): the scaled matrix and the derived rows are
-    /// shared (a relation's rows are raised together, so that its derived row is the same).
+    /// [`Prepared::from_owned_raising`] gives): the scaled matrix, the original where it is
+    /// kept and the derived rows are shared (a relation's rows are raised together, so that its derived row is the same).
     pub fn rescaled(&self, scaling: Scaling) -> Self {
         Self {
             n: self.n,
@@ -180,7 +183,7 @@ impl Prepared {
     /// The original `M` as a matrix (an `O(n²)` copy; for a [`Prepared::from_owned`]).
     pub fn original_matrix(&self) -> Mat<f64> {
         match &self.original {
-            Some(m) => m.clone(),
+            Some(m) => Mat::clone(m),
             None => Mat::from_fn(self.n, self.n, |i, j| self.original_entry(i, j)),
         }
     }
