@@ -206,3 +206,62 @@ fn generated_block_paths_end_only_at_the_tipping_load() {
     );
     eprintln!("{answered} paths answered, {failed} failed or refused");
 }
+
+/// Steel blocks (1 m × 1 m) held by heel springs of 10 and 2 N/m — 5e-11 and 1e-11 of the
+/// block's stiffness —, weighed and pushed at the top to half their tipping load, the path
+/// traced to its end. By hand: at the target the pairs carry the weight `W` and the push (all
+/// of it, or `f·W` where the push has passed the friction's capacity and the block slides
+/// against the spring), and the path ends in the mechanism at the tipping load `W·B/(2H)` (the
+/// spring acts at the base, with no moment about the toe). Each failed in one of N·m and
+/// kN·mm (exit 1): at the tipping the direction in which the heel lifts holds the load, but
+/// the condensed data gave the toe's normal force a fall of 5e-7 of the column — round-off of
+/// the slips of hundreds of metres — and the pivot on it left a singular basis. Judged on the
+/// structure's equations (`TINY_PIVOT`), the limit is within 1e-4 of the statics' (4.6e-5 at
+/// most here: the slips' round-off; the sweep above asks 1e-5 of stiffer springs).
+#[test]
+fn blocks_on_soft_heel_springs_tip_at_the_load_by_hand_in_both_units() {
+    use unilateral_analysis::Outcome;
+    use unilateral_contact::{Follow, SolveSettings};
+    for (mesh, f, k, w) in [
+        ((5, 4), 0.45, 10.0, 8902.0),
+        ((2, 1), 0.24, 10.0, 9885.0),
+        ((8, 1), 0.44, 2.0, 8065.0),
+    ] {
+        let tip = w / 2.0 / 10_000.0;
+        let target = tip / 2.0;
+        for kn_mm in [false, true] {
+            let what = format!("{mesh:?} mesh, f = {f}, k = {k}, W = {w}, kN·mm {kn_mm}");
+            let text = block_history_text((mesh.0, mesh.1, 1.0, 1.0), (f, k, w), &[], kn_mm);
+            let text = text
+                .split("[[history]]")
+                .next()
+                .unwrap_or_default()
+                .replace("[[loads.weight.nodal]]", "[[loads.constant.nodal]]")
+                .replace("[[loads.push.nodal]]", "[[loads.variable.nodal]]");
+            let p = read("soft.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let settings = SolveSettings {
+                tightening: 0.0,
+                target,
+                follow: Follow::ToEnd,
+                ..Default::default()
+            };
+            let a = unilateral_analysis::analyze(&p.model, &settings)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            match a.solution.outcome {
+                Outcome::Mechanism { p_limit, .. } => assert!(
+                    (p_limit - tip).abs() <= 1e-4 * tip,
+                    "{what}: a mechanism at {p_limit} against {tip}"
+                ),
+                ref other => panic!("{what}: {other:?}"),
+            }
+            let force = if kn_mm { 1e-3 } else { 1.0 };
+            let pairs = &a.solution.pairs;
+            let n: f64 = pairs.iter().map(|r| r.x_n).sum::<f64>() / force;
+            let t: f64 = pairs.iter().map(|r| r.x_t).sum::<f64>() / force;
+            let push = target * 10_000.0;
+            let friction = push.min(f * w);
+            assert!((n - w).abs() <= 1e-6 * w, "{what}: ΣN = {n}");
+            assert!((t.abs() - friction).abs() <= 1e-6 * w, "{what}: ΣT = {t}");
+        }
+    }
+}
