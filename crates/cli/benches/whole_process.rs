@@ -377,6 +377,12 @@ fn main() {
         "peak MiB",
         "peak/n²"
     );
+    // Every size's directory is removed at the end, not when the next size starts: on a file
+    // system without a journal (this machine's), ext4 passes over the inodes freed in the last
+    // minutes when it makes a file, and a size's frames made just after the thousands of files
+    // of the size before were removed cost the kernel seconds more (`docs/performance.md`,
+    // round 43).
+    let mut dirs = Vec::new();
     for m in sizes() {
         let dir = tempfile::tempdir().unwrap();
         let kept = std::env::var("UNILATERAL_BENCH_KEEP")
@@ -470,10 +476,9 @@ fn main() {
             });
             println!("{m:>5} {case}: {files} files, {:.0} MB", bytes as f64 / 1e6);
             // The same run again into the directory the first wrote: its files are written
-            // over in place (a user's second run). The first run's files are new, and on a
-            // virtual machine that hands free memory back to its host the page cache's fresh
-            // pages cost the kernel more than writing the bytes (`docs/performance.md`,
-            // round 39).
+            // over in place (a user's second run). The first run's files are new, and on this
+            // virtual machine the first touch of the page cache's fresh pages costs the kernel
+            // more than writing the bytes (`docs/performance.md`, rounds 39 and 43).
             row(&format!("{case}/w"), &run(&a, d));
         }
         if m <= report_max() && selected("beam+bp") {
@@ -486,6 +491,8 @@ fn main() {
                 r.json_bytes as f64 / 1e6
             );
         }
+        dirs.push(dir);
     }
     println!("load average after: {}", load_average());
+    drop(dirs);
 }
