@@ -138,6 +138,24 @@ fn generated_block_histories_end_only_at_the_tipping_load() {
     eprintln!("{answered} stages completed, {tipped} tipped, {failed} failed or refused");
 }
 
+/// A generated steel block ([`block_history_text`]'s parameters) on the load path: its weight
+/// the constant load, its push (10 kN at the top corner) the variable one.
+fn block_path(
+    mesh: (usize, usize, f64, f64),
+    spring: (f64, f64, f64),
+    kn_mm: bool,
+    what: &str,
+) -> unilateral_io::StructuralProblem {
+    let text = block_history_text(mesh, spring, &[], kn_mm);
+    let text = text
+        .split("[[history]]")
+        .next()
+        .unwrap_or_default()
+        .replace("[[loads.weight.nodal]]", "[[loads.constant.nodal]]")
+        .replace("[[loads.push.nodal]]", "[[loads.variable.nodal]]");
+    read("block.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"))
+}
+
 /// The same kind of blocks (300 of them, half in kN·mm) on the load path: the weight constant
 /// and the push growing with `p`, to a target of 0.5–1.5 of the tipping load or to the end of
 /// the path. By hand the path ends in the mechanism at the tipping load, and reaches a target
@@ -166,14 +184,7 @@ fn generated_block_paths_end_only_at_the_tipping_load() {
             "case {case}: {mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}, target \
              {target} (tipping at {tip}), {follow:?}, kN·mm {kn_mm}"
         );
-        let text = block_history_text((mesh.0, mesh.1, b, h), (f, k, w), &[], kn_mm);
-        let text = text
-            .split("[[history]]")
-            .next()
-            .unwrap_or_default()
-            .replace("[[loads.weight.nodal]]", "[[loads.constant.nodal]]")
-            .replace("[[loads.push.nodal]]", "[[loads.variable.nodal]]");
-        let p = read("sweep.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), kn_mm, &what);
         let settings = SolveSettings {
             tightening: 0.0,
             target,
@@ -231,14 +242,7 @@ fn blocks_on_soft_heel_springs_tip_at_the_load_by_hand_in_both_units() {
         let target = tip / 2.0;
         for kn_mm in [false, true] {
             let what = format!("{mesh:?} mesh, f = {f}, k = {k}, W = {w}, kN·mm {kn_mm}");
-            let text = block_history_text((mesh.0, mesh.1, 1.0, 1.0), (f, k, w), &[], kn_mm);
-            let text = text
-                .split("[[history]]")
-                .next()
-                .unwrap_or_default()
-                .replace("[[loads.weight.nodal]]", "[[loads.constant.nodal]]")
-                .replace("[[loads.push.nodal]]", "[[loads.variable.nodal]]");
-            let p = read("soft.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let p = block_path((mesh.0, mesh.1, 1.0, 1.0), (f, k, w), kn_mm, &what);
             let settings = SolveSettings {
                 tightening: 0.0,
                 target,
