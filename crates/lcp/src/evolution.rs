@@ -584,6 +584,17 @@ impl EvolutionSolver {
                     (alpha, step, judged) = (j.alpha, j.step, true);
                 }
             }
+            // A tiny pivot whose load barely moves, taken from the structure's equations where
+            // they find a mechanism there, as on the load path
+            // ([`Pivoter::tiny_pivot_mechanism`]): a block on a heel spring of 10 N/m pushed in
+            // a stage past its tipping load stopped there at a singular basis.
+            if !judged && entering != driver {
+                let raw = ds.map_or(0.0, |ds| -alpha[ds]);
+                if let Some(j) = piv.tiny_pivot_mechanism(entering, &alpha, step, raw, t_now) {
+                    t_rate = 0.0;
+                    (alpha, step, judged) = (j.alpha, j.step, true);
+                }
+            }
             // A rate below the column's tolerance that was not judged still moves `s` by the
             // whole column at the pivot: where the step carries `s` a real way (1e-6 of the
             // stage) it counts, as on the load path (`Pivoter::run`) — read as zero, a sliding

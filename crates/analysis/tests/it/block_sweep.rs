@@ -269,3 +269,27 @@ fn blocks_on_soft_heel_springs_tip_at_the_load_by_hand_in_both_units() {
         }
     }
 }
+
+/// A steel block (1 m × 1 m, 4 × 3 elements, friction 0.49, W = 9692 N) held by a heel spring
+/// of 5 N/m, weighed in one stage and pushed in the next to 1.2 times its tipping load
+/// `W·B/(2H)`: by hand the push stage ends in the mechanism at the tipping load. In N·m it
+/// stopped there at a singular basis (a numerical failure: exit 1), the condensed data's
+/// toe force falling at round-off of the slips; judged on the structure's equations
+/// (`Pivoter::tiny_pivot_mechanism`), the mechanism, in both units.
+#[test]
+fn a_block_on_a_soft_heel_spring_pushed_past_its_tipping_load_in_a_stage_tips_there() {
+    let (w, tip) = (9692.0, 9692.0 / 2.0 / 10_000.0);
+    let push = 1.2 * tip;
+    for kn_mm in [false, true] {
+        let what = format!("kN·mm {kn_mm}");
+        let text = block_history_text((4, 3, 1.0, 1.0), (0.49, 5.0, w), &[push], kn_mm);
+        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let st = &a.history.stages[1];
+        assert_eq!(st.status, StageStatus::Mechanism, "{what}: {:?}", st.reason);
+        let load = st.s_end * push;
+        assert!(
+            (load - tip).abs() <= 1e-4 * tip,
+            "{what}: tipped at {load} against {tip}"
+        );
+    }
+}

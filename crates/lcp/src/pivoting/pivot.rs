@@ -148,7 +148,8 @@ const LOAD_BELOW_FORCES: f64 = 300.0;
 const LOAD_STEP: f64 = 1e-3;
 
 /// A pivot whose blocking row falls, and whose load moves, at rates below this fraction of the
-/// column's largest rate is a candidate for the structure's equations ([`Pivoter::run`]): they
+/// column's largest rate is a candidate for the structure's equations
+/// ([`Pivoter::tiny_pivot_mechanism`]): they
 /// take it where they find a mechanism there. The blocks on soft heel springs that failed had
 /// such pivots at 3e-8 to 1.3e-6 of their columns; a 300-bearing beam's path meets 272 pivots
 /// below 1e-4, none of them a mechanism.
@@ -1421,6 +1422,48 @@ impl<'a> Pivoter<'a> {
         }
     }
 
+    /// The structure's mechanism at a tiny pivot: where the blocking row of `step` falls, and
+    /// the load moves (`rate`, the load `now` reached), at rates below [`TINY_PIVOT`] of the
+    /// column's largest — the load's rate below the column's tolerance, or the step carrying
+    /// the load by more than [`TINY_PIVOT_STEP`] of itself with the blocking value below
+    /// [`TINY_VALUE`] of the largest —, the structure's equations' direction where it holds
+    /// the load and nothing blocks it. `None` elsewhere: the condensed data's pivot stands
+    /// (judged and taken at every tiny pivot, three bearing-beam paths went other ways: a late
+    /// sliding limit missed, a ray read as a mechanism).
+    ///
+    /// A steel block on a heel spring of 1 N/m (5e-12 of its stiffness), its pairs slipping
+    /// by hundreds of metres, tips about its toe at `W·B/(2H)`: the direction in which its
+    /// heel lifts holds the load and the toe's force, but the condensed data gave the load a
+    /// rate of 8e-8 and the toe's normal force a fall of 5.5e-7 of the column — the soft
+    /// spring's condition times ε, though 4e-6 of the terms that formed them
+    /// ([`Pivoter::check_ray`]'s measure) — and the pivot on that fall left a singular basis:
+    /// exit 1 for most blocks on springs of 0.1–10 N/m, on the load path and in a history.
+    pub fn tiny_pivot_mechanism(
+        &self,
+        entering: usize,
+        alpha: &[f64],
+        step: Option<Choice>,
+        rate: f64,
+        now: f64,
+    ) -> Option<JudgedStep> {
+        let amax = max_abs(alpha);
+        let sure = rate.abs() > self.tol.pivot * amax;
+        let tiny = self.judge.is_some()
+            && entering != self.cols.driver()
+            && rate.abs() < TINY_PIVOT * amax
+            && step.is_some_and(|(slot, th)| {
+                alpha[slot].abs() < TINY_PIVOT * amax
+                    && (!sure
+                        || ((th == 0.0 || (th * rate).abs() > TINY_PIVOT_STEP * now.abs())
+                            && self.beta[slot].abs() < TINY_VALUE * max_abs(&self.beta)))
+            });
+        if !tiny {
+            return None;
+        }
+        self.judged_on_structure(entering)
+            .filter(|j| j.step.is_none() && j.load_rate(self.driver_slot()) <= 0.0)
+    }
+
     /// Whether the direction `alpha` of the column of `entering` moves only displacements
     /// ([`Pivoter::near_mechanism`]) and takes the load back (`rate < 0`), where the
     /// structure's equations are at hand to judge it: the first of the load path's reasons to
@@ -1621,52 +1664,31 @@ impl<'a> Pivoter<'a> {
                                 }))
                             || self.runaway(step, amax) > RUNAWAY
                     });
-            // A pivot on a rate below [`TINY_PIVOT`] of the column's largest, where the load's
-            // rate is below it too, is taken from the structure's equations where they find a
-            // mechanism there (and their direction holds the load with nothing blocking it). A
-            // steel block on a heel spring of 1 N/m (5e-12 of its stiffness), its pairs
-            // slipping by hundreds of metres, tips about its toe at `W·B/(2H)`: the direction
-            // in which its heel lifts holds the load and the toe's force, but the condensed data
-            // gave the load a rate of 8e-8 and the toe's normal force a fall of 5.5e-7 of the
-            // column — the soft spring's condition times ε, though 4e-6 of the terms that
-            // formed them ([`Pivoter::check_ray`]'s measure) — and the pivot on that fall left
-            // a singular basis: exit 1 for most blocks on springs of 0.1–10 N/m.
-            let tiny = self.judge.is_some()
-                && !near
-                && entering != driver
-                && t_rate.abs() < TINY_PIVOT * amax
-                && step.is_some_and(|(slot, th)| {
-                    alpha[slot].abs() < TINY_PIVOT * amax
-                        && (!t_sure
-                            || ((th * t_rate).abs() > TINY_PIVOT_STEP * t_now.abs()
-                                && self.beta[slot].abs() < TINY_VALUE * max_abs(&self.beta)))
-                });
-            if !t_sure || near || tiny {
-                let j = if near {
-                    self.judged_step_if(entering, step, t_rate, t_now, |_| true)
-                } else if !t_sure {
-                    self.judged_step(entering, step, t_rate, t_now, amax)
-                } else {
-                    None
-                };
-                // Where the structure's equations move the load or block the step, the condensed
-                // data's pivot stands: judged and taken there, three of the bearing beams' paths
-                // went other ways (a late sliding limit missed, a ray read as a mechanism).
-                let j = j.or_else(|| {
-                    let r = tiny.then(|| self.judged_on_structure(entering)).flatten();
-                    r.filter(|j| j.step.is_none() && j.load_rate(self.driver_slot()) <= 0.0)
-                });
-                if let Some(j) = j {
-                    let rate = j.load_rate(self.driver_slot());
-                    judged = Some(std::mem::replace(&mut alpha, j.alpha));
-                    (step, t_rate) = (j.step, rate);
-                    if rate > 0.0 {
-                        t_sure = true;
-                        self.judged_load_segments.push(records.len());
-                    } else if step.is_none() {
-                        self.judged_mechanism = true;
-                        return (Ending::Ray { alpha }, entering);
-                    }
+            // A tiny pivot whose load barely moves, where no rule above judged it, is taken from
+            // the structure's equations where they find a mechanism there
+            // ([`Pivoter::tiny_pivot_mechanism`]).
+            let j = if near {
+                self.judged_step_if(entering, step, t_rate, t_now, |_| true)
+            } else if !t_sure {
+                self.judged_step(entering, step, t_rate, t_now, amax)
+            } else {
+                None
+            };
+            let j = j.or_else(|| {
+                (!near)
+                    .then(|| self.tiny_pivot_mechanism(entering, &alpha, step, t_rate, t_now))
+                    .flatten()
+            });
+            if let Some(j) = j {
+                let rate = j.load_rate(self.driver_slot());
+                judged = Some(std::mem::replace(&mut alpha, j.alpha));
+                (step, t_rate) = (j.step, rate);
+                if rate > 0.0 {
+                    t_sure = true;
+                    self.judged_load_segments.push(records.len());
+                } else if step.is_none() {
+                    self.judged_mechanism = true;
+                    return (Ending::Ray { alpha }, entering);
                 }
             }
             // Rows of `x` that would block before the step at rates of the forces' own size
