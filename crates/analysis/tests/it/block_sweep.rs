@@ -293,3 +293,45 @@ fn a_block_on_a_soft_heel_spring_pushed_past_its_tipping_load_in_a_stage_tips_th
         );
     }
 }
+
+/// Steel blocks on heel springs of 1 and 10 N/m (N·m) traced past their tipping load, to the
+/// end: by hand the path ends at the tipping load `W·B/(2H)`, where the block has slid
+/// `(P − f·W)/k` — 200 m and more, whose links' forces (1e14 N term by term) leave the state
+/// beyond what double precision resolves beside forces of 1e4 N. After the tipping their paths
+/// met a step that would have carried the load 1e7 to 1e11 times beyond itself, on a slip
+/// reversing, and stopped at a singular basis (exit 1, the program's fault). Judged on the
+/// structure's equations (`FAR_STEP`): refused as unresolvable at the tipping load (exit 2,
+/// the advice about the spring).
+#[test]
+fn blocks_on_soft_heel_springs_past_their_tipping_load_are_refused_there_not_failed() {
+    use unilateral_analysis::{AnalysisError, Place};
+    use unilateral_contact::{Follow, SolveSettings};
+    for (mesh, (b, h), f, k, w) in [
+        ((5, 2), (1.0, 1.0), 0.38, 1.0, 8112.0),
+        ((7, 2), (2.0, 1.0), 0.39, 10.0, 8395.0),
+    ] {
+        let tip = w * b / (2.0 * h) / 10_000.0;
+        let what = format!("{mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}");
+        let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), false, &what);
+        let settings = SolveSettings {
+            tightening: 0.0,
+            target: 1.2 * tip,
+            follow: Follow::ToEnd,
+            ..Default::default()
+        };
+        match unilateral_analysis::analyze(&p.model, &settings) {
+            Err(
+                e @ AnalysisError::Unresolved {
+                    at: Place::Load(p), ..
+                },
+            ) => {
+                assert!(!e.is_internal(), "{what}: {e}");
+                assert!(
+                    (p - tip).abs() <= 1e-4 * tip,
+                    "{what}: refused at {p}, tipping {tip}"
+                );
+            }
+            other => panic!("{what}: {:?}", other.map(|a| a.solution.outcome)),
+        }
+    }
+}
