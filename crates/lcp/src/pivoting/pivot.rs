@@ -148,11 +148,10 @@ const LOAD_BELOW_FORCES: f64 = 300.0;
 const LOAD_STEP: f64 = 1e-3;
 
 /// A pivot whose blocking row falls, and whose load moves, at rates below this fraction of the
-/// column's largest rate is a candidate for the structure's equations
-/// ([`Pivoter::tiny_pivot_mechanism`]): they
-/// take it where they find a mechanism there. The blocks on soft heel springs that failed had
-/// such pivots at 3e-8 to 1.3e-6 of their columns; a 300-bearing beam's path meets 272 pivots
-/// below 1e-4, none of them a mechanism.
+/// column's largest rate is a candidate for the structure's equations, taken where they find a
+/// mechanism there ([`Pivoter::tiny_pivot_mechanism`]). The blocks on soft heel springs that
+/// failed had such pivots at 3e-8 to 1.3e-6 of their columns; a 300-bearing beam's path meets
+/// 272 pivots below 1e-4, none of them a mechanism.
 const TINY_PIVOT: f64 = 1e-4;
 
 /// A [`TINY_PIVOT`] whose load rate passes the column's tolerance is judged only where its step
@@ -1462,13 +1461,15 @@ impl<'a> Pivoter<'a> {
             && step.is_some_and(|(slot, th)| {
                 alpha[slot].abs() < TINY_PIVOT * amax
                     && (!sure
-                        || ((th == 0.0 || (th * rate).abs() > TINY_PIVOT_STEP * now.abs())
+                        || ((th == 0.0
+                            || (now != 0.0 && (th * rate).abs() > TINY_PIVOT_STEP * now.abs()))
                             && self.beta[slot].abs() < TINY_VALUE * max_abs(&self.beta)))
             });
         // So is a step that would carry the load by more than [`FAR_STEP`] times itself,
-        // whatever its rates.
+        // whatever its rates (at a load reached: from zero every step is "far").
         let far = self.judge.is_some()
             && entering != self.cols.driver()
+            && now != 0.0
             && step.is_some_and(|(_, th)| (th * rate).abs() > FAR_STEP * now.abs());
         if !tiny && !far {
             return None;
