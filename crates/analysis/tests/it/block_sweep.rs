@@ -335,3 +335,84 @@ fn blocks_on_soft_heel_springs_past_their_tipping_load_are_refused_there_not_fai
         }
     }
 }
+
+/// The blocks of [`generated_block_paths_end_only_at_the_tipping_load`] on heel springs of 1 to
+/// 10 N/m (200 of them, half in kN·mm): the soft spring an engineer adds to hold a free body,
+/// 5e-12 to 5e-11 of the block's stiffness, which lets it slide hundreds of metres past its
+/// friction's capacity. By hand the path ends in the mechanism at the tipping load, and reaches
+/// a target only below it; a return to zero or a ray that reports a state is wrong. A refusal
+/// (exit 2: the slips' forces beyond what double precision resolves beside the block's) is
+/// allowed, and so is, for now, a failure said to be the program's (exit 1) — at most 10 of
+/// the 200 (8 now): `docs/engine.md`, "Tiny pivots on soft springs". Before that rule: 60
+/// such failures, and three wrong answers (returns to zero at the tipping load); 16 answered
+/// then, 17 now, the rest refused.
+#[test]
+fn generated_blocks_on_soft_heel_springs_end_only_at_the_tipping_load() {
+    use unilateral_analysis::Outcome;
+    use unilateral_contact::{Follow, SolveSettings};
+    let mut seq = Sequence(4301);
+    let (mut answered, mut refused, mut failed) = (0, 0, 0);
+    for case in 0..200 {
+        let Block {
+            mesh,
+            size: (b, h),
+            f,
+            w,
+            tip,
+            ..
+        } = seq.block();
+        let k = seq.pick(&[1.0, 2.0, 5.0, 10.0]);
+        let target = tip * seq.pick(&[0.5, 0.93, 0.99, 1.0, 1.2, 1.5]);
+        let follow = seq.pick(&[Follow::ToTarget, Follow::ToEnd]);
+        let kn_mm = case % 2 == 1;
+        let what = format!(
+            "case {case}: {mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}, target \
+             {target} (tipping at {tip}), {follow:?}, kN·mm {kn_mm}"
+        );
+        let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), kn_mm, &what);
+        let settings = SolveSettings {
+            tightening: 0.0,
+            target,
+            follow,
+            ..Default::default()
+        };
+        let a = match unilateral_analysis::analyze(&p.model, &settings) {
+            Ok(a) => a,
+            Err(e) if e.is_internal() => {
+                failed += 1;
+                continue;
+            }
+            Err(_) => {
+                refused += 1;
+                continue;
+            }
+        };
+        // A path past the tipping load that reports no state there (the program's fault, as
+        // the command line says) is a failure, not an answer.
+        let reported = a.solution.p.is_some();
+        match a.solution.outcome {
+            Outcome::Mechanism { p_limit, .. } => assert!(
+                (p_limit - tip).abs() <= 2e-4 * tip,
+                "{what}: a mechanism at {p_limit}"
+            ),
+            Outcome::TargetReached | Outcome::Ray { .. } if !reported => {
+                failed += 1;
+                continue;
+            }
+            Outcome::TargetReached => {
+                assert!(target <= tip * (1.0 + 2e-4), "{what}: the target reached")
+            }
+            Outcome::NumericalFailure | Outcome::IterationLimit => {
+                failed += 1;
+                continue;
+            }
+            ref other => panic!("{what}: {other:?} at {:?}", a.solution.p),
+        }
+        answered += 1;
+    }
+    eprintln!("{answered} answered, {refused} refused, {failed} failed");
+    assert!(
+        failed <= 10,
+        "{answered} answered, {refused} refused, {failed} failed"
+    );
+}
