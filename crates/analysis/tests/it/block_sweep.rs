@@ -156,6 +156,47 @@ fn block_path(
     read("block.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"))
 }
 
+/// The next generated block on the load path: its spring drawn from `springs` where given,
+/// a target of 0.5–1.5 of its tipping load, followed to it or to the path's end, in kN·mm for
+/// the odd cases. Its description, its tipping load, its target and its analysis.
+fn next_block_path(
+    seq: &mut Sequence,
+    case: usize,
+    springs: Option<&[f64]>,
+) -> (
+    String,
+    f64,
+    f64,
+    Result<unilateral_analysis::Analysis, unilateral_analysis::AnalysisError>,
+) {
+    use unilateral_contact::{Follow, SolveSettings};
+    let Block {
+        mesh,
+        size: (b, h),
+        f,
+        k,
+        w,
+        tip,
+    } = seq.block();
+    let k = springs.map_or(k, |s| seq.pick(s));
+    let target = tip * seq.pick(&[0.5, 0.93, 0.99, 1.0, 1.2, 1.5]);
+    let follow = seq.pick(&[Follow::ToTarget, Follow::ToEnd]);
+    let kn_mm = case % 2 == 1;
+    let what = format!(
+        "case {case}: {mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}, target \
+         {target} (tipping at {tip}), {follow:?}, kN·mm {kn_mm}"
+    );
+    let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), kn_mm, &what);
+    let settings = SolveSettings {
+        tightening: 0.0,
+        target,
+        follow,
+        ..Default::default()
+    };
+    let a = unilateral_analysis::analyze(&p.model, &settings);
+    (what, tip, target, a)
+}
+
 /// The same kind of blocks (300 of them, half in kN·mm) on the load path: the weight constant
 /// and the push growing with `p`, to a target of 0.5–1.5 of the tipping load or to the end of
 /// the path. By hand the path ends in the mechanism at the tipping load, and reaches a target
@@ -165,33 +206,11 @@ fn block_path(
 #[test]
 fn generated_block_paths_end_only_at_the_tipping_load() {
     use unilateral_analysis::Outcome;
-    use unilateral_contact::{Follow, SolveSettings};
     let mut seq = Sequence(3035);
     let (mut answered, mut failed) = (0, 0);
     for case in 0..300 {
-        let Block {
-            mesh,
-            size: (b, h),
-            f,
-            k,
-            w,
-            tip,
-        } = seq.block();
-        let target = tip * seq.pick(&[0.5, 0.93, 0.99, 1.0, 1.2, 1.5]);
-        let follow = seq.pick(&[Follow::ToTarget, Follow::ToEnd]);
-        let kn_mm = case % 2 == 1;
-        let what = format!(
-            "case {case}: {mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}, target \
-             {target} (tipping at {tip}), {follow:?}, kN·mm {kn_mm}"
-        );
-        let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), kn_mm, &what);
-        let settings = SolveSettings {
-            tightening: 0.0,
-            target,
-            follow,
-            ..Default::default()
-        };
-        let Ok(a) = unilateral_analysis::analyze(&p.model, &settings) else {
+        let (what, tip, target, a) = next_block_path(&mut seq, case, None);
+        let Ok(a) = a else {
             failed += 1;
             continue;
         };
@@ -349,34 +368,11 @@ fn blocks_on_soft_heel_springs_past_their_tipping_load_are_refused_there_not_fai
 #[test]
 fn generated_blocks_on_soft_heel_springs_end_only_at_the_tipping_load() {
     use unilateral_analysis::Outcome;
-    use unilateral_contact::{Follow, SolveSettings};
     let mut seq = Sequence(4301);
     let (mut answered, mut refused, mut failed) = (0, 0, 0);
     for case in 0..200 {
-        let Block {
-            mesh,
-            size: (b, h),
-            f,
-            w,
-            tip,
-            ..
-        } = seq.block();
-        let k = seq.pick(&[1.0, 2.0, 5.0, 10.0]);
-        let target = tip * seq.pick(&[0.5, 0.93, 0.99, 1.0, 1.2, 1.5]);
-        let follow = seq.pick(&[Follow::ToTarget, Follow::ToEnd]);
-        let kn_mm = case % 2 == 1;
-        let what = format!(
-            "case {case}: {mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}, target \
-             {target} (tipping at {tip}), {follow:?}, kN·mm {kn_mm}"
-        );
-        let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), kn_mm, &what);
-        let settings = SolveSettings {
-            tightening: 0.0,
-            target,
-            follow,
-            ..Default::default()
-        };
-        let a = match unilateral_analysis::analyze(&p.model, &settings) {
+        let (what, tip, target, a) = next_block_path(&mut seq, case, Some(&[1.0, 2.0, 5.0, 10.0]));
+        let a = match a {
             Ok(a) => a,
             Err(e) if e.is_internal() => {
                 failed += 1;
