@@ -590,7 +590,8 @@ impl EvolutionSolver {
             // a stage past its tipping load stopped there at a singular basis.
             if !judged && entering != driver {
                 let raw = ds.map_or(0.0, |ds| -alpha[ds]);
-                if let Some(j) = piv.tiny_pivot_mechanism(entering, &alpha, step, raw, t_now) {
+                if let Some(j) = piv.tiny_pivot_mechanism(entering, &alpha, step, raw, t_now, amax)
+                {
                     t_rate = 0.0;
                     (alpha, step, judged) = (j.alpha, j.step, true);
                 }

@@ -138,14 +138,16 @@ fn generated_block_histories_end_only_at_the_tipping_load() {
     eprintln!("{answered} stages completed, {tipped} tipped, {failed} failed or refused");
 }
 
-/// A generated steel block ([`block_history_text`]'s parameters) on the load path: its weight
-/// the constant load, its push (10 kN at the top corner) the variable one.
-fn block_path(
+/// A generated steel block ([`block_history_text`]'s parameters) on the load path — its weight
+/// the constant load, its push (10 kN at the top corner) the variable one —, analysed without
+/// a tightening to `target`, followed as `follow` says.
+fn analyze_block_path(
     mesh: (usize, usize, f64, f64),
     spring: (f64, f64, f64),
     kn_mm: bool,
+    (target, follow): (f64, unilateral_contact::Follow),
     what: &str,
-) -> unilateral_io::StructuralProblem {
+) -> Result<unilateral_analysis::Analysis, unilateral_analysis::AnalysisError> {
     let text = block_history_text(mesh, spring, &[], kn_mm);
     let text = text
         .split("[[history]]")
@@ -153,7 +155,14 @@ fn block_path(
         .unwrap_or_default()
         .replace("[[loads.weight.nodal]]", "[[loads.constant.nodal]]")
         .replace("[[loads.push.nodal]]", "[[loads.variable.nodal]]");
-    read("block.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"))
+    let p = read("block.toml", &text).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let settings = unilateral_contact::SolveSettings {
+        tightening: 0.0,
+        target,
+        follow,
+        ..Default::default()
+    };
+    unilateral_analysis::analyze(&p.model, &settings)
 }
 
 /// The next generated block on the load path: its spring drawn from `springs` where given,
@@ -169,7 +178,7 @@ fn next_block_path(
     f64,
     Result<unilateral_analysis::Analysis, unilateral_analysis::AnalysisError>,
 ) {
-    use unilateral_contact::{Follow, SolveSettings};
+    use unilateral_contact::Follow;
     let Block {
         mesh,
         size: (b, h),
@@ -186,14 +195,13 @@ fn next_block_path(
         "case {case}: {mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}, target \
          {target} (tipping at {tip}), {follow:?}, kN·mm {kn_mm}"
     );
-    let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), kn_mm, &what);
-    let settings = SolveSettings {
-        tightening: 0.0,
-        target,
-        follow,
-        ..Default::default()
-    };
-    let a = unilateral_analysis::analyze(&p.model, &settings);
+    let a = analyze_block_path(
+        (mesh.0, mesh.1, b, h),
+        (f, k, w),
+        kn_mm,
+        (target, follow),
+        &what,
+    );
     (what, tip, target, a)
 }
 
@@ -251,7 +259,7 @@ fn generated_block_paths_end_only_at_the_tipping_load() {
 #[test]
 fn blocks_on_soft_heel_springs_tip_at_the_load_by_hand_in_both_units() {
     use unilateral_analysis::Outcome;
-    use unilateral_contact::{Follow, SolveSettings};
+    use unilateral_contact::Follow;
     for (mesh, f, k, w) in [
         ((5, 4), 0.45, 10.0, 8902.0),
         ((2, 1), 0.24, 10.0, 9885.0),
@@ -261,14 +269,8 @@ fn blocks_on_soft_heel_springs_tip_at_the_load_by_hand_in_both_units() {
         let target = tip / 2.0;
         for kn_mm in [false, true] {
             let what = format!("{mesh:?} mesh, f = {f}, k = {k}, W = {w}, kN·mm {kn_mm}");
-            let p = block_path((mesh.0, mesh.1, 1.0, 1.0), (f, k, w), kn_mm, &what);
-            let settings = SolveSettings {
-                tightening: 0.0,
-                target,
-                follow: Follow::ToEnd,
-                ..Default::default()
-            };
-            let a = unilateral_analysis::analyze(&p.model, &settings)
+            let mesh = (mesh.0, mesh.1, 1.0, 1.0);
+            let a = analyze_block_path(mesh, (f, k, w), kn_mm, (target, Follow::ToEnd), &what)
                 .unwrap_or_else(|e| panic!("{what}: {e}"));
             match a.solution.outcome {
                 Outcome::Mechanism { p_limit, .. } => assert!(
@@ -324,21 +326,15 @@ fn a_block_on_a_soft_heel_spring_pushed_past_its_tipping_load_in_a_stage_tips_th
 #[test]
 fn blocks_on_soft_heel_springs_past_their_tipping_load_are_refused_there_not_failed() {
     use unilateral_analysis::{AnalysisError, Place};
-    use unilateral_contact::{Follow, SolveSettings};
+    use unilateral_contact::Follow;
     for (mesh, (b, h), f, k, w) in [
         ((5, 2), (1.0, 1.0), 0.38, 1.0, 8112.0),
         ((7, 2), (2.0, 1.0), 0.39, 10.0, 8395.0),
     ] {
         let tip = w * b / (2.0 * h) / 10_000.0;
         let what = format!("{mesh:?} mesh, {b} × {h} m, f = {f}, k = {k}, W = {w}");
-        let p = block_path((mesh.0, mesh.1, b, h), (f, k, w), false, &what);
-        let settings = SolveSettings {
-            tightening: 0.0,
-            target: 1.2 * tip,
-            follow: Follow::ToEnd,
-            ..Default::default()
-        };
-        match unilateral_analysis::analyze(&p.model, &settings) {
+        let mesh = (mesh.0, mesh.1, b, h);
+        match analyze_block_path(mesh, (f, k, w), false, (1.2 * tip, Follow::ToEnd), &what) {
             Err(
                 e @ AnalysisError::Unresolved {
                     at: Place::Load(p), ..

@@ -1430,13 +1430,13 @@ impl<'a> Pivoter<'a> {
 
     /// The structure's mechanism at a tiny pivot: where the blocking row of `step` falls, and
     /// the load moves (`rate`, the load `now` reached), at rates below [`TINY_PIVOT`] of the
-    /// column's largest — the load's rate below the column's tolerance, or the step carrying
-    /// the load by more than [`TINY_PIVOT_STEP`] of itself with the blocking value below
-    /// [`TINY_VALUE`] of the largest —, or whose step would carry the load by more than
-    /// [`FAR_STEP`] times itself, the structure's equations' direction where it holds the load
-    /// and nothing blocks it. `None` elsewhere: the condensed data's pivot stands
-    /// (judged and taken at every tiny pivot, three bearing-beam paths went other ways: a late
-    /// sliding limit missed, a ray read as a mechanism).
+    /// column's largest rate `amax` — the load's rate below the column's tolerance, or the
+    /// step carrying the load by more than [`TINY_PIVOT_STEP`] of itself (or of no length)
+    /// with the blocking value below [`TINY_VALUE`] of the largest —, or whose step would
+    /// carry the load by more than [`FAR_STEP`] times itself, the structure's equations'
+    /// direction where it holds the load and nothing blocks it. `None` elsewhere: the
+    /// condensed data's pivot stands (judged and taken at every tiny pivot, three bearing-beam
+    /// paths went other ways: a late sliding limit missed, a ray read as a mechanism).
     ///
     /// A steel block on a heel spring of 1 N/m (5e-12 of its stiffness), its pairs slipping
     /// by hundreds of metres, tips about its toe at `W·B/(2H)`: the direction in which its
@@ -1452,25 +1452,22 @@ impl<'a> Pivoter<'a> {
         step: Option<Choice>,
         rate: f64,
         now: f64,
+        amax: f64,
     ) -> Option<JudgedStep> {
-        let amax = max_abs(alpha);
+        let (slot, th) = step?;
+        if self.judge.is_none() || entering == self.cols.driver() {
+            return None;
+        }
         let sure = rate.abs() > self.tol.pivot * amax;
-        let tiny = self.judge.is_some()
-            && entering != self.cols.driver()
-            && rate.abs() < TINY_PIVOT * amax
-            && step.is_some_and(|(slot, th)| {
-                alpha[slot].abs() < TINY_PIVOT * amax
-                    && (!sure
-                        || ((th == 0.0
-                            || (now != 0.0 && (th * rate).abs() > TINY_PIVOT_STEP * now.abs()))
-                            && self.beta[slot].abs() < TINY_VALUE * max_abs(&self.beta)))
-            });
+        let tiny = rate.abs() < TINY_PIVOT * amax
+            && alpha[slot].abs() < TINY_PIVOT * amax
+            && (!sure
+                || ((th == 0.0
+                    || (now != 0.0 && (th * rate).abs() > TINY_PIVOT_STEP * now.abs()))
+                    && self.beta[slot].abs() < TINY_VALUE * max_abs(&self.beta)));
         // So is a step that would carry the load by more than [`FAR_STEP`] times itself,
         // whatever its rates (at a load reached: from zero every step is "far").
-        let far = self.judge.is_some()
-            && entering != self.cols.driver()
-            && now != 0.0
-            && step.is_some_and(|(_, th)| (th * rate).abs() > FAR_STEP * now.abs());
+        let far = now != 0.0 && (th * rate).abs() > FAR_STEP * now.abs();
         if !tiny && !far {
             return None;
         }
@@ -1688,11 +1685,12 @@ impl<'a> Pivoter<'a> {
             } else {
                 None
             };
-            let j = j.or_else(|| {
-                (!near)
-                    .then(|| self.tiny_pivot_mechanism(entering, &alpha, step, t_rate, t_now))
-                    .flatten()
-            });
+            let j = match j {
+                None if !near => {
+                    self.tiny_pivot_mechanism(entering, &alpha, step, t_rate, t_now, amax)
+                }
+                j => j,
+            };
             if let Some(j) = j {
                 let rate = j.load_rate(self.driver_slot());
                 judged = Some(std::mem::replace(&mut alpha, j.alpha));
