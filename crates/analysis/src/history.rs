@@ -56,9 +56,12 @@ pub fn analyze_history(
     let mut stage_results = Vec::with_capacity(solution.stages.len());
     for st in &solution.stages {
         // A stage the engine failed in (a singular basis, or an end state that fails its
-        // check) has no state to recover: its results are left out (they were recovered and
+        // check), or whose state is beyond double precision, has no state to recover: its results are left out (they were recovered and
         // read "out of balance", hiding the stage's own reason) and the history ends there.
-        if st.status == StageStatus::NumericalFailure {
+        if matches!(
+            st.status,
+            StageStatus::NumericalFailure | StageStatus::Unresolved
+        ) {
             break;
         }
         let factors: Vec<f64> = st

@@ -527,6 +527,40 @@ fn exit_statuses_of_the_contract() {
     assert!(!out.stderr.contains("internal"), "{}", out.stderr);
 }
 
+/// A history whose state is beyond double precision (`tests/data/history/block-soft-spring.toml`:
+/// a steel block on a 1 N/m spring sliding 5099 m by hand) is the data's conditioning: exit 2,
+/// naming the file, the stage and the advice, the JSON's stage `unresolved` with the state
+/// where the engine stopped (every pair's slip within 1e-4 of the hand value). It was exit 1,
+/// "a fault of unilateral".
+#[test]
+fn a_history_beyond_double_precision_exits_2_with_the_advice() {
+    let file = root().join("tests/data/history/block-soft-spring.toml");
+    let cmd = TestCommand::new(&["solve"])
+        .arg(&file)
+        .args(&["--json", "out.json"]);
+    let out = cmd.run();
+    assert_eq!(out.code, 2, "{}", out.stderr);
+    assert!(out.stderr.starts_with("error: "), "{}", out.stderr);
+    for want in [
+        "block-soft-spring.toml",
+        "stage 2 (`push1`) cannot be resolved in double precision",
+        "keep the slips short",
+    ] {
+        assert!(out.stderr.contains(want), "{want}: {}", out.stderr);
+    }
+    assert!(!out.stderr.contains("fault"), "{}", out.stderr);
+    let j: Value =
+        serde_json::from_str(&std::fs::read_to_string(cmd.path("out.json")).unwrap()).unwrap();
+    assert_eq!(j["status"], "unresolved");
+    let last = &j["history"][1];
+    assert_eq!(last["status"], "unresolved");
+    let slip = 8622.03 - 0.38 * 9271.0;
+    for p in last["pairs"].as_array().unwrap() {
+        let z_t = p["z_t"].as_f64().unwrap();
+        assert!((z_t - slip).abs() <= 1e-4 * slip, "{p}");
+    }
+}
+
 /// The report of a structural history whose last stage ends early in a mechanism
 /// (`tests/data/history/mesh-mechanism.toml`: the block slides off in stage 5 at s ≈ 0.455):
 /// written like any other (its node curves once asked for the stage's last step a rounding

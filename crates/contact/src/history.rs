@@ -80,11 +80,18 @@ pub enum StageStatus {
     IterationLimit,
     /// The engine could not continue (a numerically singular basis).
     NumericalFailure,
+    /// The state reached (where the trace failed, or whose check failed) is beyond what
+    /// double precision resolves: the forces its slips and gaps make term by term are so much
+    /// larger than the loads that their round-off alone exceeds the check's tolerance
+    /// ([`VERIFIED`]) — a block held by a spring a billionth of its stiffness, sliding
+    /// kilometres. The data's conditioning, not the program's fault: the reason gives the
+    /// sizes.
+    Unresolved,
 }
 
 impl StageStatus {
     /// `"completed"`, `"mechanism"`, `"indeterminate"`, `"iteration_limit"`,
-    /// `"numerical_failure"`.
+    /// `"numerical_failure"`, `"unresolved"`.
     pub fn as_str(&self) -> &'static str {
         match self {
             StageStatus::Completed => "completed",
@@ -92,6 +99,7 @@ impl StageStatus {
             StageStatus::Indeterminate => "indeterminate",
             StageStatus::IterationLimit => "iteration_limit",
             StageStatus::NumericalFailure => "numerical_failure",
+            StageStatus::Unresolved => "unresolved",
         }
     }
 }
@@ -734,6 +742,44 @@ pub fn follow_history_judged(
         } else {
             (status, reason, mechanism)
         };
+        // A failed stage whose state the data cannot resolve: no state of it could pass the
+        // check, whatever the program did — the data's conditioning, said as such.
+        let (status, reason) = match (
+            status,
+            unresolvable(zone, history, &pairs, &factors_at(run.s_end)),
+        ) {
+            (StageStatus::NumericalFailure, Some(u)) => (
+                StageStatus::Unresolved,
+                Some(format!(
+                    "the state reached at s = {} of stage {} (`{}`) cannot be resolved in \
+                     double precision: its {} (largest {:.3e}) make forces of {:.3e} term by \
+                     term, {:.1e} times the loads ({:.3e}), whose round-off alone is {:.1e} \
+                     of them (a state is verified within {VERIFIED:e}); give supports that \
+                     keep the slips short (a spring a billionth of the structure's stiffness \
+                     lets it slide metres){}",
+                    run.s_end,
+                    k + 1,
+                    stage.name,
+                    if u.gaps { "gaps and slips" } else { "slips" },
+                    u.displacement,
+                    u.terms,
+                    u.terms / u.loads,
+                    u.loads,
+                    u.ratio,
+                    if run.ending == StageEnding::Singular {
+                        " (the trace met a numerically singular basis there)".to_string()
+                    } else if moves_nothing(&run.ending, m) {
+                        " (the trace read a mechanism in which no pair moves there)".to_string()
+                    } else {
+                        format!(
+                            " (the state's check: largest relative residual {:.1e})",
+                            residual.max()
+                        )
+                    }
+                )),
+            ),
+            (status, _) => (status, reason),
+        };
         out.stages.push(StageSolution {
             stage: k + 1,
             name: stage.name.clone(),
@@ -753,6 +799,68 @@ pub fn follow_history_judged(
         }
     }
     Ok(out)
+}
+
+/// The sizes that put a state beyond double precision ([`unresolvable`]).
+#[derive(Debug, Clone, Copy)]
+struct Unresolvable {
+    /// The largest mutual displacement (`|z_n|`, `|z_t|`, a gap) of the state.
+    displacement: f64,
+    /// The largest sum of the terms `|R_ij·z_j|` (and `|R_nn,ij·η_j|`) forming a pair's force.
+    terms: f64,
+    /// The largest load term of a pair's force at the state's factors.
+    loads: f64,
+    /// [`ROUNDOFF_TERMS`] times `terms` over `loads`.
+    ratio: f64,
+    /// Whether the zone has gaps.
+    gaps: bool,
+}
+
+/// Where the round-off of the terms that form the state's forces (64 ε of their sums: the
+/// slips and gaps times the links' stiffness) exceeds [`VERIFIED`] of the largest load on a
+/// pair, no state there can be verified: the sizes, else `None` (and `None` where the loads
+/// are all zero, which nothing scales).
+fn unresolvable(
+    zone: &ContactZone,
+    history: &History,
+    pairs: &[PairResult],
+    phi: &[f64],
+) -> Option<Unresolvable> {
+    let m = pairs.len();
+    if m != zone.pairs() {
+        return None;
+    }
+    let mut loads = 0.0f64;
+    for (c, case) in history.cases.iter().enumerate() {
+        let f = phi.get(c).copied().unwrap_or(0.0);
+        for v in case.load.normal.iter().chain(&case.load.tangential) {
+            loads = loads.max((f * v).abs());
+        }
+    }
+    let mut terms = 0.0f64;
+    for i in 0..m {
+        for (a, b) in [(&zone.rnn, &zone.rnt), (&zone.rtn, &zone.rtt)] {
+            let sum: f64 = (0..m)
+                .map(|j| {
+                    (a[(i, j)] * pairs[j].z_n).abs()
+                        + (a[(i, j)] * zone.gap[j]).abs()
+                        + (b[(i, j)] * pairs[j].z_t).abs()
+                })
+                .sum();
+            terms = terms.max(sum);
+        }
+    }
+    let displacement = pairs.iter().zip(&zone.gap).fold(0.0f64, |a, (p, g)| {
+        a.max(p.z_n.abs()).max(p.z_t.abs()).max(g.abs())
+    });
+    let ratio = ROUNDOFF_TERMS * terms / loads;
+    (loads > 0.0 && ratio.is_finite() && ratio > VERIFIED).then_some(Unresolvable {
+        displacement,
+        terms,
+        loads,
+        ratio,
+        gaps: zone.gap.iter().any(|&g| g != 0.0),
+    })
 }
 
 /// Whether a stage's ending is a mechanism whose mode moves no pair: every normal rate `dz_n`

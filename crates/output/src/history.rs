@@ -246,6 +246,13 @@ pub fn history_reading(h: &HistorySolution) -> String {
                 .as_deref()
                 .map_or(String::new(), |r| format!(": {r}"))
         ),
+        S::Unresolved => format!(
+            "the history cannot be followed in double precision in {}{}",
+            at(last),
+            last.reason
+                .as_deref()
+                .map_or(String::new(), |r| format!(": {r}"))
+        ),
     }
 }
 
@@ -552,10 +559,13 @@ pub fn history_summary(h: &HistorySolution, title: &str) -> Result<String, NonFi
     if pairs.len() <= SUMMARY_PAIRS {
         // A stage that failed ends in no state of the structure: its pairs are where the
         // engine stopped, shown for diagnosis, not as an answer.
-        let failed = h
-            .stages
-            .last()
-            .is_some_and(|st| st.status == unilateral_contact::StageStatus::NumericalFailure);
+        let failed = h.stages.last().is_some_and(|st| {
+            matches!(
+                st.status,
+                unilateral_contact::StageStatus::NumericalFailure
+                    | unilateral_contact::StageStatus::Unresolved
+            )
+        });
         let _ = writeln!(
             s,
             "{}",

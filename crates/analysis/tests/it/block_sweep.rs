@@ -124,7 +124,9 @@ fn generated_block_histories_end_only_at_the_tipping_load() {
                     );
                     tipped += 1;
                 }
-                StageStatus::NumericalFailure | StageStatus::IterationLimit => failed += 1,
+                StageStatus::NumericalFailure
+                | StageStatus::IterationLimit
+                | StageStatus::Unresolved => failed += 1,
             }
             from = to;
         }

@@ -1275,6 +1275,242 @@ fn a_history_that_cannot_be_resolved_names_the_stage() {
     assert!(!e.to_string().contains("gap"), "{e}");
 }
 
+/// A steel block (2 m × 1 m, 8 × 3 elements, friction 0.38, weight 9271 N) held sideways by a
+/// 1 N/m spring and pushed by 8622.03 N in a history's second stage: by hand it slides
+/// (8622.03 − 0.38·9271)/1 = 5099.05 m, slips that make forces of 1e15 N term by term
+/// against loads of 3e3 N — their round-off alone (64 ε of them) is 1e-3 of the loads, and no
+/// state can pass the stage's check (1e-8). The trace reached the slip (every pair within
+/// 1e-4 of it) but its state failed the check, and the stage read "numerical failure, the
+/// program's fault" (exit 1): it is now `unresolved`, the data's conditioning, with the sizes
+/// and the advice. N·m and kN·mm.
+#[test]
+fn a_block_sliding_kilometres_in_a_history_stage_is_unresolved_at_its_slip_by_hand() {
+    let slip = (8622.03 - 0.38 * 9271.0) / 1.0;
+    for kn_mm in [false, true] {
+        let text = block_history_text((8, 3, 2.0, 1.0), (0.38, 1.0, 9271.0), &[0.862203], kn_mm);
+        let a = analyze_history_text(&text).unwrap_or_else(|e| panic!("kN·mm {kn_mm}: {e}"));
+        let last = a.history.stages.last().expect("a stage");
+        assert_eq!(
+            last.status,
+            unilateral_contact::StageStatus::Unresolved,
+            "kN·mm {kn_mm}: {:?}",
+            last.reason
+        );
+        let reason = last.reason.as_deref().unwrap_or_default();
+        assert!(
+            reason.contains("cannot be resolved in double precision")
+                && reason.contains("keep the slips short")
+                && !reason.contains("program's fault"),
+            "kN·mm {kn_mm}: {reason}"
+        );
+        let unit = if kn_mm { 1e3 } else { 1.0 };
+        for p in &last.pairs {
+            assert!(
+                (p.z_t - slip * unit).abs() <= 1e-4 * slip * unit,
+                "kN·mm {kn_mm}, {}: z_t = {} against {}",
+                p.name,
+                p.z_t,
+                slip * unit
+            );
+        }
+        // No state of the failed stage is recovered.
+        assert_eq!(a.stage_results.len(), 1, "kN·mm {kn_mm}");
+    }
+}
+
+/// The 40 histories of a generated sweep of 100 (blocks of 2–8 × 1–4 elements, three
+/// proportions, friction 0.2–0.5, weights of 8–10 kN, heel springs of 0.1–10 N/m, pushed to
+/// 0.5–1.5 of the tipping load, then perhaps pulled back; half in kN·mm) that failed as the
+/// program's fault (exit 1): slips of kilometres, states beyond double precision. Each now
+/// ends `unresolved` in the stage where the check or the trace failed, or is refused as
+/// unresolvable where its last state is recovered — never a numerical failure or an internal
+/// error.
+#[test]
+fn blocks_sliding_kilometres_on_soft_springs_in_histories_are_unresolved_not_failed() {
+    #[allow(clippy::type_complexity)]
+    let cases: &[((usize, usize, f64, f64), (f64, f64, f64), &[f64], bool)] = &[
+        ((3, 3, 1.0, 0.5), (0.42, 10.0, 9873.0), &[1.48095], true),
+        (
+            (4, 3, 2.0, 1.0),
+            (0.47, 10.0, 9218.0),
+            &[0.9218, -0.4609],
+            false,
+        ),
+        (
+            (6, 2, 1.0, 1.0),
+            (0.32, 2.0, 8829.0),
+            &[0.52974, -0.220725],
+            true,
+        ),
+        ((8, 3, 2.0, 1.0), (0.38, 1.0, 9271.0), &[0.862203], false),
+        ((6, 2, 1.0, 1.0), (0.28, 2.0, 8909.0), &[0.44545], true),
+        (
+            (2, 3, 2.0, 1.0),
+            (0.3, 1.0, 8517.0),
+            &[1.27755, -0.42585],
+            true,
+        ),
+        ((4, 1, 1.0, 0.5), (0.29, 2.0, 9488.0), &[0.939312], true),
+        ((8, 4, 2.0, 1.0), (0.21, 1.0, 9715.0), &[1.1658], false),
+        (
+            (4, 4, 1.0, 0.5),
+            (0.28, 0.1, 9675.0),
+            &[0.957825, -0.48375],
+            false,
+        ),
+        (
+            (8, 2, 2.0, 1.0),
+            (0.23, 10.0, 9564.0),
+            &[1.14768, -0.4782],
+            true,
+        ),
+        (
+            (4, 4, 1.0, 0.5),
+            (0.28, 10.0, 9556.0),
+            &[1.4334, 0.0],
+            false,
+        ),
+        (
+            (6, 3, 1.0, 0.5),
+            (0.35, 1.0, 8359.0),
+            &[0.777387, 0.0],
+            true,
+        ),
+        (
+            (7, 1, 2.0, 1.0),
+            (0.45, 10.0, 9608.0),
+            &[1.4412, -0.4804],
+            false,
+        ),
+        (
+            (6, 4, 1.0, 0.5),
+            (0.38, 1.0, 8972.0),
+            &[0.888228, -0.4486],
+            true,
+        ),
+        ((7, 4, 1.0, 1.0), (0.39, 1.0, 8477.0), &[0.42385], true),
+        (
+            (7, 3, 1.0, 0.5),
+            (0.35, 1.0, 8624.0),
+            &[1.03488, 0.0],
+            false,
+        ),
+        (
+            (3, 4, 1.0, 1.0),
+            (0.23, 0.1, 9793.0),
+            &[0.58758, 0.0],
+            false,
+        ),
+        ((5, 3, 2.0, 1.0), (0.35, 1.0, 9088.0), &[1.09056], false),
+        ((7, 1, 2.0, 1.0), (0.46, 1.0, 9942.0), &[0.9942, 0.0], true),
+        (
+            (3, 3, 2.0, 1.0),
+            (0.24, 5.0, 9919.0),
+            &[1.19028, -0.49595],
+            true,
+        ),
+        (
+            (5, 1, 1.0, 1.0),
+            (0.29, 1.0, 8758.0),
+            &[0.407247, -0.21895],
+            false,
+        ),
+        (
+            (5, 1, 1.0, 0.5),
+            (0.39, 10.0, 8484.0),
+            &[0.789012, 0.0],
+            true,
+        ),
+        ((4, 4, 2.0, 1.0), (0.46, 1.0, 9141.0), &[0.904959], true),
+        (
+            (3, 1, 1.0, 1.0),
+            (0.31, 2.0, 8874.0),
+            &[0.53244, 0.0],
+            false,
+        ),
+        (
+            (2, 1, 2.0, 1.0),
+            (0.42, 2.0, 8610.0),
+            &[1.2915, -0.4305],
+            true,
+        ),
+        ((5, 4, 2.0, 1.0), (0.46, 10.0, 9949.0), &[1.49235], false),
+        (
+            (7, 4, 2.0, 1.0),
+            (0.45, 0.1, 9631.0),
+            &[0.953469, 0.0],
+            false,
+        ),
+        (
+            (8, 4, 1.0, 1.0),
+            (0.36, 1.0, 8924.0),
+            &[0.414966, 0.0],
+            true,
+        ),
+        (
+            (6, 1, 2.0, 1.0),
+            (0.35, 10.0, 8845.0),
+            &[1.32675, 0.0],
+            true,
+        ),
+        ((4, 2, 2.0, 1.0), (0.49, 1.0, 9688.0), &[1.16256, 0.0], true),
+        ((4, 4, 1.0, 0.5), (0.44, 1.0, 8145.0), &[0.9774, 0.0], false),
+        ((5, 3, 2.0, 1.0), (0.43, 1.0, 8232.0), &[1.2348, 0.0], true),
+        ((8, 1, 1.0, 0.5), (0.4, 5.0, 9408.0), &[1.12896, 0.0], false),
+        (
+            (5, 2, 1.0, 0.5),
+            (0.27, 2.0, 8925.0),
+            &[0.830025, 0.0],
+            false,
+        ),
+        ((8, 1, 2.0, 1.0), (0.3, 5.0, 9696.0), &[0.901728, 0.0], true),
+        ((3, 2, 1.0, 0.5), (0.2, 1.0, 9753.0), &[1.17036, 0.0], false),
+        (
+            (4, 2, 1.0, 0.5),
+            (0.22, 10.0, 8351.0),
+            &[1.25265, -0.41755],
+            true,
+        ),
+        (
+            (7, 1, 2.0, 1.0),
+            (0.36, 10.0, 8399.0),
+            &[0.8399, -0.41995],
+            false,
+        ),
+        ((3, 4, 1.0, 0.5), (0.22, 0.1, 9825.0), &[1.179, 0.0], false),
+        ((8, 4, 1.0, 0.5), (0.42, 2.0, 9470.0), &[0.947], true),
+    ];
+    let (mut stages, mut recoveries) = (0, 0);
+    for (i, &(mesh, block, pushes, kn_mm)) in cases.iter().enumerate() {
+        let text = block_history_text(mesh, block, pushes, kn_mm);
+        match analyze_history_text(&text) {
+            Ok(a) => {
+                let last = a.history.stages.last().expect("a stage");
+                assert_eq!(
+                    last.status,
+                    unilateral_contact::StageStatus::Unresolved,
+                    "case {i}: {:?}",
+                    last.reason
+                );
+                stages += 1;
+            }
+            Err(e) => {
+                assert!(
+                    matches!(e, unilateral_analysis::AnalysisError::Unresolved { .. }),
+                    "case {i}: {e}"
+                );
+                assert!(!e.is_internal(), "case {i}: {e}");
+                recoveries += 1;
+            }
+        }
+    }
+    // Both routes are met: the stage's own check (30 of the sweep's) and the recovery's (10).
+    assert!(
+        stages > 0 && recoveries > 0,
+        "{stages} stages, {recoveries} recoveries"
+    );
+}
+
 /// A steel block (1 m × 0.5 m, 7 × 4 elements, friction 0.45) held sideways only by a
 /// 178 N/m spring, its weight (8000 N) and then a push of 7440 N (below tipping, 8000 N): by
 /// hand it slides (7440 − 0.45·8000)/178 = 21.6 m over eight pairs, slips that make forces of

@@ -71,18 +71,27 @@ fn about(title: &Option<String>, units: &Option<String>) -> unilateral_output::A
     }
 }
 
-/// Exit status of a history: every status is an answer except a numerical failure (exit 1).
+/// Exit status of a history: every status is an answer except a numerical failure (exit 1)
+/// and a state beyond double precision (exit 2: the data's conditioning, which the user can
+/// change).
 fn history_failure(file: &Path, h: &HistorySolution) -> Option<Failure> {
     let last = h.stages.last()?;
-    (last.status == StageStatus::NumericalFailure).then(|| {
-        Failure::Internal(format!(
+    let reason = |or: &str| {
+        format!(
             "{}: {}",
             file.display(),
-            last.reason
-                .as_deref()
-                .unwrap_or("the history stopped at a numerical failure")
-        ))
-    })
+            last.reason.as_deref().unwrap_or(or)
+        )
+    };
+    match last.status {
+        StageStatus::NumericalFailure => Some(Failure::Internal(reason(
+            "the history stopped at a numerical failure",
+        ))),
+        StageStatus::Unresolved => Some(Failure::Input(reason(
+            "the history reached a state beyond double precision",
+        ))),
+        _ => None,
+    }
 }
 
 /// The load–displacement curves of `nodes` (default: the node that moves most at the end of
