@@ -169,6 +169,11 @@ pub(crate) fn outcome_failure(
     file: &Path,
     sol: &unilateral_contact::ContactSolution,
 ) -> Option<Failure> {
+    // Where the path stopped at a state beyond double precision, the data's conditioning: the
+    // user's to change (exit 2), said with the sizes and the advice.
+    if let Some(why) = sol.beyond_double_precision() {
+        return Some(Failure::Input(format!("{}: {why}", file.display())));
+    }
     ending_failure(file, &sol.outcome, sol.steps.len()).or_else(|| {
         sol.unreported_is_failure().then(|| {
             Failure::Internal(format!(

@@ -527,30 +527,41 @@ fn exit_statuses_of_the_contract() {
     assert!(!out.stderr.contains("internal"), "{}", out.stderr);
 }
 
-/// A history whose state is beyond double precision (`tests/data/history/block-soft-spring.toml`:
-/// a steel block on a 1 N/m spring sliding 5099 m by hand) is the data's conditioning: exit 2,
-/// naming the file, the stage and the advice, the JSON's stage `unresolved` with the state
-/// where the engine stopped (every pair's slip within 1e-4 of the hand value). It was exit 1,
-/// "a fault of unilateral".
+/// States beyond double precision are the data's conditioning: exit 2, naming the file, the
+/// place and the advice, where they were exit 1, "a fault of unilateral". A history
+/// (`tests/data/unresolvable/block-soft-spring-history.toml`: a steel block on a 1 N/m spring
+/// sliding 5099 m by hand): the JSON's stage `unresolved` with the state where the engine
+/// stopped (every pair's slip within 1e-4 of the hand value). A load path
+/// (`block-soft-spring-path.toml`: a block on a 1 N/m spring that has slid 5490 m by hand when it
+/// tips, where the path stopped at a singular basis): the JSON's reading says the same, its
+/// status the engine's `numerical_failure`.
 #[test]
-fn a_history_beyond_double_precision_exits_2_with_the_advice() {
-    let file = root().join("tests/data/history/block-soft-spring.toml");
-    let cmd = TestCommand::new(&["solve"])
-        .arg(&file)
-        .args(&["--json", "out.json"]);
-    let out = cmd.run();
-    assert_eq!(out.code, 2, "{}", out.stderr);
-    assert!(out.stderr.starts_with("error: "), "{}", out.stderr);
-    for want in [
-        "block-soft-spring.toml",
-        "stage 2 (`push1`) cannot be resolved in double precision",
-        "keep the slips short",
-    ] {
-        assert!(out.stderr.contains(want), "{want}: {}", out.stderr);
-    }
-    assert!(!out.stderr.contains("fault"), "{}", out.stderr);
-    let j: Value =
-        serde_json::from_str(&std::fs::read_to_string(cmd.path("out.json")).unwrap()).unwrap();
+fn states_beyond_double_precision_exit_2_with_the_advice() {
+    let dir = root().join("tests/data/unresolvable");
+    let run = |name: &str, wants: &[&str]| -> Value {
+        let cmd = TestCommand::new(&["solve"])
+            .arg(dir.join(name))
+            .args(&["--json", "out.json"]);
+        let out = cmd.run();
+        assert_eq!(out.code, 2, "{name}: {}", out.stderr);
+        assert!(out.stderr.starts_with("error: "), "{name}: {}", out.stderr);
+        assert!(!out.stderr.contains("fault"), "{name}: {}", out.stderr);
+        for want in [
+            name,
+            "cannot be resolved in double precision",
+            "keep the slips short",
+        ]
+        .iter()
+        .chain(wants)
+        {
+            assert!(out.stderr.contains(want), "{name}: {want}: {}", out.stderr);
+        }
+        serde_json::from_str(&std::fs::read_to_string(cmd.path("out.json")).unwrap()).unwrap()
+    };
+    let j = run(
+        "block-soft-spring-history.toml",
+        &["stage 2 (`push1`)", "(largest 5.099e3)"],
+    );
     assert_eq!(j["status"], "unresolved");
     let last = &j["history"][1];
     assert_eq!(last["status"], "unresolved");
@@ -559,6 +570,13 @@ fn a_history_beyond_double_precision_exits_2_with_the_advice() {
         let z_t = p["z_t"].as_f64().unwrap();
         assert!((z_t - slip).abs() <= 1e-4 * slip, "{p}");
     }
+    let j = run("block-soft-spring-path.toml", &["(largest 5.490e3)"]);
+    assert_eq!(j["status"], "numerical_failure");
+    let reading = j["reading"].as_str().unwrap();
+    assert!(
+        reading.contains("cannot be resolved in double precision") && !reading.contains("fault"),
+        "{reading}"
+    );
 }
 
 /// The report of a structural history whose last stage ends early in a mechanism

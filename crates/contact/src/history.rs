@@ -751,21 +751,13 @@ pub fn follow_history_judged(
             (StageStatus::NumericalFailure, Some(u)) => (
                 StageStatus::Unresolved,
                 Some(format!(
-                    "the state reached at s = {} of stage {} (`{}`) cannot be resolved in \
-                     double precision: its {} (largest {:.3e}) make forces of {:.3e} term by \
-                     term, {:.1e} times the loads ({:.3e}), whose round-off alone is {:.1e} \
-                     of them (a state is verified within {VERIFIED:e}); give supports that \
-                     keep the slips short (a spring a billionth of the structure's stiffness \
-                     lets it slide metres){}",
-                    run.s_end,
-                    k + 1,
-                    stage.name,
-                    if u.gaps { "gaps and slips" } else { "slips" },
-                    u.displacement,
-                    u.terms,
-                    u.terms / u.loads,
-                    u.loads,
-                    u.ratio,
+                    "{}{}",
+                    u.sentence(&format!(
+                        "the state reached at s = {} of stage {} (`{}`)",
+                        run.s_end,
+                        k + 1,
+                        stage.name
+                    )),
                     if run.ending == StageEnding::Singular {
                         " (the trace met a numerically singular basis there)".to_string()
                     } else if moves_nothing(&run.ending, m) {
@@ -803,39 +795,52 @@ pub fn follow_history_judged(
 
 /// The sizes that put a state beyond double precision ([`unresolvable`]).
 #[derive(Debug, Clone, Copy)]
-struct Unresolvable {
+pub(crate) struct Unresolvable {
     /// The largest mutual displacement (`|z_n|`, `|z_t|`, a gap) of the state.
-    displacement: f64,
+    pub displacement: f64,
     /// The largest sum of the terms `|R_ij·z_j|` (and `|R_nn,ij·η_j|`) forming a pair's force.
-    terms: f64,
-    /// The largest load term of a pair's force at the state's factors.
-    loads: f64,
+    pub terms: f64,
+    /// The largest load term of a pair's force at the state's load.
+    pub loads: f64,
     /// [`ROUNDOFF_TERMS`] times `terms` over `loads`.
-    ratio: f64,
+    pub ratio: f64,
     /// Whether the zone has gaps.
-    gaps: bool,
+    pub gaps: bool,
+}
+
+impl Unresolvable {
+    /// "… cannot be resolved in double precision: its slips (largest …) make forces of …
+    /// term by term, … times the loads (…), whose round-off alone is … of them …; give
+    /// supports that keep the slips short …", after `what` (the state named).
+    pub(crate) fn sentence(&self, what: &str) -> String {
+        format!(
+            "{what} cannot be resolved in double precision: its {} (largest {:.3e}) make forces \
+             of {:.3e} term by term, {:.1e} times the loads ({:.3e}), whose round-off alone is \
+             {:.1e} of them (a state is verified within {VERIFIED:e}); give supports that keep \
+             the slips short (a spring a billionth of the structure's stiffness lets it slide \
+             metres)",
+            if self.gaps { "gaps and slips" } else { "slips" },
+            self.displacement,
+            self.terms,
+            self.terms / self.loads,
+            self.loads,
+            self.ratio,
+        )
+    }
 }
 
 /// Where the round-off of the terms that form the state's forces (64 ε of their sums: the
-/// slips and gaps times the links' stiffness) exceeds [`VERIFIED`] of the largest load on a
-/// pair, no state there can be verified: the sizes, else `None` (and `None` where the loads
-/// are all zero, which nothing scales).
-fn unresolvable(
+/// slips and gaps times the links' stiffness) exceeds [`VERIFIED`] of `loads`, the largest
+/// load term on a pair, no state there can be verified: the sizes, else `None` (and `None`
+/// where the loads are all zero, which nothing scales).
+pub(crate) fn unresolvable_state(
     zone: &ContactZone,
-    history: &History,
     pairs: &[PairResult],
-    phi: &[f64],
+    loads: f64,
 ) -> Option<Unresolvable> {
     let m = pairs.len();
     if m != zone.pairs() {
         return None;
-    }
-    let mut loads = 0.0f64;
-    for (c, case) in history.cases.iter().enumerate() {
-        let f = phi.get(c).copied().unwrap_or(0.0);
-        for v in case.load.normal.iter().chain(&case.load.tangential) {
-            loads = loads.max((f * v).abs());
-        }
     }
     let mut terms = 0.0f64;
     for i in 0..m {
@@ -861,6 +866,23 @@ fn unresolvable(
         ratio,
         gaps: zone.gap.iter().any(|&g| g != 0.0),
     })
+}
+
+/// [`unresolvable_state`] of a history's state at the factors `phi` of its cases.
+fn unresolvable(
+    zone: &ContactZone,
+    history: &History,
+    pairs: &[PairResult],
+    phi: &[f64],
+) -> Option<Unresolvable> {
+    let mut loads = 0.0f64;
+    for (c, case) in history.cases.iter().enumerate() {
+        let f = phi.get(c).copied().unwrap_or(0.0);
+        for v in case.load.normal.iter().chain(&case.load.tangential) {
+            loads = loads.max((f * v).abs());
+        }
+    }
+    unresolvable_state(zone, pairs, loads)
 }
 
 /// Whether a stage's ending is a mechanism whose mode moves no pair: every normal rate `dz_n`

@@ -475,6 +475,72 @@ impl ContactSolution {
                 .is_some_and(|why| crate::solve::unreported_is_failure(why, self.tightening))
     }
 
+    /// Where the path stopped without an answer — at a numerically singular basis
+    /// ([`Outcome::NumericalFailure`]), or without the solution it should report
+    /// ([`ContactSolution::unreported_is_failure`]) — at a state the data cannot resolve in
+    /// double precision: the sentence that says so, with the sizes and the advice; `None`
+    /// elsewhere, and for a path traced with the tightening (its states carry `c`). The state is
+    /// the path's where it stopped (its last breakpoint), or at the load of the missing
+    /// solution; it is beyond double precision where the round-off of the forces its slips and
+    /// gaps make term by term (64 ε of their sums) exceeds 1e-8 of the largest load on a pair
+    /// there ([`crate::history::VERIFIED`], as a load history's stage judges it): no state
+    /// there could be verified, whatever the engine did — the data's conditioning (a steel block
+    /// on a 1 N/m spring pushed past its sliding load slides kilometres), not the program's
+    /// fault.
+    pub fn beyond_double_precision(&self) -> Option<String> {
+        if self.tightening != 0.0 {
+            return None;
+        }
+        let last = |what: &str| -> Option<(String, f64, Vec<PairResult>)> {
+            let k = self.path.breakpoints.len().checked_sub(1)?;
+            let (p, pairs) = self.traced_on_segments_unnamed(&[(k, 0.0)]).ok()?.pop()??;
+            Some((
+                format!("the state of the path at p = {}, {what},", number_text(p)),
+                p,
+                pairs,
+            ))
+        };
+        let (what, p, pairs) = if self.outcome == Outcome::NumericalFailure {
+            last("where it stopped without an answer")?
+        } else if self.unreported_is_failure() {
+            let at = self.path.unreported.as_ref()?.p;
+            let said = format!(
+                "the load p = {} where no solution could be verified",
+                number_text(at)
+            );
+            match self.traced_at_many(&[at]).ok()?.pop()? {
+                Some(pairs) => (format!("the state of the path at {said},"), at, pairs),
+                // Beyond the last breakpoint (on a ray): the scheme there is the last
+                // breakpoint's, whose state the load reaches first.
+                None => last(&format!("its last change of scheme before {said}"))?,
+            }
+        } else {
+            return None;
+        };
+        let zone = &*self.zone;
+        let loads = (0..zone.pairs()).fold(0.0f64, |a, i| {
+            a.max((zone.constant.normal[i] + p * zone.variable.normal[i]).abs())
+                .max((zone.constant.tangential[i] + p * zone.variable.tangential[i]).abs())
+        });
+        let u = crate::history::unresolvable_state(zone, &pairs, loads)?;
+        Some(u.sentence(&what))
+    }
+
+    /// The sentence for engineers of how the path ended
+    /// ([`Outcome::reading_traced_with`]), except where it stopped at a state beyond double
+    /// precision ([`ContactSolution::beyond_double_precision`]): that sentence, not "an
+    /// internal failure of the program".
+    pub fn reading(&self) -> String {
+        match (&self.outcome, self.beyond_double_precision()) {
+            (Outcome::NumericalFailure, Some(why)) => {
+                format!("the solver stopped at a numerically singular basis: {why}")
+            }
+            _ => self
+                .outcome
+                .reading_traced_with(self.settings.target, self.tightening),
+        }
+    }
+
     /// Reads the normalised point `sol` as the reported solution.
     pub(crate) fn set_point(&mut self, sol: &PathPoint) -> Result<(), ContactError> {
         self.pairs = self.engine.read_point(sol)?;

@@ -309,7 +309,7 @@ fn path_document(
         .collect();
     let mut doc = json!({
         "status": sol.outcome.status(),
-        "reading": sol.outcome.reading_traced_with(sol.settings.target, sol.tightening),
+        "reading": sol.reading(),
         "physical_path": sol.physical_reading(),
         "p": sol.p,
         "p_limit": p_limit,

@@ -255,12 +255,7 @@ pub fn report_html(
     }
     row(
         "Status",
-        format!(
-            "{} — {}",
-            sol.outcome.status(),
-            sol.outcome
-                .reading_traced_with(sol.settings.target, sol.tightening)
-        ),
+        format!("{} — {}", sol.outcome.status(), sol.reading()),
     );
     row(
         "Reported load p",

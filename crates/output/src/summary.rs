@@ -71,13 +71,7 @@ pub fn contact_summary_detail(
     if let Some(physical) = sol.physical_reading() {
         let _ = writeln!(s, "physical path: {physical}");
     }
-    let _ = writeln!(
-        s,
-        "status: {} — {}",
-        sol.outcome.status(),
-        sol.outcome
-            .reading_traced_with(sol.settings.target, sol.tightening)
-    );
+    let _ = writeln!(s, "status: {} — {}", sol.outcome.status(), sol.reading());
     match sol.p {
         Some(p) => {
             let _ = write!(s, "solution at p = {}", fmt_num(p));
