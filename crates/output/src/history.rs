@@ -220,6 +220,11 @@ pub fn history_reading(h: &HistorySolution) -> String {
         )
     };
     use unilateral_contact::StageStatus as S;
+    // ": the stage's reason", where it has one.
+    let why = last
+        .reason
+        .as_deref()
+        .map_or(String::new(), |r| format!(": {r}"));
     match last.status {
         S::Completed => format!(
             "every stage was completed ({} stage{})",
@@ -230,28 +235,16 @@ pub fn history_reading(h: &HistorySolution) -> String {
             "the structure becomes a mechanism in {}: the load cannot be carried further",
             at(last)
         ),
-        S::Indeterminate => format!(
-            "the evolution is indeterminate in {}{}",
-            at(last),
-            last.reason
-                .as_deref()
-                .map_or(String::new(), |r| format!(": {r}"))
-        ),
+        S::Indeterminate => format!("the evolution is indeterminate in {}{why}", at(last)),
         S::IterationLimit => format!("the pivot cap was reached in {}", at(last)),
         S::NumericalFailure => format!(
             "the solver failed in {} (an internal failure of the program, not a fault of the \
-             model){}",
-            at(last),
-            last.reason
-                .as_deref()
-                .map_or(String::new(), |r| format!(": {r}"))
+             model){why}",
+            at(last)
         ),
         S::Unresolved => format!(
-            "the history cannot be followed in double precision in {}{}",
-            at(last),
-            last.reason
-                .as_deref()
-                .map_or(String::new(), |r| format!(": {r}"))
+            "the history cannot be followed in double precision in {}{why}",
+            at(last)
         ),
     }
 }
