@@ -744,10 +744,12 @@ pub fn follow_history_judged(
         };
         // A failed stage whose state the data cannot resolve: no state of it could pass the
         // check, whatever the program did — the data's conditioning, said as such.
-        let (status, reason) = match (
-            status,
-            unresolvable(zone, history, &pairs, &factors_at(run.s_end)),
-        ) {
+        // (Formed for a failed stage only: `O(m²)`.)
+        let failed = status == StageStatus::NumericalFailure;
+        let beyond = failed
+            .then(|| unresolvable(zone, history, &pairs, &factors_at(run.s_end)))
+            .flatten();
+        let (status, reason) = match (status, beyond) {
             (StageStatus::NumericalFailure, Some(u)) => (
                 StageStatus::Unresolved,
                 Some(format!(
