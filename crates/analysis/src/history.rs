@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use unilateral_contact::{
-    follow_history_judged, ContactZone, History, HistorySolution, PairResult, Stage, StageStatus,
+    follow_history_judged, ContactZone, History, HistorySolution, PairResult, Stage,
 };
 use unilateral_fem::{Condensed, Model, Results};
 
@@ -58,10 +58,7 @@ pub fn analyze_history(
         // A stage the engine failed in (a singular basis, or an end state that fails its
         // check), or whose state is beyond double precision, has no state to recover: its results are left out (they were recovered and
         // read "out of balance", hiding the stage's own reason) and the history ends there.
-        if matches!(
-            st.status,
-            StageStatus::NumericalFailure | StageStatus::Unresolved
-        ) {
+        if !st.status.has_states() {
             break;
         }
         let factors: Vec<f64> = st

@@ -102,6 +102,17 @@ impl StageStatus {
             StageStatus::Unresolved => "unresolved",
         }
     }
+
+    /// Whether the stage's states — its end and the changes inside it — are states of the
+    /// structure: every status but a failure of the engine (`numerical_failure`) or a state
+    /// beyond double precision (`unresolved`), whose end is where the trace stopped, for
+    /// diagnosis, not an answer.
+    pub fn has_states(&self) -> bool {
+        !matches!(
+            self,
+            StageStatus::NumericalFailure | StageStatus::Unresolved
+        )
+    }
 }
 
 /// One change of the working scheme inside a stage.

@@ -552,13 +552,7 @@ pub fn history_summary(h: &HistorySolution, title: &str) -> Result<String, NonFi
     if pairs.len() <= SUMMARY_PAIRS {
         // A stage that failed ends in no state of the structure: its pairs are where the
         // engine stopped, shown for diagnosis, not as an answer.
-        let failed = h.stages.last().is_some_and(|st| {
-            matches!(
-                st.status,
-                unilateral_contact::StageStatus::NumericalFailure
-                    | unilateral_contact::StageStatus::Unresolved
-            )
-        });
+        let failed = h.stages.last().is_some_and(|st| !st.status.has_states());
         let _ = writeln!(
             s,
             "{}",

@@ -38,7 +38,14 @@ pub fn node_curves(
         }];
         nodes.len()
     ];
-    for st in &a.history.stages {
+    // A failed stage's states are where the engine went before it stopped, not the
+    // structure's: the curves end with the last stage that has states.
+    for st in a
+        .history
+        .stages
+        .iter()
+        .take_while(|st| st.status.has_states())
+    {
         // The steps inside the stage, then its end (a step at the end of a stage that stops
         // early — a mechanism — may carry its `s` a rounding above `s_end`).
         let mut marks: Vec<f64> = st

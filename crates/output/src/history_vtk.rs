@@ -71,10 +71,13 @@ pub fn history_vtk_with(
     // Every change of the working scheme strictly inside a stage, recovered (the evolution is
     // linear between them, so these and the stage ends are every corner of the history);
     // beyond `HISTORY_VTK_STEPS` of them, the stage ends only.
+    // A failed stage (`StageStatus::has_states`) has no frame: its states are where the
+    // engine went before it stopped, and its end where it stopped.
     let inner: Vec<(usize, f64)> = a
         .history
         .stages
         .iter()
+        .take_while(|st| st.status.has_states())
         .flat_map(|st| {
             let mut last = 0.0;
             st.steps
@@ -105,6 +108,9 @@ pub fn history_vtk_with(
     }];
     let mut next = steps.iter().peekable();
     for (k, st) in a.history.stages.iter().enumerate() {
+        if !st.status.has_states() {
+            break;
+        }
         while let Some((stage, s, pairs, r)) = next.peek() {
             if *stage != st.stage {
                 break;

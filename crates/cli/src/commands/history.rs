@@ -187,13 +187,19 @@ pub(crate) fn zone(
                 .map_err(Failure::from)
         },
         || {
-            if let Some(dir) = &args.csv {
+            // Each output asked for is written whatever another's fate; every failure is said
+            // ([`Failure::all_of`]).
+            let csv = || -> Result<(), Failure> {
+                let Some(dir) = &args.csv else { return Ok(()) };
                 let files = about(&problem.title, &problem.units)
                     .history_csv(&h)
                     .map_err(Failure::from)?;
-                report_files(write_named(dir, files), dir)?;
-            }
-            if let Some(dir) = &args.report {
+                report_files(write_named(dir, files), dir)
+            };
+            let report = || -> Result<(), Failure> {
+                let Some(dir) = &args.report else {
+                    return Ok(());
+                };
                 let written = unilateral_output::write_history_report(
                     &h,
                     dir,
@@ -201,9 +207,9 @@ pub(crate) fn zone(
                     &chart_options(args),
                     Vec::new(),
                 );
-                report_files(written, dir)?;
-            }
-            Ok(())
+                report_files(written, dir)
+            };
+            Failure::all_of([csv(), report()])
         },
     )?;
     history_failure(file, &h).map_or(Ok(()), Err)
@@ -267,17 +273,25 @@ pub(crate) fn structural(
                 .map_err(Failure::from)
         },
         || {
-            if let Some(dir) = &args.csv {
+            // Each output asked for is written whatever another's fate; every failure is said
+            // ([`Failure::all_of`]): a history's ParaView frames refused at a state beyond
+            // double precision left the report unwritten, and unmentioned.
+            let csv = || -> Result<(), Failure> {
+                let Some(dir) = &args.csv else { return Ok(()) };
                 let files = about(&problem.title, &problem.units)
                     .history_csv(&a.history)
                     .map_err(Failure::from)?;
-                report_files(write_named(dir, files), dir)?;
-            }
-            if let Some(dir) = &args.vtk {
+                report_files(write_named(dir, files), dir)
+            };
+            let vtk = || -> Result<(), Failure> {
+                let Some(dir) = &args.vtk else { return Ok(()) };
                 let files = unilateral_output::history_vtk_with(&a, args.vtk_format.format());
-                report_files(files.and_then(|f| write_named(dir, f)), dir)?;
-            }
-            if let Some(dir) = &args.report {
+                report_files(files.and_then(|f| write_named(dir, f)), dir)
+            };
+            let report = || -> Result<(), Failure> {
+                let Some(dir) = &args.report else {
+                    return Ok(());
+                };
                 let extra = node_pictures(&a, &nodes)?;
                 let written = unilateral_output::write_history_report(
                     &a.history,
@@ -286,9 +300,9 @@ pub(crate) fn structural(
                     &chart_options(args),
                     extra,
                 );
-                report_files(written, dir)?;
-            }
-            Ok(())
+                report_files(written, dir)
+            };
+            Failure::all_of([csv(), vtk(), report()])
         },
     )?;
     history_failure(file, &a.history).map_or(Ok(()), Err)
