@@ -829,7 +829,7 @@ impl Unresolvable {
         format!(
             "{what} cannot be resolved in double precision: its {} (largest {:.3e}) make forces \
              of {:.3e} term by term, {:.1e} times the loads ({:.3e}), whose round-off alone is \
-             {:.1e} of them (a state is verified within {VERIFIED:e}); give supports that keep \
+             {:.1e} of them (a state is verified within {VERIFIED:e}); give {}supports that keep \
              the slips short (a spring a billionth of the structure's stiffness lets it slide \
              metres)",
             if self.gaps { "gaps and slips" } else { "slips" },
@@ -838,6 +838,11 @@ impl Unresolvable {
             self.terms / self.loads,
             self.loads,
             self.ratio,
+            if self.gaps {
+                "larger loads against the gaps, smaller gaps, or "
+            } else {
+                ""
+            },
         )
     }
 }

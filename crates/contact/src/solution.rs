@@ -518,9 +518,13 @@ impl ContactSolution {
             return None;
         };
         let zone = &*self.zone;
+        // The largest load term on a pair (constant or variable, as a history's stage takes
+        // each case's: a net load where the two cancel would inflate the ratio).
         let loads = (0..zone.pairs()).fold(0.0f64, |a, i| {
-            a.max((zone.constant.normal[i] + p * zone.variable.normal[i]).abs())
-                .max((zone.constant.tangential[i] + p * zone.variable.tangential[i]).abs())
+            a.max(zone.constant.normal[i].abs())
+                .max(zone.constant.tangential[i].abs())
+                .max((p * zone.variable.normal[i]).abs())
+                .max((p * zone.variable.tangential[i]).abs())
         });
         let u = crate::history::unresolvable_state(zone, &pairs, loads)?;
         Some(u.sentence(&what))

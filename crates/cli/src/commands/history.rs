@@ -174,7 +174,7 @@ pub(crate) fn zone(
         problem.zone.pairs(),
         history.stages.len()
     );
-    write_outputs(
+    let written = write_outputs(
         args,
         timings,
         || {
@@ -211,8 +211,9 @@ pub(crate) fn zone(
             };
             Failure::all_of([csv(), report()])
         },
-    )?;
-    history_failure(file, &h).map_or(Ok(()), Err)
+    );
+    // The stage's own failure is said too where an output failed (the program's first).
+    Failure::all_of([written, history_failure(file, &h).map_or(Ok(()), Err)])
 }
 
 /// A structural model with a history.
@@ -260,7 +261,7 @@ pub(crate) fn structural(
         a.zone.pairs(),
         &format!(", load history of {} stages", stages.len()),
     );
-    write_outputs(
+    let written = write_outputs(
         args,
         timings,
         || {
@@ -304,6 +305,10 @@ pub(crate) fn structural(
             };
             Failure::all_of([csv(), vtk(), report()])
         },
-    )?;
-    history_failure(file, &a.history).map_or(Ok(()), Err)
+    );
+    // The stage's own failure is said too where an output failed (the program's first).
+    Failure::all_of([
+        written,
+        history_failure(file, &a.history).map_or(Ok(()), Err),
+    ])
 }

@@ -60,11 +60,7 @@ pub(crate) fn run(args: TableauArgs) -> Result<(), Failure> {
         for t in &tables {
             crate::output::outln!("{}", unilateral_output::tableau_text(t, &label)?);
         }
-        crate::output::outln!(
-            "{}",
-            sol.outcome
-                .reading_traced_with(problem.settings.target, sol.tightening)
-        );
+        crate::output::outln!("{}", sol.reading());
     }
     outcome_failure(&file, &sol).map_or(Ok(()), Err)
 }
