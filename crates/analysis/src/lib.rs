@@ -104,8 +104,8 @@ pub enum AnalysisError {
          forces of this state ({forces:.3e}), whose round-off alone can leave them out of \
          balance by {:.1e} of those, above what a state is accepted at \
          ({EQUILIBRIUM_TOLERANCE:e}): no state can be verified with such data (this one is out \
-         of balance by {relative:.3e}); give {}supports that keep the slips short (a spring a billionth of the structure's \
-         stiffness lets it slide metres)",
+         of balance by {relative:.3e}); give {}supports that keep the slips short (a spring a \
+         billionth of the structure's stiffness lets it slide metres)",
         if *gaps { "gaps and slips" } else { "slips" },
         dislocation / forces,
         ROUNDOFF_DISLOCATIONS * dislocation / forces,

@@ -754,36 +754,35 @@ pub fn follow_history_judged(
             (status, reason, mechanism)
         };
         // A failed stage whose state the data cannot resolve: no state of it could pass the
-        // check, whatever the program did — the data's conditioning, said as such.
-        // (Formed for a failed stage only: `O(m²)`.)
-        let failed = status == StageStatus::NumericalFailure;
-        let beyond = failed
+        // check, whatever the program did — the data's conditioning, said as such. (Judged
+        // for a failed stage only: `O(m²)`.)
+        let beyond = (status == StageStatus::NumericalFailure)
             .then(|| unresolvable(zone, history, &pairs, &factors_at(run.s_end)))
             .flatten();
-        let (status, reason) = match (status, beyond) {
-            (StageStatus::NumericalFailure, Some(u)) => (
-                StageStatus::Unresolved,
-                Some(format!(
-                    "{}{}",
-                    u.sentence(&format!(
-                        "the state reached at s = {} of stage {} (`{}`)",
-                        run.s_end,
-                        k + 1,
-                        stage.name
-                    )),
-                    if run.ending == StageEnding::Singular {
-                        " (the trace met a numerically singular basis there)".to_string()
-                    } else if moves_nothing(&run.ending, m) {
-                        " (the trace read a mechanism in which no pair moves there)".to_string()
-                    } else {
-                        format!(
-                            " (the state's check: largest relative residual {:.1e})",
-                            residual.max()
-                        )
-                    }
-                )),
-            ),
-            (status, _) => (status, reason),
+        let (status, reason) = match beyond {
+            Some(u) => {
+                let trace = if run.ending == StageEnding::Singular {
+                    " (the trace met a numerically singular basis there)".to_string()
+                } else if moves_nothing(&run.ending, m) {
+                    " (the trace read a mechanism in which no pair moves there)".to_string()
+                } else {
+                    format!(
+                        " (the state's check: largest relative residual {:.1e})",
+                        residual.max()
+                    )
+                };
+                let what = format!(
+                    "the state reached at s = {} of stage {} (`{}`)",
+                    run.s_end,
+                    k + 1,
+                    stage.name
+                );
+                (
+                    StageStatus::Unresolved,
+                    Some(format!("{}{trace}", u.sentence(&what))),
+                )
+            }
+            None => (status, reason),
         };
         out.stages.push(StageSolution {
             stage: k + 1,

@@ -73,11 +73,13 @@ pub fn history_vtk_with(
     // beyond `HISTORY_VTK_STEPS` of them, the stage ends only.
     // A failed stage (`StageStatus::has_states`) has no frame: its states are where the
     // engine went before it stopped, and its end where it stopped.
-    let inner: Vec<(usize, f64)> = a
-        .history
-        .stages
+    let stages = &a.history.stages;
+    let stages = &stages[..stages
         .iter()
         .take_while(|st| st.status.has_states())
+        .count()];
+    let inner: Vec<(usize, f64)> = stages
+        .iter()
         .flat_map(|st| {
             let mut last = 0.0;
             st.steps
@@ -107,10 +109,7 @@ pub fn history_vtk_with(
         results: None,
     }];
     let mut next = steps.iter().peekable();
-    for (k, st) in a.history.stages.iter().enumerate() {
-        if !st.status.has_states() {
-            break;
-        }
+    for (k, st) in stages.iter().enumerate() {
         while let Some((stage, s, pairs, r)) = next.peek() {
             if *stage != st.stage {
                 break;
