@@ -353,6 +353,71 @@ fn blocks_on_soft_heel_springs_past_their_tipping_load_are_refused_there_not_fai
     }
 }
 
+/// Steel blocks (1 m × 1 m) on heel springs of 30 and 100 N/m, pushed at the top to the end of
+/// the path: by hand the path ends in the mechanism at the tipping load `W·B/(2H)` (the spring
+/// acts at the base, with no moment about the toe), where the block has slid `(P − f·W)/k`:
+/// 10.7 m and 3.2 m. Where the heel pair opens, the direction in which it lifts holds the
+/// load, but the condensed data gave the load a rate of −2.7e-15 of the column and a block
+/// 1e9 away, a step that moved the load by less than the 1e-6 of itself that a judged step
+/// must carry: the pivot on it (the block rotated a billion times its slip about its toe) left
+/// values of round-off, from which the 30 N/m block (kN·mm) went on to a false mechanism at
+/// p = 0.575 without a state (exit 1, the program's fault) and the 100 N/m block (kN·mm)
+/// stopped at a singular basis (refused as beyond double precision). Judged on the
+/// structure's equations as a runaway step (`Pivoter::run`): the mechanism at the tipping load
+/// in both units, or (the 30 N/m block in kN·mm, whose slips' forces are 1.1e9 times its own)
+/// the state there refused as beyond double precision — never a mechanism elsewhere, never
+/// the program's fault. Below the tipping load the 100 N/m block's pairs carry `W` and the
+/// push, which is below the friction's capacity.
+#[test]
+fn blocks_on_30_and_100_n_per_m_springs_tip_at_the_load_by_hand_in_both_units() {
+    use unilateral_analysis::{AnalysisError, Outcome, Place};
+    use unilateral_contact::Follow;
+    for (mesh, f, k, w, target) in [
+        ((7, 4), 0.46, 30.0, 8052.0, 0.48312),
+        ((5, 2), 0.45, 100.0, 8184.0, 0.2046),
+    ] {
+        let tip = w / 2.0 / 10_000.0;
+        for kn_mm in [false, true] {
+            let what = format!("{mesh:?} mesh, f = {f}, k = {k}, W = {w}, kN·mm {kn_mm}");
+            let mesh = (mesh.0, mesh.1, 1.0, 1.0);
+            let a = match analyze_block_path(mesh, (f, k, w), kn_mm, (target, Follow::ToEnd), &what)
+            {
+                Ok(a) => a,
+                Err(
+                    e @ AnalysisError::Unresolved {
+                        at: Place::Load(p), ..
+                    },
+                ) if k == 30.0 => {
+                    assert!(!e.is_internal(), "{what}: {e}");
+                    assert!(
+                        (p - tip).abs() <= 1e-4 * tip,
+                        "{what}: refused at {p}, tipping {tip}"
+                    );
+                    continue;
+                }
+                Err(e) => panic!("{what}: {e}"),
+            };
+            match a.solution.outcome {
+                Outcome::Mechanism { p_limit, .. } => assert!(
+                    (p_limit - tip).abs() <= 1e-4 * tip,
+                    "{what}: a mechanism at {p_limit} against {tip}"
+                ),
+                ref other => panic!("{what}: {other:?}"),
+            }
+            if target < tip {
+                let force = if kn_mm { 1e-3 } else { 1.0 };
+                let pairs = &a.solution.pairs;
+                let n: f64 = pairs.iter().map(|r| r.x_n).sum::<f64>() / force;
+                let t: f64 = pairs.iter().map(|r| r.x_t).sum::<f64>() / force;
+                let push = target * 10_000.0;
+                assert!(push < f * w, "{what}: the push slides the block");
+                assert!((n - w).abs() <= 1e-6 * w, "{what}: ΣN = {n}");
+                assert!((t.abs() - push).abs() <= 1e-6 * w, "{what}: ΣT = {t}");
+            }
+        }
+    }
+}
+
 /// The blocks of [`generated_block_paths_end_only_at_the_tipping_load`] on heel springs of 1 to
 /// 10 N/m (200 of them, half in kN·mm): the soft spring an engineer adds to hold a free body,
 /// 5e-12 to 5e-11 of the block's stiffness, which lets it slide hundreds of metres past its

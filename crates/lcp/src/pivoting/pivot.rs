@@ -1675,16 +1675,29 @@ impl<'a> Pivoter<'a> {
                                 }))
                             || self.runaway(step, amax) > RUNAWAY
                     });
-            // A tiny pivot whose load barely moves, where no rule above judged it, is taken from
-            // the structure's equations where they find a mechanism there
-            // ([`Pivoter::tiny_pivot_mechanism`]).
+            // A near-mechanism's step that runs away is judged even where it hardly moves the
+            // load: a block on a 30 N/m spring (kN·mm), its heel opened at the tipping load,
+            // had the load's rate at −2.7e-15 of the column and a block 1e9 away (the load
+            // moved by 3.5e-7 of itself); the pivot on it rotated the block about its toe a
+            // billion times its slip, and the path went on from round-off to a false
+            // mechanism at 1.4 times the tipping load.
             let j = if near {
                 self.judged_step_if(entering, step, t_rate, t_now, |_| true)
+                    .or_else(|| {
+                        if self.runaway(step, amax) > RUNAWAY {
+                            self.judged_on_structure(entering)
+                        } else {
+                            None
+                        }
+                    })
             } else if !t_sure {
                 self.judged_step(entering, step, t_rate, t_now, amax)
             } else {
                 None
             };
+            // A tiny pivot whose load barely moves, where no rule above judged it, is taken from
+            // the structure's equations where they find a mechanism there
+            // ([`Pivoter::tiny_pivot_mechanism`]).
             let j = match j {
                 None if !near => {
                     self.tiny_pivot_mechanism(entering, &alpha, step, t_rate, t_now, amax)
