@@ -356,7 +356,7 @@ fn blocks_on_soft_heel_springs_past_their_tipping_load_are_refused_there_not_fai
 /// Steel blocks (1 m × 1 m) on heel springs of 30 and 100 N/m, pushed at the top to the end of
 /// the path: by hand the path ends in the mechanism at the tipping load `W·B/(2H)` (the spring
 /// acts at the base, with no moment about the toe), where the block has slid `(P − f·W)/k`:
-/// 10.7 m and 3.2 m. Where the heel pair opens, the direction in which it lifts holds the
+/// 10.7 m and 4.1 m. Where the heel pair opens, the direction in which it lifts holds the
 /// load, but the condensed data gave the load a rate of −2.7e-15 of the column and a block
 /// 1e9 away, a step that moved the load by less than the 1e-6 of itself that a judged step
 /// must carry: the pivot on it (the block rotated a billion times its slip about its toe) left
