@@ -1148,3 +1148,61 @@ fn solve_max_pivots_and_pivot_tolerance() {
     };
     close(p_from, ex1::FIRST_EVENT_P, 1.0, "ray");
 }
+
+/// `portal-sliding-feet.toml` (`friction = 0.05` on a portal that nothing else holds sideways),
+/// in N·m and in kN·mm: by hand (statics of the three-hinged-free frame, its comment) the beam's
+/// 160 kN split equally at the start, the push `H = 10 kN·p` leftwards at the right knee adds
+/// `±H·h/L = ±6.25 kN·p` to the feet, the left foot slides out at its friction's capacity
+/// (`x_t = f·x_n1`, state slip−) and the right one sticks with the rest of the push
+/// (`x_t2 = H − f·x_n1`) until it too reaches its capacity: a mechanism at `p = f·W/H = 0.8`.
+/// At the target 0.4: `x_n = 82.5, 77.5 kN`, `x_t = 4.125, −0.125 kN`. In kN·mm the start
+/// (both feet at their capacity, one row zero by the statics) read that row as −1.4e-12 of the
+/// largest value and was refused: "no solution at the start".
+#[test]
+fn a_portal_on_feet_with_little_friction_slides_at_the_load_by_hand_in_both_units() {
+    for (units, force) in [("N·m", 1.0), ("kN·mm", 1e-3)] {
+        let (_, a) = run_edited(&data("portal-sliding-feet.toml"), |d| {
+            if force != 1.0 {
+                crate::scale::rescale_units(d, force, 1e3);
+            }
+        });
+        match a.solution.outcome {
+            Outcome::Mechanism { p_limit, .. } => close(p_limit, 0.8, 1.0, units),
+            ref other => panic!("{units}: {other:?}"),
+        }
+        let w = 160_000.0 * force;
+        let (left, right) = (pair(&a, "foot.1"), pair(&a, "foot.2"));
+        close(left.x_n, 82_500.0 * force, w, units);
+        close(right.x_n, 77_500.0 * force, w, units);
+        close(left.x_t, 4_125.0 * force, w, units);
+        close(right.x_t, -125.0 * force, w, units);
+        assert_eq!(left.state, PairState::SlipMinus, "{units}");
+        assert_eq!(right.state, PairState::Stick, "{units}");
+    }
+}
+
+/// `tests/data/free-modes/beam-on-block-frictionless.toml` and its `-kn-mm` twin (the same
+/// model as an engineer types it in kN·mm; `friction = 0` on node-to-surface pairs, a 100 N/m
+/// spring the only sideways support): by hand each of the beam's two pairs carries half of
+/// `(4 + 5·6) kN/m × 2 m` at the target `p = 5`, 34 kN, and no tangential force (nothing loads
+/// the beam sideways). In kN·mm the start read a row that is zero by the statics as −1e-12 of
+/// the largest value: "no solution at the start".
+#[test]
+fn a_beam_lying_without_friction_on_a_block_carries_its_load_in_both_units() {
+    for (file, force) in [
+        ("beam-on-block-frictionless.toml", 1.0),
+        ("beam-on-block-frictionless-kn-mm.toml", 1e-3),
+    ] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/free-modes")
+            .join(file);
+        let (_, a) = run_edited(&path, |_| {});
+        assert_eq!(a.solution.outcome, Outcome::TargetReached, "{file}");
+        let load = 68_000.0 * force;
+        for name in ["seat.1", "seat.2"] {
+            let pr = pair(&a, name);
+            close(pr.x_n, 34_000.0 * force, load, file);
+            close(pr.x_t, 0.0, load, file);
+        }
+    }
+}

@@ -154,7 +154,7 @@ fn body_on_plane(doc: &toml::Table, elements: &[String]) -> bool {
 
 /// Rewrites a model in the units (force unit F = `f`, length unit L = `l`): a quantity of
 /// dimension F^a·L^b is multiplied by f^a·l^b.
-fn rescale_units(doc: &mut toml::Table, f: f64, l: f64) {
+pub(crate) fn rescale_units(doc: &mut toml::Table, f: f64, l: f64) {
     for n in tables(doc, "nodes") {
         scale_key(n, "x", l);
         scale_key(n, "y", l);
