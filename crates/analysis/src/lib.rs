@@ -118,7 +118,9 @@ pub enum AnalysisError {
         gaps: bool,
         /// The relative out-of-balance force.
         relative: f64,
-        /// The size of the dislocations' forces ([`unilateral_fem::Equilibrium::dislocation_force`]).
+        /// The size of the dislocations' forces ([`unilateral_fem::Equilibrium::dislocation_force`]),
+        /// or of the forces the displacements that follow them make term by term in the
+        /// elements and springs where larger ([`Condensed::displacement_terms`]).
         dislocation: f64,
         /// The force scale of the state ([`unilateral_fem::Equilibrium::scale`]).
         forces: f64,
@@ -604,7 +606,8 @@ fn recovery_error(at: Place, source: FemError, names: &Names) -> AnalysisError {
 const ROUNDOFF_DISLOCATIONS: f64 = 64.0 * f64::EPSILON;
 
 /// Recovered results that are finite and in equilibrium, or the error that says which not.
-fn checked(r: Results, at: Place, model: &Model) -> Result<Results, AnalysisError> {
+fn checked(r: Results, at: Place, c: &Condensed) -> Result<Results, AnalysisError> {
+    let model = c.model();
     if !r.all_finite() {
         return Err(AnalysisError::Internal {
             what: format!("recovering the results at {at}"),
@@ -619,8 +622,16 @@ fn checked(r: Results, at: Place, model: &Model) -> Result<Results, AnalysisErro
         // whatever the residual (the state itself comes from data of that conditioning: a
         // block held by a 10 N/m spring, sliding 490 m in a history, left out of balance by
         // 7e-3 where the round-off bound is 7e-5). Elsewhere an out-of-balance state is the
-        // program's failure.
-        let (dislocation, forces) = (r.equilibrium.dislocation_force, r.equilibrium.scale);
+        // program's failure. The terms are the links' (their dislocations times their
+        // couplings) or the elements' and springs' where larger: a steel block sliding 346 m
+        // on a soft foundation moved its own nodes with it, terms 2e3 times the links' (whose
+        // couplings are the foundation's), and its state out of balance by 2.1e-6 was said to
+        // be the program's fault (a helper's sweep, kN·mm; answered in N·m).
+        let forces = r.equilibrium.scale;
+        let dislocation = r
+            .equilibrium
+            .dislocation_force
+            .max(c.displacement_terms(&r));
         let roundoff = ROUNDOFF_DISLOCATIONS * dislocation / forces;
         if relative.is_finite() && roundoff > EQUILIBRIUM_TOLERANCE {
             return Err(AnalysisError::Unresolved {
@@ -650,7 +661,7 @@ pub fn recover_at(
     let r = c
         .recover_at(factors, &link_values(at.label(), pairs))
         .map_err(|source| recovery_error(at, source, c.model().names()))?;
-    checked(r, at, c.model())
+    checked(r, at, c)
 }
 
 /// A point of a load path or of a load history, as errors name it.
@@ -821,7 +832,7 @@ impl Analysis {
             .map_err(|source| {
                 recovery_error(Place::Load(p), source, self.condensed.model().names())
             })?;
-        checked(r, Place::Load(p), self.condensed.model())
+        checked(r, Place::Load(p), &self.condensed)
     }
 
     /// The pair results (without tightening) and full structural results at another load `p`

@@ -526,3 +526,36 @@ fn blocks_stopped_at_kilometres_of_slip_on_the_path_are_beyond_double_precision(
         );
     }
 }
+
+/// `tests/data/unresolvable/block-sliding-on-soft-foundation-kn-mm.toml`: a steel block lying
+/// without friction on a soft foundation, held by a 41.4 N/m spring, has slid `P/k` = 345.6 m
+/// by hand at its target. Its state there, out of balance by 2.1e-6, was said to be the
+/// program's fault (exit 1): the links' couplings are the foundation's (38 kN/mm), and their
+/// terms 1.3e7 times the forces allowed only 1.8e-7 of round-off — but the block's own nodes
+/// move with the slip, and its elements' terms are 1.7e9 times the forces. Refused as beyond
+/// double precision at the target (exit 2), with the terms of the elements.
+#[test]
+fn a_block_sliding_hundreds_of_metres_on_a_soft_foundation_is_beyond_double_precision() {
+    use unilateral_analysis::{AnalysisError, Place};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/unresolvable/block-sliding-on-soft-foundation-kn-mm.toml");
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("the test data file {} is missing: {e}", path.display()));
+    let p = read("block.toml", &text).unwrap_or_else(|e| panic!("{e}"));
+    match unilateral_analysis::analyze(&p.model, &p.settings) {
+        Err(
+            e @ AnalysisError::Unresolved {
+                at: Place::Load(load),
+                dislocation,
+                forces,
+                ..
+            },
+        ) => {
+            assert!(!e.is_internal(), "{e}");
+            assert_eq!(load, 0.5, "{e}");
+            // The block's elements: its stiffness times 345.6 m, beside forces of 14.3 kN.
+            assert!(dislocation / forces > 1e9, "{e}");
+        }
+        other => panic!("{:?}", other.map(|a| a.solution.outcome)),
+    }
+}
