@@ -242,6 +242,7 @@ impl EvolutionSolver {
             &self.problem.q0,
             &self.problem.start_direction,
             &self.settings,
+            None,
         );
         let basis = basis?;
         let cols = self.prep.columns(&self.problem.q0, &zero);

@@ -70,37 +70,46 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     // the same on both (a complementary basis holds no column of `h` or `d`, and `E M D` is
     // the same), its values are formed on this one by the pivoting.
     let start_prep = solver.start_prep.as_ref().unwrap_or(prep);
-    let (start_basis, start_pivots) =
-        match start_basis(start_prep, solver.d(), &h, &phase1_dir, settings) {
-            (Some(b), pivots, _) => (b, pivots),
-            (None, start_pivots, capped) => {
-                return LoadPath {
-                    // The pivot cap ended the search for the start: not a proof that there is
-                    // none.
-                    status: if capped {
-                        PathStatus::IterationLimit
-                    } else {
-                        PathStatus::NoSolutionAtStart
-                    },
-                    steps: vec![],
-                    breakpoints: vec![],
-                    p_max: 0.0,
-                    p_limit: None,
-                    mechanism: None,
-                    last_entering: None,
-                    solution: None,
-                    start_pivots,
-                    refactorizations: 0,
-                    artificial_mechanism: None,
-                    unreported: None,
-                    unloaded_at_start: false,
-                    start_slots: (0..n).collect(),
-                    records: vec![],
-                    target_segment: None,
-                    judged_load_segments: Vec::new(),
-                };
-            }
-        };
+    let judged_start = |slots: &[usize]| start_on_structure(solver, slots);
+    let on_structure: Option<&dyn Fn(&[usize]) -> bool> =
+        (c0 == 0.0 && solver.judge.is_some()).then_some(&judged_start);
+    let (start_basis, start_pivots) = match start_basis(
+        start_prep,
+        solver.d(),
+        &h,
+        &phase1_dir,
+        settings,
+        on_structure,
+    ) {
+        (Some(b), pivots, _) => (b, pivots),
+        (None, start_pivots, capped) => {
+            return LoadPath {
+                // The pivot cap ended the search for the start: not a proof that there is
+                // none.
+                status: if capped {
+                    PathStatus::IterationLimit
+                } else {
+                    PathStatus::NoSolutionAtStart
+                },
+                steps: vec![],
+                breakpoints: vec![],
+                p_max: 0.0,
+                p_limit: None,
+                mechanism: None,
+                last_entering: None,
+                solution: None,
+                start_pivots,
+                refactorizations: 0,
+                artificial_mechanism: None,
+                unreported: None,
+                unloaded_at_start: false,
+                start_slots: (0..n).collect(),
+                records: vec![],
+                target_segment: None,
+                judged_load_segments: Vec::new(),
+            };
+        }
+    };
     let start_slots = start_basis.slot_var.clone();
     let mut piv = Pivoter::new(
         &cols,
@@ -532,6 +541,7 @@ pub(crate) fn start_basis(
     h: &[f64],
     dir: &[f64],
     settings: &Settings,
+    on_structure: Option<&dyn Fn(&[usize]) -> bool>,
 ) -> (Option<Basis>, usize, bool) {
     let n = prep.n;
     let cols = prep.columns(h, d);
@@ -546,7 +556,9 @@ pub(crate) fn start_basis(
         let ok = beta
             .iter()
             .all(|&v| v.is_finite() && v >= -crate::ACCEPT_RESIDUAL * scale);
-        ok.then_some(b)
+        // Refused on the condensed data: the structure's own equations, where they are at
+        // hand, judge the basis's values ([`start_on_structure`]).
+        (ok || on_structure.is_some_and(|judge| judge(&b.slot_var))).then_some(b)
     };
     let mut pivots = 0;
     // 2. Down the tightening.
@@ -807,6 +819,28 @@ fn structure_values(solver: &PathSolver, slots: &[usize], p: f64) -> Option<(Vec
         *basic.get_mut(v)? = true;
     }
     judge.point(&basic, p)
+}
+
+/// Whether the complementary basis `slots` solves the problem at `p = 0` on the structure's
+/// own equations ([`structure_values`]): every value at least `−1e-12` of the largest of its
+/// kind and the point, those set to zero, verified on this solver's data. A start that the
+/// condensed data refuse by their round-off: a block lying without friction on a foundation,
+/// held sideways by a 133 N/m spring (1e-9 of its stiffness), starts with its pairs' friction
+/// rows zero by the statics, and the condensed data made them −2.7e-9 of the largest value in
+/// N·m ("no solution at the start"; answered in kN·mm).
+fn start_on_structure(solver: &PathSolver, slots: &[usize]) -> bool {
+    let Some((x, z)) = structure_values(solver, slots, 0.0) else {
+        return false;
+    };
+    let signed = |v: Vec<f64>| -> Option<Vec<f64>> {
+        let top = max_abs(&v).max(f64::MIN_POSITIVE);
+        let v = clamp_at(&v, top);
+        v.iter().all(|&a| a >= 0.0).then_some(v)
+    };
+    match (signed(x), signed(z)) {
+        (Some(x), Some(z)) => verified_point(solver, 0.0, x, z).is_some(),
+        _ => false,
+    }
 }
 
 /// [`structure_values`] as a point, where it solves this solver's problem (verified on its

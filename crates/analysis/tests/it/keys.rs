@@ -1206,3 +1206,34 @@ fn a_beam_lying_without_friction_on_a_block_carries_its_load_in_both_units() {
         }
     }
 }
+
+/// `tests/data/free-modes/block-on-foundation-soft-spring.toml` (`friction = 0` between two
+/// blocks, a 133 N/m spring at the top the only sideways support), in N·m and in kN·mm: by
+/// statics the spring carries the whole push `P = 23.54 kN·p` (no friction), and the couple
+/// `P·h` of the push at the toe and the spring at the top tips the block about its toe where
+/// `P·h = W·b/2`: `p = W·b/(2·h·P)`, `W` the body force times the block's volume. Within 1e-5:
+/// the spring is 1e-9 of the block's stiffness, and the traced limit carries its round-off
+/// (5e-7). In N·m the start's friction rows, zero by the statics, read −2.7e-9 of the largest
+/// value on the condensed data: "no solution at the start".
+#[test]
+fn a_block_on_a_soft_spring_without_friction_tips_at_the_load_by_statics_in_both_units() {
+    let (b, h, t) = (2.871111111111111, 2.789, 0.591);
+    let w = 18551.016961664885 * b * h * t;
+    let tip = w * b / (2.0 * h * 23539.81956369561);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/free-modes/block-on-foundation-soft-spring.toml");
+    for (units, force) in [("N·m", 1.0), ("kN·mm", 1e-3)] {
+        let (_, a) = run_edited(&path, |d| {
+            if force != 1.0 {
+                crate::scale::rescale_units(d, force, 1e3);
+            }
+        });
+        match a.solution.outcome {
+            Outcome::Mechanism { p_limit, .. } => assert!(
+                (p_limit - tip).abs() <= 1e-5 * tip,
+                "{units}: a mechanism at {p_limit}, by statics {tip}"
+            ),
+            ref other => panic!("{units}: {other:?}"),
+        }
+    }
+}
