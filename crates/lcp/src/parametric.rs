@@ -71,7 +71,7 @@ pub(crate) fn follow(solver: &PathSolver) -> LoadPath {
     // the same), its values are formed on this one by the pivoting.
     let start_prep = solver.start_prep.as_ref().unwrap_or(prep);
     let judged_start = |slots: &[usize]| start_on_structure(solver, slots);
-    let on_structure: Option<&dyn Fn(&[usize]) -> bool> =
+    let on_structure: Option<&StartJudge> =
         (c0 == 0.0 && solver.judge.is_some()).then_some(&judged_start);
     let (start_basis, start_pivots) = match start_basis(
         start_prep,
@@ -511,6 +511,10 @@ pub(crate) fn adopt(solver: &PathSolver, schur: crate::SchurPath) -> Option<Load
     Some(path)
 }
 
+/// Whether a start basis (its slots) that the condensed data refuse solves the problem on the
+/// structure's own equations ([`start_on_structure`]).
+pub(crate) type StartJudge<'a> = dyn Fn(&[usize]) -> bool + 'a;
+
 /// The complementary basis of the problem at `p = 0`, `x = h + M z` (`h = q0 + c·e`), and the
 /// pivots spent finding it.
 ///
@@ -541,7 +545,7 @@ pub(crate) fn start_basis(
     h: &[f64],
     dir: &[f64],
     settings: &Settings,
-    on_structure: Option<&dyn Fn(&[usize]) -> bool>,
+    on_structure: Option<&StartJudge>,
 ) -> (Option<Basis>, usize, bool) {
     let n = prep.n;
     let cols = prep.columns(h, d);
