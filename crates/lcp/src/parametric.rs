@@ -836,15 +836,18 @@ fn start_on_structure(solver: &PathSolver, slots: &[usize]) -> bool {
     let Some((x, z)) = structure_values(solver, slots, 0.0) else {
         return false;
     };
-    let signed = |v: Vec<f64>| -> Option<Vec<f64>> {
-        let top = max_abs(&v).max(f64::MIN_POSITIVE);
-        let v = clamp_at(&v, top);
-        v.iter().all(|&a| a >= 0.0).then_some(v)
-    };
     match (signed(x), signed(z)) {
         (Some(x), Some(z)) => verified_point(solver, 0.0, x, z).is_some(),
         _ => false,
     }
+}
+
+/// The values `v` of one kind (`x` or `z`) with those within `1e-12` of the largest below zero
+/// set to zero, where none is below that.
+fn signed(v: Vec<f64>) -> Option<Vec<f64>> {
+    let top = max_abs(&v).max(f64::MIN_POSITIVE);
+    let v = clamp_at(&v, top);
+    v.iter().all(|&a| a >= 0.0).then_some(v)
 }
 
 /// [`structure_values`] as a point, where it solves this solver's problem (verified on its
@@ -882,11 +885,6 @@ fn structure_point_signed(
         return None;
     }
     let (x, z) = structure_values(solver, &segment_slots(path, seg, solver.prep.n)?, p)?;
-    let signed = |v: Vec<f64>| -> Option<Vec<f64>> {
-        let top = max_abs(&v).max(f64::MIN_POSITIVE);
-        let v = clamp_at(&v, top);
-        v.iter().all(|&a| a >= 0.0).then_some(v)
-    };
     verified_point(solver, p, signed(x)?, signed(z)?)
 }
 
