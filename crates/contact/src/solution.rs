@@ -517,6 +517,37 @@ impl ContactSolution {
         } else {
             return None;
         };
+        self.unresolvable_at(&what, p, &pairs)
+    }
+
+    /// Where the path ended as a ray or a return to zero at a state (its last change of
+    /// scheme) the data cannot resolve in double precision, as
+    /// [`ContactSolution::beyond_double_precision`] judges one: the sentence that says so. That
+    /// ending is read from values whose round-off may change their signs: a block on an 11.4
+    /// N/m spring that had slid kilometres when its middle pair opened ended there as a ray in
+    /// N·m and turned back to zero in kN·mm, where by statics it is a mechanism (a helper's
+    /// sweep of models in both units, round 45). The states reported are verified apart: only
+    /// the ending is in doubt, and the reading says so ([`ContactSolution::reading`]).
+    pub fn ending_beyond_double_precision(&self) -> Option<String> {
+        if self.tightening != 0.0
+            || !matches!(self.outcome, Outcome::Ray { .. } | Outcome::ReturnedToZero)
+        {
+            return None;
+        }
+        let k = self.path.breakpoints.len().checked_sub(1)?;
+        let (p, pairs) = self.traced_on_segments_unnamed(&[(k, 0.0)]).ok()?.pop()??;
+        let ending = if self.outcome == Outcome::ReturnedToZero {
+            "where it turned back"
+        } else {
+            "from where it runs on as a ray"
+        };
+        let what = format!("the state of the path at p = {}, {ending},", number_text(p));
+        self.unresolvable_at(&what, p, &pairs)
+    }
+
+    /// The sentence for `pairs`, the state `what` at `p`, where the data cannot resolve it in
+    /// double precision ([`ContactSolution::beyond_double_precision`]).
+    fn unresolvable_at(&self, what: &str, p: f64, pairs: &[PairResult]) -> Option<String> {
         let zone = &*self.zone;
         // The largest load term on a pair (constant or variable, as a history's stage takes
         // each case's: a net load where the two cancel would inflate the ratio).
@@ -526,22 +557,29 @@ impl ContactSolution {
                 .max((p * zone.variable.normal[i]).abs())
                 .max((p * zone.variable.tangential[i]).abs())
         });
-        let u = crate::history::unresolvable_state(zone, &pairs, loads)?;
-        Some(u.sentence(&what))
+        let u = crate::history::unresolvable_state(zone, pairs, loads)?;
+        Some(u.sentence(what))
     }
 
     /// The sentence for engineers of how the path ended
     /// ([`Outcome::reading_traced_with`]), except where it stopped at a state beyond double
     /// precision ([`ContactSolution::beyond_double_precision`]): that sentence, not "an
-    /// internal failure of the program".
+    /// internal failure of the program". A ray or a return to zero read from such a state
+    /// carries the doubt ([`ContactSolution::ending_beyond_double_precision`]).
     pub fn reading(&self) -> String {
+        let said = || {
+            self.outcome
+                .reading_traced_with(self.settings.target, self.tightening)
+        };
         match (&self.outcome, self.beyond_double_precision()) {
             (Outcome::NumericalFailure, Some(why)) => {
                 format!("the solver stopped at a numerically singular basis: {why}")
             }
-            _ => self
-                .outcome
-                .reading_traced_with(self.settings.target, self.tightening),
+            (_, Some(why)) => format!("{}, but {why}", said()),
+            _ => match self.ending_beyond_double_precision() {
+                Some(why) => format!("{}; this ending is in doubt: {why}", said()),
+                None => said(),
+            },
         }
     }
 

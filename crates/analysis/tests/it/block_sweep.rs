@@ -559,3 +559,60 @@ fn a_block_sliding_hundreds_of_metres_on_a_soft_foundation_is_beyond_double_prec
         other => panic!("{:?}", other.map(|a| a.solution.outcome)),
     }
 }
+
+/// `tests/data/unresolvable/block-soft-spring-ending-{n-m,kn-mm}.toml`: a steel block held by an
+/// 11.4 N/m spring at its top, whose path ends where, by statics, it becomes a mechanism
+/// (p = 9.4926), having slid kilometres. Read from that state, the ending was a ray in N·m and a
+/// return to zero in kN·mm: both now carry the doubt (the reading says the state there cannot
+/// be resolved in double precision), without refusing the run. The state at the target 0.5 is
+/// an ordinary one, by statics: the pairs carry the block's weight (its body force times its
+/// volume and the two nodal loads on its top) and the whole push (the spring's share, 11.4 N/m
+/// times micrometres, is below 1e-7 of it).
+#[test]
+fn a_path_ending_at_kilometres_of_slip_says_its_ending_is_in_doubt_in_both_units() {
+    use unilateral_analysis::Outcome;
+    let weight = 16287.915361971216 * 1.9 * 1.427 * 0.633 + 2.0 * 40910.16347024467;
+    let push = 0.5 * 11746.16048899237;
+    for (file, force) in [
+        ("block-soft-spring-ending-n-m.toml", 1.0),
+        ("block-soft-spring-ending-kn-mm.toml", 1e-3),
+    ] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../tests/data/unresolvable")
+            .join(file);
+        let text = std::fs::read_to_string(&path)
+            .unwrap_or_else(|e| panic!("the test data file {} is missing: {e}", path.display()));
+        let p = read("block.toml", &text).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let a = unilateral_analysis::analyze(&p.model, &p.settings)
+            .unwrap_or_else(|e| panic!("{file}: {e}"));
+        let s = &a.solution;
+        assert!(
+            matches!(s.outcome, Outcome::Ray { .. } | Outcome::ReturnedToZero),
+            "{file}: {:?}",
+            s.outcome
+        );
+        assert!(s.beyond_double_precision().is_none(), "{file}: refused");
+        let why = s
+            .ending_beyond_double_precision()
+            .unwrap_or_else(|| panic!("{file}: no doubt said"));
+        assert!(
+            why.contains("cannot be resolved in double precision"),
+            "{why}"
+        );
+        assert!(
+            s.reading().contains("this ending is in doubt"),
+            "{}",
+            s.reading()
+        );
+        let n: f64 = s.pairs.iter().map(|r| r.x_n).sum::<f64>() / force;
+        let t: f64 = s.pairs.iter().map(|r| r.x_t).sum::<f64>() / force;
+        assert!(
+            (n - weight).abs() <= 1e-7 * weight,
+            "{file}: ΣN = {n}, by hand {weight}"
+        );
+        assert!(
+            (t.abs() - push).abs() <= 1e-6 * push,
+            "{file}: ΣT = {t}, by hand {push}"
+        );
+    }
+}
