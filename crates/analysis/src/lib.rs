@@ -100,7 +100,8 @@ pub enum AnalysisError {
     /// conditioning, not the program's fault.
     #[error(
         "the results at {at} cannot be resolved in double precision: the links' \
-         dislocations ({}) make forces of {dislocation:.3e} term by term, {:.1e} times the \
+         dislocations ({}) and the motion they carry make forces of {dislocation:.3e} term by \
+         term, {:.1e} times the \
          forces of this state ({forces:.3e}), whose round-off alone can leave them out of \
          balance by {:.1e} of those, above what a state is accepted at \
          ({EQUILIBRIUM_TOLERANCE:e}): no state can be verified with such data (this one is out \
@@ -624,7 +625,7 @@ fn checked(r: Results, at: Place, c: &Condensed) -> Result<Results, AnalysisErro
         // 7e-3 where the round-off bound is 7e-5). Elsewhere an out-of-balance state is the
         // program's failure. The terms are the links' (their dislocations times their
         // couplings) or the elements' and springs' where larger: a steel block sliding 346 m
-        // on a soft foundation moved its own nodes with it, terms 2e3 times the links' (whose
+        // on a soft foundation moved its own nodes with it, terms 130 times the links' (whose
         // couplings are the foundation's), and its state out of balance by 2.1e-6 was said to
         // be the program's fault (a helper's sweep, kN·mm; answered in N·m).
         let forces = r.equilibrium.scale;

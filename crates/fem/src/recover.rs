@@ -243,7 +243,7 @@ impl Condensed {
     /// link's dislocation or the free DOFs that follow it (the dislocations' own measure,
     /// [`crate::Equilibrium::dislocation_force`], sees only the links' couplings: a steel block
     /// sliding 346 m on a soft foundation's pairs coupled to the foundation's 38 kN/mm, its own
-    /// nodes' terms were 2e3 times larger).
+    /// nodes' terms were 130 times the links' summed over its 14 pairs).
     pub fn displacement_terms(&self, results: &Results) -> f64 {
         let model = &self.model;
         let u = |d: usize| results.displacements.get(d / 3).map_or(0.0, |n| n[d % 3]);

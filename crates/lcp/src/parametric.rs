@@ -557,9 +557,31 @@ pub(crate) fn start_basis(
         let b = Basis::from_slots(&cols, slots).ok()?;
         let beta = b.solve(&cols, &cols.h);
         let scale = hmax.max(max_abs(&beta));
-        let ok = beta
-            .iter()
-            .all(|&v| v.is_finite() && v >= -crate::ACCEPT_RESIDUAL * scale);
+        // A basic force within `ACCEPT_RESIDUAL` of the terms of its own row,
+        // `|h_i| + Σ_j |M_ij z_j|` (a part loaded a million times less than its neighbour is
+        // judged on its own loads: measured against the largest value of the problem, a pair
+        // loaded beyond its friction's capacity by 1e-3 of its load passed), or within `1e-12`
+        // of the largest value as every value (the solve's round-off spreads across rows: a
+        // frictionless portal free to slide starts with friction rows zero by the statics and
+        // terms far below that round-off).
+        let mut terms: Vec<f64> = cols.h.iter().map(|v| v.abs()).collect();
+        let mut col = vec![0.0; n];
+        for (&v, &z) in b.slot_var.iter().zip(&beta) {
+            if (n..2 * n).contains(&v) && z != 0.0 {
+                cols.col_into(v, &mut col);
+                for (t, a) in terms.iter_mut().zip(&col) {
+                    *t += (a * z).abs();
+                }
+            }
+        }
+        let ok = b.slot_var.iter().zip(&beta).all(|(&v, &x)| {
+            let allowed = if v < n {
+                (crate::ACCEPT_RESIDUAL * terms[v]).max(1e-12 * scale)
+            } else {
+                1e-12 * scale
+            };
+            x.is_finite() && x >= -allowed
+        });
         // Refused on the condensed data: the structure's own equations, where they are at
         // hand, judge the basis's values ([`start_on_structure`]).
         (ok || on_structure.is_some_and(|judge| judge(&b.slot_var))).then_some(b)

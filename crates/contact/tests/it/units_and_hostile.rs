@@ -548,3 +548,26 @@ fn a_far_target_hides_no_event_as_settling() {
         assert_eq!(events[0].events[0].kind, EventKind::Opens);
     }
 }
+
+/// Three pairs (friction 0.5, `Rnn = I`, `Rtt = diag(1, 0, 1)`): pair B carries a normal load of
+/// 1 and a tangential load of 0.5005 that nothing but its friction resists (its `Rtt` row is
+/// zero), beside pairs A and C loaded a million times more. By hand B's friction part
+/// `x_t− = f·x_n − |x_t| = 0.5 − 0.5005 < 0` whatever the slips: no state at `p = 0`. Measured
+/// against the problem's largest value (1e6), −5e-4 read as round-off (a reviewer, round 45:
+/// the run failed with "a fault of unilateral"); against its own row's terms it is none.
+#[test]
+fn a_pair_loaded_beyond_its_friction_beside_far_larger_loads_has_no_start() {
+    for (big, over) in [(1e6, 1.001), (1e8, 1.1)] {
+        let mut zone = ContactZone::new(
+            faer::Mat::<f64>::identity(3, 3),
+            faer::Mat::<f64>::from_fn(3, 3, |i, j| if i == j && i != 1 { 1.0 } else { 0.0 }),
+        );
+        zone.friction = vec![0.5; 3];
+        zone.constant.normal = vec![big, 1.0, -big];
+        zone.constant.tangential = vec![0.0, 0.5 * over, 0.0];
+        zone.variable.normal = vec![big, 0.0, 0.0];
+        zone.variable.tangential = vec![0.1 * big, 0.0, 0.0];
+        let sol = solve(&zone, &end_settings(1.0)).unwrap();
+        assert_eq!(sol.outcome, Outcome::NoSolutionAtStart, "{big:e}, {over}");
+    }
+}
