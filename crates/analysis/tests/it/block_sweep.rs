@@ -529,8 +529,9 @@ fn blocks_stopped_at_kilometres_of_slip_on_the_path_are_beyond_double_precision(
 
 /// `tests/data/unresolvable/block-sliding-on-soft-foundation-kn-mm.toml`: a steel block lying
 /// without friction on a soft foundation, held by a 41.4 N/m spring, has slid `P/k` = 345.6 m
-/// by hand at its target. Its state there, out of balance by 2.1e-6, was said to be the
-/// program's fault (exit 1): the links' couplings are the foundation's (38 kN/mm), and their
+/// by hand at its target. Its state there (found since round 45's start rules; "no solution at
+/// the start" before), out of balance by 2.1e-6, was said to be the program's fault (exit 1):
+/// the links' couplings are the foundation's (38 kN/mm), and their
 /// terms 1.3e7 times the forces allowed only 1.8e-7 of round-off — but the block's own nodes
 /// move with the slip, and its elements' terms are 1.7e9 times the forces. Refused as beyond
 /// double precision at the target (exit 2), with the terms of the elements.
