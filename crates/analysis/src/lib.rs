@@ -101,9 +101,8 @@ pub enum AnalysisError {
     #[error(
         "the results at {at} cannot be resolved in double precision: the links' \
          dislocations ({}) and the motion they carry make forces of {dislocation:.3e} term by \
-         term, {:.1e} times the \
-         forces of this state ({forces:.3e}), whose round-off alone can leave them out of \
-         balance by {:.1e} of those, above what a state is accepted at \
+         term, {:.1e} times the forces of this state ({forces:.3e}), whose round-off alone can \
+         leave them out of balance by {:.1e} of those, above what a state is accepted at \
          ({EQUILIBRIUM_TOLERANCE:e}): no state can be verified with such data (this one is out \
          of balance by {relative:.3e}); give {}supports that keep the slips short (a spring a \
          billionth of the structure's stiffness lets it slide metres)",

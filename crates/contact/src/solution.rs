@@ -491,15 +491,7 @@ impl ContactSolution {
         if self.tightening != 0.0 {
             return None;
         }
-        let last = |what: &str| -> Option<(String, f64, Vec<PairResult>)> {
-            let k = self.path.breakpoints.len().checked_sub(1)?;
-            let (p, pairs) = self.traced_on_segments_unnamed(&[(k, 0.0)]).ok()?.pop()??;
-            Some((
-                format!("the state of the path at p = {}, {what},", number_text(p)),
-                p,
-                pairs,
-            ))
-        };
+        let last = |what: &str| self.last_breakpoint_state(what);
         let (what, p, pairs) = if self.outcome == Outcome::NumericalFailure {
             last("where it stopped without an answer")?
         } else if self.unreported_is_failure() {
@@ -534,15 +526,25 @@ impl ContactSolution {
         {
             return None;
         }
-        let k = self.path.breakpoints.len().checked_sub(1)?;
-        let (p, pairs) = self.traced_on_segments_unnamed(&[(k, 0.0)]).ok()?.pop()??;
         let ending = if self.outcome == Outcome::ReturnedToZero {
             "where it turned back"
         } else {
             "from where it runs on as a ray"
         };
-        let what = format!("the state of the path at p = {}, {ending},", number_text(p));
+        let (what, p, pairs) = self.last_breakpoint_state(ending)?;
         self.unresolvable_at(&what, p, &pairs)
+    }
+
+    /// The state of the path at its last change of scheme, `what` naming that place: the
+    /// phrase ("the state of the path at p = …, `what`,"), the load and the pairs.
+    fn last_breakpoint_state(&self, what: &str) -> Option<(String, f64, Vec<PairResult>)> {
+        let k = self.path.breakpoints.len().checked_sub(1)?;
+        let (p, pairs) = self.traced_on_segments_unnamed(&[(k, 0.0)]).ok()?.pop()??;
+        Some((
+            format!("the state of the path at p = {}, {what},", number_text(p)),
+            p,
+            pairs,
+        ))
     }
 
     /// The sentence for `pairs`, the state `what` at `p`, where the data cannot resolve it in

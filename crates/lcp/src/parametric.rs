@@ -531,14 +531,17 @@ pub(crate) type StartJudge<'a> = dyn Fn(&[usize]) -> bool + 'a;
 ///    reported as "no solution at the start" although the pair simply sits open.
 /// 3. Then Lemke's method with covering ones and, for `n ≤ 16`, enumeration of all bases.
 ///
-/// A basis is taken only if its values, recomputed from the data, are feasible: none below
-/// `−ACCEPT_RESIDUAL` of the largest (the residual a reported solution is verified within; the
-/// pivoting reads a basic value below zero as zero). At a degenerate start the value of a
-/// basic row that is zero by the statics comes out as the data's round-off: a steel portal on
-/// feet with friction 0.05 spreads under its beam's load until both feet are at their
-/// friction's capacity, one of them sticking with `x_t− = f·x_n + x_t = 0`; formed from the
-/// condensed data in kN·mm it read −1.4e-12 of the largest, below the −1e-12 once asked, and
-/// every basis was refused: "no solution at the start" (in N·m the same row read +1e-13).
+/// A basis is taken only if its values, recomputed from the data, are feasible within their
+/// round-off: a basic force not below `−ACCEPT_RESIDUAL` of its row's terms (the residual a
+/// reported solution is verified within) or `−1e-12` of the largest value, a displacement not
+/// below the latter (the pivoting reads a basic value below zero as zero); else, where
+/// `on_structure` is given, as the structure's equations judge it. At a degenerate start the
+/// value of a basic row that is zero by the statics comes out as the data's round-off: a steel
+/// portal on feet with friction 0.05 spreads under its beam's load until both feet are at
+/// their friction's capacity, one of them sticking with `x_t− = f·x_n + x_t = 0`; formed from
+/// the condensed data in kN·mm it read −1.4e-12 of the largest, below the −1e-12 once asked
+/// of every value, and every basis was refused: "no solution at the start" (in N·m the same
+/// row read +1e-13).
 pub(crate) fn start_basis(
     prep: &Prepared,
     d: &[f64],

@@ -54,6 +54,16 @@ fn run_edited(path: &Path, edit: impl FnOnce(&mut toml::Table)) -> (StructuralPr
     (p, a)
 }
 
+/// The model of `path` (in N·m) analysed as written (`force = 1`), or rewritten in kN·mm
+/// (`force = 1e-3`, lengths × 1e3: `scale.rs`'s rewriting).
+fn run_in_units(path: &Path, force: f64) -> (StructuralProblem, Analysis) {
+    run_edited(path, |d| {
+        if force != 1.0 {
+            crate::scale::rescale_units(d, force, 1e3);
+        }
+    })
+}
+
 fn run(name: &str) -> (StructuralProblem, Analysis) {
     run_edited(&data(name), |_| {})
 }
@@ -1161,11 +1171,7 @@ fn solve_max_pivots_and_pivot_tolerance() {
 #[test]
 fn a_portal_on_feet_with_little_friction_slides_at_the_load_by_hand_in_both_units() {
     for (units, force) in [("N·m", 1.0), ("kN·mm", 1e-3)] {
-        let (_, a) = run_edited(&data("portal-sliding-feet.toml"), |d| {
-            if force != 1.0 {
-                crate::scale::rescale_units(d, force, 1e3);
-            }
-        });
+        let (_, a) = run_in_units(&data("portal-sliding-feet.toml"), force);
         match a.solution.outcome {
             Outcome::Mechanism { p_limit, .. } => close(p_limit, 0.8, 1.0, units),
             ref other => panic!("{units}: {other:?}"),
@@ -1223,11 +1229,7 @@ fn a_block_on_a_soft_spring_without_friction_tips_at_the_load_by_statics_in_both
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../tests/data/free-modes/block-on-foundation-soft-spring.toml");
     for (units, force) in [("N·m", 1.0), ("kN·mm", 1e-3)] {
-        let (_, a) = run_edited(&path, |d| {
-            if force != 1.0 {
-                crate::scale::rescale_units(d, force, 1e3);
-            }
-        });
+        let (_, a) = run_in_units(&path, force);
         match a.solution.outcome {
             Outcome::Mechanism { p_limit, .. } => assert!(
                 (p_limit - tip).abs() <= 1e-5 * tip,

@@ -124,10 +124,9 @@ const RUNAWAY: f64 = 1.0;
 /// passes the column's tolerance. Where the load decreases on it and the step carries the load
 /// a real way, or where its step runs away ([`RUNAWAY`]) whatever load it carries (round 45), it
 /// is judged on the structure's equations whatever its rate ([`Pivoter::near_mechanism`]): a
-/// steel block on a spring of
-/// 300 N/m tipping about its toe at p = 2 (load rate −1.7e-8 of the column, the forces' rates
-/// 3e-8) stepped back to p = 0, a "return to zero"; on 50 N/m (runaway 1e5) it stepped on into
-/// a singular basis. In a reviewer's 832 runs of blocks and beams, 2151 such directions were
+/// steel block on a spring of 300 N/m tipping about its toe at p = 2 (load rate −1.7e-8 of the
+/// column, the forces' rates 3e-8) stepped back to p = 0, a "return to zero"; on 50 N/m
+/// (runaway 1e5) it stepped on into a singular basis. In a reviewer's 832 runs of blocks and beams, 2151 such directions were
 /// genuine on the structure's equations and none of them took the load back; 52 took the load
 /// back, and each was a mechanism there. Judging them all made a 300-bearing beam five times
 /// slower (`docs/engine.md`, "Near-mechanisms").
@@ -1665,6 +1664,7 @@ impl<'a> Pivoter<'a> {
             // step, or where its step runs away — even with a load rate above the column's
             // tolerance: that rate may be the condensation's round-off of a mechanism
             // ([`NEAR_MECHANISM`], [`LOAD_BELOW_FORCES`], [`LOAD_STEP`]).
+            let runaway = self.runaway(step, amax);
             let near = self.judge.is_some()
                 && self
                     .near_mechanism(entering, &alpha, t_rate, amax)
@@ -1674,7 +1674,7 @@ impl<'a> Pivoter<'a> {
                                 && step.is_none_or(|(_, th)| {
                                     (th * t_rate).abs() > LOAD_STEP * t_now.abs()
                                 }))
-                            || self.runaway(step, amax) > RUNAWAY
+                            || runaway > RUNAWAY
                     });
             // A near-mechanism's step that runs away is judged even where it hardly moves the
             // load: a block on a 30 N/m spring (kN·mm), its heel opened at the tipping load,
@@ -1682,7 +1682,7 @@ impl<'a> Pivoter<'a> {
             // moved by 3.5e-7 of itself); the pivot on it rotated the block about its toe a
             // billion times its slip, and the path went on from round-off to a false
             // mechanism at 1.4 times the tipping load.
-            let j = if near && self.runaway(step, amax) > RUNAWAY {
+            let j = if near && runaway > RUNAWAY {
                 self.judged_on_structure(entering)
             } else if near {
                 self.judged_step_if(entering, step, t_rate, t_now, |_| true)
